@@ -1,0 +1,364 @@
+//! The canonical machining commands.
+//!
+//! Frames and units, for every field below unless its doc says otherwise:
+//! * positions are **machine Cartesian** coordinates: all offsets, frames, units and tool data have
+//!   already been applied by the interpreter;
+//! * linear quantities in **millimetres**, angles (A, B, C) in **degrees**, time in **seconds**, feed in
+//!   **mm/min** (or deg/min for a rotary-only move), spindle speed in **rev/min**.
+//!
+//! The few state items (`UseLengthUnits`, `SetG5xOffset`, …) do not change the meaning of any position
+//! in the stream; they exist so that printers can re-express machine positions the way a control's
+//! operator screen or LinuxCNC's `rs274` would (work frame, program units).
+
+use serde::Serialize;
+
+/// A point of all nine axes LinuxCNC knows: X Y Z (mm), A B C (deg), U V W (mm).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct Pose {
+    /// X, mm.
+    pub x: f64,
+    /// Y, mm.
+    pub y: f64,
+    /// Z, mm.
+    pub z: f64,
+    /// A, degrees.
+    pub a: f64,
+    /// B, degrees.
+    pub b: f64,
+    /// C, degrees.
+    pub c: f64,
+    /// U, mm.
+    pub u: f64,
+    /// V, mm.
+    pub v: f64,
+    /// W, mm.
+    pub w: f64,
+}
+
+impl Pose {
+    /// All axes zero.
+    pub const ZERO: Pose = Pose {
+        x: 0.0,
+        y: 0.0,
+        z: 0.0,
+        a: 0.0,
+        b: 0.0,
+        c: 0.0,
+        u: 0.0,
+        v: 0.0,
+        w: 0.0,
+    };
+
+    /// The nine values in the order X Y Z A B C U V W.
+    pub fn to_array(&self) -> [f64; 9] {
+        [
+            self.x, self.y, self.z, self.a, self.b, self.c, self.u, self.v, self.w,
+        ]
+    }
+
+    /// Builds a pose from X Y Z A B C U V W.
+    pub fn from_array(v: [f64; 9]) -> Self {
+        Pose {
+            x: v[0],
+            y: v[1],
+            z: v[2],
+            a: v[3],
+            b: v[4],
+            c: v[5],
+            u: v[6],
+            v: v[7],
+            w: v[8],
+        }
+    }
+
+    /// The Cartesian tool point (X, Y, Z).
+    pub fn xyz(&self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// A copy with X, Y, Z replaced.
+    pub fn with_xyz(mut self, p: [f64; 3]) -> Self {
+        self.x = p[0];
+        self.y = p[1];
+        self.z = p[2];
+        self
+    }
+}
+
+/// Index of each axis in [`Pose::to_array`] order.
+pub const AXIS_LETTERS: [char; 9] = ['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'];
+
+/// A programming plane. The pair order is LinuxCNC's (first, second) and fixes the sense of
+/// "counter-clockwise": right-handed about the plane normal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Plane {
+    /// G17: (X, Y), normal +Z.
+    XY,
+    /// G18: (Z, X), normal +Y.
+    ZX,
+    /// G19: (Y, Z), normal +X.
+    YZ,
+}
+
+impl Plane {
+    /// Indices into X,Y,Z of (first, second, normal) axes.
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::XY => (0, 1, 2),
+            Plane::ZX => (2, 0, 1),
+            Plane::YZ => (1, 2, 0),
+        }
+    }
+}
+
+/// Length units a program is written in (internal values are always mm).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum LengthUnits {
+    /// G21 / G71.
+    Millimetres,
+    /// G20 / G70.
+    Inches,
+}
+
+impl LengthUnits {
+    /// Millimetres per program unit.
+    pub fn mm_per_unit(self) -> f64 {
+        match self {
+            LengthUnits::Millimetres => 1.0,
+            LengthUnits::Inches => 25.4,
+        }
+    }
+}
+
+/// How F is to be read by the motion stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum FeedMode {
+    /// G94: mm/min along the path.
+    UnitsPerMinute,
+    /// G93: each feed move takes 1/F minutes.
+    InverseTime,
+    /// G95: mm per spindle revolution.
+    UnitsPerRevolution,
+}
+
+/// Spindle rotation sense, as seen looking from the spindle towards the work.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum SpindleDirection {
+    /// M3.
+    Clockwise,
+    /// M4.
+    CounterClockwise,
+}
+
+/// When an auxiliary function acts relative to the motion of its block (AxiOMA prefix/postfix).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum AuxTiming {
+    /// Before the block's motion.
+    Prefix,
+    /// After the block's motion.
+    Postfix,
+}
+
+/// A straight move.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct LineMove {
+    /// Where the move starts (the previous motion's end or the initial position).
+    pub start: Pose,
+    /// Where it ends.
+    pub end: Pose,
+    /// Path feed in mm/min for feed moves; 0 for rapids (the machine's rapid rate applies).
+    pub feed: f64,
+}
+
+/// A circular or helical move.
+///
+/// Geometry: the tool turns about the line through `centre` along the unit vector `axis`, in the
+/// right-handed (counter-clockwise) sense about `axis`; a clockwise arc simply has `axis` pointing the
+/// other way. The planar sweep is the angle from `start` to `end` projected on the plane normal to
+/// `axis` (in (0°, 360°]; 360° when the projections coincide), plus `turns − 1` full turns. The
+/// component of the motion along `axis`, and every axis other than X Y Z, moves linearly with the swept
+/// angle (helix). When the start and end radii differ (within the tolerance the interpreter accepted)
+/// the radius changes linearly with the angle, so that `end` is reached exactly (LinuxCNC's spiral).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ArcMove {
+    /// Start pose.
+    pub start: Pose,
+    /// End pose.
+    pub end: Pose,
+    /// A point on the rotation axis, machine X Y Z, mm (the one in the plane of `start`).
+    pub centre: [f64; 3],
+    /// Unit vector of the rotation axis; motion is counter-clockwise about it.
+    pub axis: [f64; 3],
+    /// Number of turns as LinuxCNC counts them: 1 = the programmed arc only, n = arc + (n−1) full turns.
+    pub turns: u32,
+    /// The programming plane the arc was written in (for printers; `axis` is ± its normal unless a
+    /// frame rotated it).
+    pub plane: Plane,
+    /// Path feed, mm/min.
+    pub feed: f64,
+}
+
+/// One canonical machining command. Exhaustive on purpose: a new variant makes every consumer decide.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Canon {
+    /// The control's state when the program starts (always the first command of a stream).
+    Init {
+        /// Where the tool is.
+        position: Pose,
+        /// Program units in force.
+        units: LengthUnits,
+        /// Active work offset number (1 = G54 … 9 = G59.3); 0 = none (AxiOMA G53).
+        g5x_index: u8,
+        /// That offset, mm.
+        g5x_offset: Pose,
+        /// G92/G52 (LinuxCNC) or programmed shift (AxiOMA), mm.
+        g92_offset: Pose,
+        /// Rotation of the work frame about Z, degrees.
+        xy_rotation: f64,
+    },
+    /// G0: straight move at the rapid rate.
+    StraightTraverse(LineMove),
+    /// G1: straight move at the feed.
+    StraightFeed(LineMove),
+    /// G2/G3: arc or helix at the feed.
+    ArcFeed(ArcMove),
+    /// G4: all axes stand still.
+    Dwell {
+        /// Seconds.
+        seconds: f64,
+    },
+    /// An F word was programmed.
+    SetFeedRate {
+        /// mm/min (in G95: mm/rev; in G93: 1/min).
+        feed: f64,
+    },
+    /// G93/G94/G95.
+    SetFeedMode(FeedMode),
+    /// G17/G18/G19 was programmed.
+    SelectPlane(Plane),
+    /// G20/G21 (G70/G71) was programmed. Printers only: positions stay in mm.
+    UseLengthUnits(LengthUnits),
+    /// The active work offset changed (G54…, G10 L2, program end).
+    SetG5xOffset {
+        /// 1 = G54 … 9 = G59.3; 0 = none.
+        index: u8,
+        /// mm.
+        offset: Pose,
+    },
+    /// The G92/G52 offset changed.
+    SetG92Offset {
+        /// mm.
+        offset: Pose,
+    },
+    /// The rotation of the work frame about Z changed.
+    SetXyRotation {
+        /// Degrees, counter-clockwise.
+        degrees: f64,
+    },
+    /// An S word: commanded spindle speed.
+    SetSpindleSpeed {
+        /// Spindle number (0 = main; AxiOMA `S2=` is 1, …).
+        spindle: u8,
+        /// rev/min.
+        rpm: f64,
+    },
+    /// M3/M4 (AxiOMA also M13/M14 with coolant, M203… for other spindles).
+    StartSpindle {
+        /// Spindle number (0 = main).
+        spindle: u8,
+        /// Rotation sense.
+        direction: SpindleDirection,
+    },
+    /// M5 (and the stop implied by M0/M2/M6 where the control does it).
+    StopSpindle {
+        /// Spindle number (0 = main).
+        spindle: u8,
+    },
+    /// G96/G97 (LinuxCNC's SET_SPINDLE_MODE).
+    SetSpindleMode {
+        /// Spindle number.
+        spindle: u8,
+        /// Constant surface speed in m/min (or ft/min in inch programs); 0 = G97, constant rpm.
+        css_speed: f64,
+    },
+    /// M7 (mist, AxiOMA coolant mode 1) on or off.
+    Mist(bool),
+    /// M8 (flood, AxiOMA coolant mode 2) on or off.
+    Flood(bool),
+    /// A T word: the tool is prepared (not yet in the spindle).
+    SelectTool {
+        /// Tool number.
+        tool: u32,
+    },
+    /// M6: the selected tool goes into the spindle.
+    ChangeTool {
+        /// Tool number.
+        tool: u32,
+    },
+    /// An M function with no canonical meaning of its own (machine-specific, PLC).
+    AuxiliaryFunction {
+        /// The M number.
+        number: u32,
+        /// Before or after the block's motion.
+        timing: AuxTiming,
+    },
+    /// An operator message (AxiOMA `MSG("…")`, LinuxCNC `(MSG,…)`); empty text clears it.
+    Message {
+        /// The text.
+        text: String,
+    },
+    /// A passive comment that a printer may show (LinuxCNC prints every `( … )` as COMMENT).
+    Comment {
+        /// The text.
+        text: String,
+    },
+    /// M0 (unconditional) or M1 (optional) stop.
+    ProgramStop {
+        /// True for M1.
+        optional: bool,
+    },
+    /// M2/M30 (AxiOMA also M99): the program is over.
+    ProgramEnd,
+}
+
+impl Canon {
+    /// The motion part of a command, if it moves the machine.
+    pub fn motion(&self) -> Option<Motion<'_>> {
+        match self {
+            Canon::StraightTraverse(m) => Some(Motion::Rapid(m)),
+            Canon::StraightFeed(m) => Some(Motion::Line(m)),
+            Canon::ArcFeed(a) => Some(Motion::Arc(a)),
+            _ => None,
+        }
+    }
+}
+
+/// A borrowed view of the motion commands.
+#[derive(Debug, Clone, Copy)]
+pub enum Motion<'a> {
+    /// G0.
+    Rapid(&'a LineMove),
+    /// G1.
+    Line(&'a LineMove),
+    /// G2/G3.
+    Arc(&'a ArcMove),
+}
+
+impl Motion<'_> {
+    /// Start pose.
+    pub fn start(&self) -> Pose {
+        match self {
+            Motion::Rapid(m) | Motion::Line(m) => m.start,
+            Motion::Arc(a) => a.start,
+        }
+    }
+
+    /// End pose.
+    pub fn end(&self) -> Pose {
+        match self {
+            Motion::Rapid(m) | Motion::Line(m) => m.end,
+            Motion::Arc(a) => a.end,
+        }
+    }
+}

@@ -1,0 +1,266 @@
+//! A printer of the Canon stream in the format of LinuxCNC's standalone interpreter (`rs274 -g`).
+//!
+//! `rs274` prints each canonical call as `NNNNN N..... CALL(args)`: a running line counter right-aligned
+//! in five columns, then the block's N label (`N` plus the number left-aligned in five columns, or
+//! `N.....` when the block has none), then the call. Positions are printed in the **active work
+//! coordinate system and program units** with four decimals, so the printer keeps the offsets and units
+//! that the stream announces and re-expresses every machine position through LinuxCNC's chain:
+//!
+//! ```text
+//! work = Rot(−R)·(machine − g5x) − g92        (rotation about Z acts on X, Y only)
+//! ```
+//!
+//! then divides linear axes by 25.4 in inch mode. `rs274`'s own start-up calls (units, offsets,
+//! feed reference, `ON_RESET`) come from [`Canon::Init`]; [`LinuxCncPrinter::finish`] adds the two
+//! `ON_RESET()` lines `rs274` prints when it exits.
+
+use crate::canon::{ArcMove, Canon, FeedMode, LengthUnits, Plane, Pose, SpindleDirection};
+use crate::span::Spanned;
+use std::fmt::Write as _;
+
+/// Turns `Canon` commands into `rs274 -g` lines.
+#[derive(Debug)]
+pub struct LinuxCncPrinter {
+    counter: u32,
+    units: LengthUnits,
+    g5x: Pose,
+    g92: Pose,
+    rotation_deg: f64,
+    out: String,
+}
+
+impl Default for LinuxCncPrinter {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl LinuxCncPrinter {
+    /// A printer in the power-on state (mm, no offsets).
+    pub fn new() -> Self {
+        LinuxCncPrinter {
+            counter: 0,
+            units: LengthUnits::Millimetres,
+            g5x: Pose::ZERO,
+            g92: Pose::ZERO,
+            rotation_deg: 0.0,
+            out: String::new(),
+        }
+    }
+
+    /// Prints one command and returns the text it produced (zero or more lines, each ending in `\n`).
+    pub fn print(&mut self, cmd: &Spanned<Canon>) -> &str {
+        self.out.clear();
+        let n = cmd.block_number;
+        match &cmd.value {
+            Canon::Init {
+                units,
+                g5x_index,
+                g5x_offset,
+                g92_offset,
+                xy_rotation,
+                ..
+            } => {
+                // rs274 starts in mm whatever the configuration, then applies the start-up state.
+                self.units = LengthUnits::Millimetres;
+                self.line(n, "USE_LENGTH_UNITS(CANON_UNITS_MM)".into());
+                self.units = *units;
+                self.g5x = *g5x_offset;
+                self.g92 = *g92_offset;
+                self.rotation_deg = *xy_rotation;
+                let g5x = self.offset6(g5x_offset);
+                self.line(n, format!("SET_G5X_OFFSET({}, {g5x})", g5x_index.max(&1)));
+                let g92 = self.offset6(g92_offset);
+                self.line(n, format!("SET_G92_OFFSET({g92})"));
+                self.line(n, format!("SET_XY_ROTATION({:.4})", xy_rotation));
+                self.line(n, "SET_FEED_REFERENCE(CANON_XYZ)".into());
+                self.line(n, "ON_RESET()".into());
+                if *units == LengthUnits::Inches {
+                    self.line(n, "USE_LENGTH_UNITS(CANON_UNITS_INCHES)".into());
+                }
+            }
+            Canon::StraightTraverse(m) => {
+                let p = self.pose6(&m.end);
+                self.line(n, format!("STRAIGHT_TRAVERSE({p})"));
+            }
+            Canon::StraightFeed(m) => {
+                let p = self.pose6(&m.end);
+                self.line(n, format!("STRAIGHT_FEED({p})"));
+            }
+            Canon::ArcFeed(a) => {
+                let s = self.arc(a);
+                self.line(n, s);
+            }
+            Canon::Dwell { seconds } => self.line(n, format!("DWELL({seconds:.4})")),
+            Canon::SetFeedRate { feed } => {
+                let f = feed / self.units.mm_per_unit();
+                self.line(n, format!("SET_FEED_RATE({f:.4})"));
+            }
+            Canon::SetFeedMode(mode) => {
+                let m = match mode {
+                    FeedMode::UnitsPerMinute => 0,
+                    FeedMode::InverseTime => 1,
+                    FeedMode::UnitsPerRevolution => 2,
+                };
+                self.line(n, format!("SET_FEED_MODE(0, {m})"));
+            }
+            Canon::SelectPlane(p) => {
+                let name = match p {
+                    Plane::XY => "CANON_PLANE_XY",
+                    Plane::ZX => "CANON_PLANE_XZ",
+                    Plane::YZ => "CANON_PLANE_YZ",
+                };
+                self.line(n, format!("SELECT_PLANE({name})"));
+            }
+            Canon::UseLengthUnits(u) => {
+                self.units = *u;
+                let name = match u {
+                    LengthUnits::Millimetres => "CANON_UNITS_MM",
+                    LengthUnits::Inches => "CANON_UNITS_INCHES",
+                };
+                self.line(n, format!("USE_LENGTH_UNITS({name})"));
+            }
+            Canon::SetG5xOffset { index, offset } => {
+                self.g5x = *offset;
+                let o = self.offset6(offset);
+                self.line(n, format!("SET_G5X_OFFSET({}, {o})", index.max(&1)));
+            }
+            Canon::SetG92Offset { offset } => {
+                self.g92 = *offset;
+                let o = self.offset6(offset);
+                self.line(n, format!("SET_G92_OFFSET({o})"));
+            }
+            Canon::SetXyRotation { degrees } => {
+                self.rotation_deg = *degrees;
+                self.line(n, format!("SET_XY_ROTATION({degrees:.4})"));
+            }
+            Canon::SetSpindleSpeed { spindle, rpm } => {
+                self.line(n, format!("SET_SPINDLE_SPEED({spindle}, {rpm:.4})"))
+            }
+            Canon::StartSpindle { spindle, direction } => {
+                let name = match direction {
+                    SpindleDirection::Clockwise => "START_SPINDLE_CLOCKWISE",
+                    SpindleDirection::CounterClockwise => "START_SPINDLE_COUNTERCLOCKWISE",
+                };
+                self.line(n, format!("{name}({spindle})"));
+            }
+            Canon::StopSpindle { spindle } => {
+                self.line(n, format!("STOP_SPINDLE_TURNING({spindle})"))
+            }
+            Canon::SetSpindleMode { spindle, css_speed } => {
+                self.line(n, format!("SET_SPINDLE_MODE({spindle} {css_speed:.4})"))
+            }
+            Canon::Mist(on) => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
+            Canon::Flood(on) => {
+                self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())
+            }
+            Canon::SelectTool { tool } => self.line(n, format!("SELECT_TOOL({tool})")),
+            Canon::ChangeTool { tool } => {
+                self.line(n, "START_CHANGE()".into());
+                self.line(n, format!("CHANGE_TOOL({tool})"));
+            }
+            Canon::AuxiliaryFunction { number, .. } => {
+                self.line(n, format!("AUXILIARY_FUNCTION({number})"))
+            }
+            Canon::Message { text } => self.line(n, format!("MESSAGE(\"{text}\")")),
+            Canon::Comment { text } => self.line(n, format!("COMMENT(\"{text}\")")),
+            Canon::ProgramStop { optional } => self.line(
+                n,
+                if *optional {
+                    "OPTIONAL_PROGRAM_STOP()"
+                } else {
+                    "PROGRAM_STOP()"
+                }
+                .into(),
+            ),
+            Canon::ProgramEnd => self.line(n, "PROGRAM_END()".into()),
+        }
+        &self.out
+    }
+
+    /// The lines `rs274` prints when it exits (after a program end or an error).
+    pub fn finish(&mut self) -> &str {
+        self.out.clear();
+        self.line(None, "ON_RESET()".into());
+        self.line(None, "ON_RESET()".into());
+        &self.out
+    }
+
+    fn line(&mut self, n: Option<u32>, call: String) {
+        self.counter += 1;
+        let _ = match n {
+            Some(n) => writeln!(self.out, "{:5} N{:<5} {call}", self.counter, n),
+            None => writeln!(self.out, "{:5} N..... {call}", self.counter),
+        };
+    }
+
+    /// Machine pose → work pose in program units (all nine axes).
+    fn to_work(&self, p: &Pose) -> [f64; 9] {
+        let m = p.to_array();
+        let g5x = self.g5x.to_array();
+        let g92 = self.g92.to_array();
+        let mut w = [0.0; 9];
+        for i in 0..9 {
+            w[i] = m[i] - g5x[i];
+        }
+        let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
+        let (x, y) = (w[0], w[1]);
+        w[0] = x * c - y * s;
+        w[1] = x * s + y * c;
+        for i in 0..9 {
+            w[i] -= g92[i];
+        }
+        self.scale_linear(w)
+    }
+
+    fn scale_linear(&self, mut v: [f64; 9]) -> [f64; 9] {
+        let k = self.units.mm_per_unit();
+        for i in [0, 1, 2, 6, 7, 8] {
+            v[i] /= k;
+        }
+        v
+    }
+
+    fn pose6(&self, p: &Pose) -> String {
+        let w = self.to_work(p);
+        fmt_list(&w[..6])
+    }
+
+    fn offset6(&self, p: &Pose) -> String {
+        let w = self.scale_linear(p.to_array());
+        fmt_list(&w[..6])
+    }
+
+    fn arc(&self, a: &ArcMove) -> String {
+        let end = self.to_work(&a.end);
+        let centre = self.to_work(&a.start.with_xyz(a.centre));
+        let (i1, i2, ia) = a.plane.axes();
+        let normal = match a.plane {
+            Plane::XY => a.axis[2],
+            Plane::ZX => a.axis[1],
+            Plane::YZ => a.axis[0],
+        };
+        let rotation = if normal < 0.0 {
+            -(a.turns as i64)
+        } else {
+            a.turns as i64
+        };
+        format!(
+            "ARC_FEED({:.4}, {:.4}, {:.4}, {:.4}, {}, {:.4}, {:.4}, {:.4}, {:.4})",
+            end[i1], end[i2], centre[i1], centre[i2], rotation, end[ia], end[3], end[4], end[5]
+        )
+    }
+}
+
+fn fmt_list(v: &[f64]) -> String {
+    let mut s = String::new();
+    for (i, x) in v.iter().enumerate() {
+        if i > 0 {
+            s.push_str(", ");
+        }
+        // Avoid printing "-0.0000" where rs274 prints "0.0000".
+        let x = if x.abs() < 0.00005 { 0.0 } else { *x };
+        let _ = write!(s, "{x:.4}");
+    }
+    s
+}

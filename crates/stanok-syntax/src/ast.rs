@@ -1,0 +1,428 @@
+//! The syntax tree of one block.
+//!
+//! A [`Block`] is what the parser makes of one line: its N label, its words in written order, its
+//! comments, and (RS274/NGC) its parameter assignments and O-word. The tree says what was written,
+//! not what it means: `G2`, `X10` and `CR=-30` are just addresses with values; which modal group a G
+//! code belongs to is the interpreter's business.
+//!
+//! Representation choices, made for speed (the parser must run at hundreds of MB/s):
+//! * a `Block` is reused from line to line: the parser clears and refills its vectors, so steady-state
+//!   parsing allocates nothing;
+//! * spans inside a block are [`ColSpan`]s, byte ranges into [`Block::text`]; [`Block::span_of`] turns
+//!   one into an absolute [`Span`] for a diagnostic;
+//! * expressions live in the block's arena ([`Block::exprs`]) and are referred to by [`ExprId`].
+
+use stanok_canon::Span;
+
+/// Which control's language a program is written in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Dialect {
+    /// AxiOMA Control: ISO-7bit with Sinumerik-style keywords (`.nc` and everything else).
+    Axioma,
+    /// LinuxCNC RS274/NGC (`.ngc`).
+    Rs274ngc,
+}
+
+impl Dialect {
+    /// The dialect a file name implies: `.ngc` is RS274/NGC, anything else AxiOMA.
+    pub fn from_path(path: &std::path::Path) -> Dialect {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("ngc") => Dialect::Rs274ngc,
+            _ => Dialect::Axioma,
+        }
+    }
+}
+
+/// A byte range within [`Block::text`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ColSpan {
+    /// First byte.
+    pub start: u32,
+    /// One past the last byte.
+    pub end: u32,
+}
+
+impl ColSpan {
+    /// Builds a range.
+    pub fn new(start: usize, end: usize) -> Self {
+        ColSpan {
+            start: start as u32,
+            end: end as u32,
+        }
+    }
+}
+
+/// Index of an expression node in [`Block::exprs`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ExprId(pub u32);
+
+/// An AxiOMA keyword (always upper case here; the source may use any case).
+///
+/// Misprinted spellings of the manual are accepted by the parser and mapped to the canonical variant
+/// (`ORIXES` → `OriAxes`, `ORIIMKS` → `OriMks`, `TRAF0FF`/`TRAFOOF` → `TrafOff`, `CUT3DFE` → `Cut3dff`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[allow(missing_docs)]
+pub enum Keyword {
+    // Modal keywords without a value.
+    Brisk,
+    Soft,
+    Traori,
+    TrafOff,
+    OriEuler,
+    OriRpy,
+    OriAxes,
+    OriVect,
+    OriWks,
+    OriMks,
+    Cut2df,
+    Cut3dc,
+    Cut3dcc,
+    Cut3dccd,
+    Cut3df,
+    Cut3dfs,
+    Cut3dff,
+    Aspline,
+    Bspline,
+    Cspline,
+    Splbreak,
+    // Keyword addresses that take a value (`CR=-30`, `PW=2`, `LMAXS 5000`, `LMAXS2=4500`).
+    /// Arc radius with sign (`CR=`).
+    Cr,
+    /// NURBS weight.
+    Pw,
+    /// NURBS knot increment.
+    Pl,
+    /// Spline degree.
+    Sd,
+    /// Spindle speed upper limit for G96.
+    Lmaxs,
+    /// Spindle speed lower limit for G96.
+    Lmins,
+    /// Reference axis for G96.
+    Refax,
+    /// Lead angle.
+    Lead,
+    /// Tilt angle.
+    Tilt,
+    /// Feed table lookup (`FTABLE`).
+    Ftable,
+    /// Spindle-speed table lookup (`STABLE`).
+    Stable,
+}
+
+impl Keyword {
+    /// True for keywords that are written with a value (`CR=…`); false for modal switches (`BRISK`).
+    pub fn takes_value(self) -> bool {
+        matches!(
+            self,
+            Keyword::Cr
+                | Keyword::Pw
+                | Keyword::Pl
+                | Keyword::Sd
+                | Keyword::Lmaxs
+                | Keyword::Lmins
+                | Keyword::Refax
+                | Keyword::Lead
+                | Keyword::Tilt
+                | Keyword::Ftable
+                | Keyword::Stable
+        )
+    }
+}
+
+/// What a word addresses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Address {
+    /// A single letter, upper case (`b'X'`).
+    Letter(u8),
+    /// AxiOMA extended address `<letter><index>=` (`S2=1000`, `T2=3`, `D2=1`, `A3=0.5`, `H1=1`, `Q5=1`).
+    Indexed {
+        /// Upper-case letter.
+        letter: u8,
+        /// The index written after the letter.
+        index: u8,
+    },
+    /// An AxiOMA keyword, with the index of `LMAXS2=` style forms.
+    Keyword {
+        /// Which keyword.
+        keyword: Keyword,
+        /// Index written after the keyword (`LMAXS2` → 2).
+        index: Option<u8>,
+    },
+}
+
+/// The value of a word.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Value {
+    /// A bare keyword (`BRISK`) has none.
+    None,
+    /// A literal number.
+    Number(f64),
+    /// An RS274/NGC real value that is not a plain number (`[1+2]`, `#5`, `-#<x>`, `sin[30]`).
+    Expr(ExprId),
+}
+
+/// One word: an address and its value.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Word {
+    /// What it addresses.
+    pub address: Address,
+    /// Its value.
+    pub value: Value,
+    /// The whole word in the block text (`CR=-34.913`).
+    pub span: ColSpan,
+}
+
+/// How a comment was written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CommentKind {
+    /// `( … )`.
+    Paren,
+    /// RS274/NGC `(MSG, …)`: an operator message.
+    Msg,
+    /// RS274/NGC `(DEBUG, …)`.
+    Debug,
+    /// RS274/NGC `(PRINT, …)`.
+    Print,
+    /// `;` to end of line (AxiOMA also `*` at the start of a line, and `//`).
+    Line,
+    /// AxiOMA `/* … */` (possibly continuing over several lines; the part on this line).
+    Block,
+    /// AxiOMA `%` program header: the rest of the line.
+    Header,
+}
+
+/// A comment. `text` excludes the delimiters and, for MSG/DEBUG/PRINT, the keyword and its comma.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Comment {
+    /// How it was written.
+    pub kind: CommentKind,
+    /// The comment text.
+    pub text: ColSpan,
+}
+
+/// An RS274/NGC parameter reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamRef {
+    /// `#5`, `#[expr]`: the number is an expression.
+    Numbered(ExprId),
+    /// `#<name>`; `global` when the name starts with `_`. `name` spans the text between `<` and `>`
+    /// (LinuxCNC ignores case and spaces in names: the interpreter normalises).
+    Named {
+        /// Between the angle brackets.
+        name: ColSpan,
+        /// True for `#<_name>`.
+        global: bool,
+    },
+}
+
+/// A unary function of RS274/NGC expressions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[allow(missing_docs)]
+pub enum UnaryFn {
+    Abs,
+    Acos,
+    Asin,
+    Cos,
+    Exp,
+    Fix,
+    Fup,
+    Ln,
+    Round,
+    Sin,
+    Sqrt,
+    Tan,
+    /// Unary minus.
+    Neg,
+    /// Unary plus (kept so that spans stay exact).
+    Plus,
+}
+
+/// A binary operator of RS274/NGC expressions, listed by precedence group (highest first):
+/// `**`; `* / MOD`; `+ -`; `EQ NE GT GE LT LE`; `AND OR XOR`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[allow(missing_docs)]
+pub enum BinOp {
+    Pow,
+    Mul,
+    Div,
+    Mod,
+    Add,
+    Sub,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+    And,
+    Or,
+    Xor,
+}
+
+/// One node of an expression tree.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ExprNode {
+    /// A literal.
+    Number(f64),
+    /// A parameter read.
+    Param(ParamRef),
+    /// `f[arg]`, or unary minus/plus.
+    Unary(UnaryFn, ExprId),
+    /// `lhs op rhs`.
+    Binary(BinOp, ExprId, ExprId),
+    /// `ATAN[y]/[x]`.
+    Atan(ExprId, ExprId),
+    /// `EXISTS[#<name>]`.
+    Exists(ParamRef),
+}
+
+/// `#… = expr` (RS274/NGC). Assignments take effect after the whole line has been read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Assignment {
+    /// The parameter written.
+    pub target: ParamRef,
+    /// The value.
+    pub value: ExprId,
+    /// The whole assignment.
+    pub span: ColSpan,
+}
+
+/// The label of an O-word: `o100` or `o<name>`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OLabel {
+    /// `o100`.
+    Number(u32),
+    /// `o<name>`: the span covers the text between `<` and `>`.
+    Name(ColSpan),
+}
+
+/// What an O-word line does (RS274/NGC control flow).
+#[derive(Debug, Clone, PartialEq)]
+#[allow(missing_docs)]
+pub enum OKind {
+    Sub,
+    EndSub(Option<ExprId>),
+    /// `oN call [a] [b] …`.
+    Call(Vec<ExprId>),
+    Return(Option<ExprId>),
+    If(ExprId),
+    ElseIf(ExprId),
+    Else,
+    EndIf,
+    While(ExprId),
+    EndWhile,
+    Do,
+    Repeat(ExprId),
+    EndRepeat,
+    Break,
+    Continue,
+}
+
+/// An O-word line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OWord {
+    /// Its label.
+    pub label: OLabel,
+    /// Its statement.
+    pub kind: OKind,
+    /// The whole O-word statement.
+    pub span: ColSpan,
+}
+
+/// One block: the parse of one line of the program.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Block {
+    /// The line's text without its line terminator.
+    pub text: String,
+    /// 1-based line number.
+    pub line: u32,
+    /// Byte offset of the line's first byte in the file.
+    pub offset: u64,
+    /// The N label, if written.
+    pub number: Option<u32>,
+    /// The span of the N word.
+    pub number_span: Option<ColSpan>,
+    /// The line starts with `/` (optional block skip).
+    pub block_delete: bool,
+    /// RS274/NGC: the line is a lone `%` (program delimiter).
+    pub percent: bool,
+    /// Words in written order.
+    pub words: Vec<Word>,
+    /// Comments in written order.
+    pub comments: Vec<Comment>,
+    /// AxiOMA `MSG("…")`: the span of the text between the quotes (empty span for `MSG()`).
+    pub message: Option<ColSpan>,
+    /// RS274/NGC parameter assignments, in written order.
+    pub assignments: Vec<Assignment>,
+    /// RS274/NGC O-word statement.
+    pub oword: Option<OWord>,
+    /// Expression arena: nodes and the text each came from.
+    pub exprs: Vec<(ExprNode, ColSpan)>,
+}
+
+impl Block {
+    /// Clears everything but keeps the allocations, for reuse on the next line.
+    pub fn clear(&mut self) {
+        self.text.clear();
+        self.line = 0;
+        self.offset = 0;
+        self.number = None;
+        self.number_span = None;
+        self.block_delete = false;
+        self.percent = false;
+        self.words.clear();
+        self.comments.clear();
+        self.message = None;
+        self.assignments.clear();
+        self.oword = None;
+        self.exprs.clear();
+    }
+
+    /// The text a column span covers.
+    pub fn slice(&self, c: ColSpan) -> &str {
+        self.text
+            .get(c.start as usize..c.end as usize)
+            .unwrap_or_default()
+    }
+
+    /// The absolute span of a range of this block (line, column in characters, file offsets).
+    pub fn span_of(&self, c: ColSpan) -> Span {
+        let start = (c.start as usize).min(self.text.len());
+        let column = self
+            .text
+            .get(..start)
+            .map(|p| p.chars().count())
+            .unwrap_or(start)
+            + 1;
+        Span::new(
+            self.offset + c.start as u64,
+            self.offset + c.end as u64,
+            self.line,
+            column as u32,
+        )
+    }
+
+    /// The span of the whole block.
+    pub fn span(&self) -> Span {
+        self.span_of(ColSpan::new(0, self.text.len()))
+    }
+
+    /// An expression node.
+    pub fn expr(&self, id: ExprId) -> &ExprNode {
+        &self.exprs[id.0 as usize].0
+    }
+
+    /// The text an expression came from.
+    pub fn expr_span(&self, id: ExprId) -> ColSpan {
+        self.exprs[id.0 as usize].1
+    }
+
+    /// True when the block holds nothing the interpreter acts on except, possibly, comments.
+    pub fn is_empty(&self) -> bool {
+        self.words.is_empty()
+            && self.message.is_none()
+            && self.assignments.is_empty()
+            && self.oword.is_none()
+    }
+}

@@ -234,11 +234,20 @@ pub enum Canon {
         feed: f64,
     },
     /// G93/G94/G95.
-    SetFeedMode(FeedMode),
+    SetFeedMode {
+        /// The new mode.
+        mode: FeedMode,
+    },
     /// G17/G18/G19 was programmed.
-    SelectPlane(Plane),
+    SelectPlane {
+        /// The new plane.
+        plane: Plane,
+    },
     /// G20/G21 (G70/G71) was programmed. Printers only: positions stay in mm.
-    UseLengthUnits(LengthUnits),
+    UseLengthUnits {
+        /// The new program units.
+        units: LengthUnits,
+    },
     /// The active work offset changed (G54…, G10 L2, program end).
     SetG5xOffset {
         /// 1 = G54 … 9 = G59.3; 0 = none.
@@ -283,9 +292,22 @@ pub enum Canon {
         css_speed: f64,
     },
     /// M7 (mist, AxiOMA coolant mode 1) on or off.
-    Mist(bool),
+    Mist {
+        /// On.
+        on: bool,
+    },
     /// M8 (flood, AxiOMA coolant mode 2) on or off.
-    Flood(bool),
+    Flood {
+        /// On.
+        on: bool,
+    },
+    /// The tool length offset in force changed (G43/G49 …). Printers only: positions already include it.
+    UseToolLengthOffset {
+        /// X Y Z A B C U V W offset, mm/deg.
+        offset: Pose,
+    },
+    /// A tool change begins (LinuxCNC's START_CHANGE: move to the change position, orient…).
+    StartToolChange,
     /// A T word: the tool is prepared (not yet in the spindle).
     SelectTool {
         /// Tool number.
@@ -318,6 +340,8 @@ pub enum Canon {
         /// True for M1.
         optional: bool,
     },
+    /// LinuxCNC M30 (and M60): exchange the pallets.
+    PalletShuttle,
     /// M2/M30 (AxiOMA also M99): the program is over.
     ProgramEnd,
 }

@@ -7,7 +7,7 @@
 //! that the stream announces and re-expresses every machine position through LinuxCNC's chain:
 //!
 //! ```text
-//! work = Rot(−R)·(machine − g5x) − g92        (rotation about Z acts on X, Y only)
+//! work = Rot(−R)·(machine − g5x − tlo) − g92        (rotation about Z acts on X, Y only)
 //! ```
 //!
 //! then divides linear axes by 25.4 in inch mode. `rs274`'s own start-up calls (units, offsets,
@@ -25,6 +25,7 @@ pub struct LinuxCncPrinter {
     units: LengthUnits,
     g5x: Pose,
     g92: Pose,
+    tlo: Pose,
     rotation_deg: f64,
     out: String,
 }
@@ -43,6 +44,7 @@ impl LinuxCncPrinter {
             units: LengthUnits::Millimetres,
             g5x: Pose::ZERO,
             g92: Pose::ZERO,
+            tlo: Pose::ZERO,
             rotation_deg: 0.0,
             out: String::new(),
         }
@@ -96,15 +98,16 @@ impl LinuxCncPrinter {
                 let f = feed / self.units.mm_per_unit();
                 self.line(n, format!("SET_FEED_RATE({f:.4})"));
             }
-            Canon::SetFeedMode(mode) => {
+            Canon::SetFeedMode { mode } => {
+                // LinuxCNC's canon knows per-minute (0) and per-revolution (1); inverse time is
+                // turned into a per-move feed by the interpreter.
                 let m = match mode {
-                    FeedMode::UnitsPerMinute => 0,
-                    FeedMode::InverseTime => 1,
-                    FeedMode::UnitsPerRevolution => 2,
+                    FeedMode::UnitsPerMinute | FeedMode::InverseTime => 0,
+                    FeedMode::UnitsPerRevolution => 1,
                 };
                 self.line(n, format!("SET_FEED_MODE(0, {m})"));
             }
-            Canon::SelectPlane(p) => {
+            Canon::SelectPlane { plane: p } => {
                 let name = match p {
                     Plane::XY => "CANON_PLANE_XY",
                     Plane::ZX => "CANON_PLANE_XZ",
@@ -112,7 +115,7 @@ impl LinuxCncPrinter {
                 };
                 self.line(n, format!("SELECT_PLANE({name})"));
             }
-            Canon::UseLengthUnits(u) => {
+            Canon::UseLengthUnits { units: u } => {
                 self.units = *u;
                 let name = match u {
                     LengthUnits::Millimetres => "CANON_UNITS_MM",
@@ -150,14 +153,23 @@ impl LinuxCncPrinter {
             Canon::SetSpindleMode { spindle, css_speed } => {
                 self.line(n, format!("SET_SPINDLE_MODE({spindle} {css_speed:.4})"))
             }
-            Canon::Mist(on) => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
-            Canon::Flood(on) => {
+            Canon::Mist { on } => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
+            Canon::Flood { on } => {
                 self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())
             }
             Canon::SelectTool { tool } => self.line(n, format!("SELECT_TOOL({tool})")),
-            Canon::ChangeTool { tool } => {
-                self.line(n, "START_CHANGE()".into());
-                self.line(n, format!("CHANGE_TOOL({tool})"));
+            Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
+            Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),
+            Canon::UseToolLengthOffset { offset } => {
+                self.tlo = *offset;
+                let v = self.scale_linear(offset.to_array());
+                self.line(
+                    n,
+                    format!(
+                        "USE_TOOL_LENGTH_OFFSET({:.4} {:.4} {:.4}, {:.4} {:.4} {:.4}, {:.4} {:.4} {:.4})",
+                        v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]
+                    ),
+                );
             }
             Canon::AuxiliaryFunction { number, .. } => {
                 self.line(n, format!("AUXILIARY_FUNCTION({number})"))
@@ -173,6 +185,7 @@ impl LinuxCncPrinter {
                 }
                 .into(),
             ),
+            Canon::PalletShuttle => self.line(n, "PALLET_SHUTTLE()".into()),
             Canon::ProgramEnd => self.line(n, "PROGRAM_END()".into()),
         }
         &self.out
@@ -199,9 +212,10 @@ impl LinuxCncPrinter {
         let m = p.to_array();
         let g5x = self.g5x.to_array();
         let g92 = self.g92.to_array();
+        let tlo = self.tlo.to_array();
         let mut w = [0.0; 9];
         for i in 0..9 {
-            w[i] = m[i] - g5x[i];
+            w[i] = m[i] - g5x[i] - tlo[i];
         }
         let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
         let (x, y) = (w[0], w[1]);
@@ -259,7 +273,6 @@ fn fmt_list(v: &[f64]) -> String {
             s.push_str(", ");
         }
         // Avoid printing "-0.0000" where rs274 prints "0.0000".
-        let x = if x.abs() < 0.00005 { 0.0 } else { *x };
         let _ = write!(s, "{x:.4}");
     }
     s

@@ -59,7 +59,8 @@ pub struct ExprId(pub u32);
 /// An AxiOMA keyword (always upper case here; the source may use any case).
 ///
 /// Misprinted spellings of the manual are accepted by the parser and mapped to the canonical variant
-/// (`ORIXES` → `OriAxes`, `ORIIMKS` → `OriMks`, `TRAF0FF`/`TRAFOOF` → `TrafOff`, `CUT3DFE` → `Cut3dff`).
+/// (`ORIXES` → `OriAxes`, `ORIIMKS` → `OriMks`, `TRAF0FF`/`TRAFOOF`/`TRAFFOFF` → `TrafOff`,
+/// `CUT3DFE` → `Cut3dff`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[allow(missing_docs)]
 pub enum Keyword {
@@ -108,6 +109,8 @@ pub enum Keyword {
     Ftable,
     /// Spindle-speed table lookup (`STABLE`).
     Stable,
+    /// Insertion depth of 3D tool compensation (`ISD=`, CUT3DC).
+    Isd,
 }
 
 impl Keyword {
@@ -126,6 +129,7 @@ impl Keyword {
                 | Keyword::Tilt
                 | Keyword::Ftable
                 | Keyword::Stable
+                | Keyword::Isd
         )
     }
 }

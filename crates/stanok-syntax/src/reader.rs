@@ -1,0 +1,191 @@
+//! Streaming: blocks out of any `BufRead + Seek`, one line at a time, in bounded memory.
+//!
+//! [`BlockReader`] keeps one line buffer (reused), the byte offset and number of the next line, and
+//! a [`BlockParser`] with its cross-line state. Lines end with LF; a CR before the LF is dropped; the
+//! last line may have no terminator. A line longer than [`MAX_LINE_BYTES`] is cut there (an error
+//! says so) and the rest of it is skipped, so one huge line cannot exhaust memory.
+//!
+//! Invalid UTF-8 is replaced by U+FFFD (lossy) and reported once per line at the first bad byte;
+//! after that point of such a line, `ColSpan`s index the repaired text, so their file offsets may be
+//! off by a few bytes (the line and the block stay usable).
+//!
+//! [`SourcePos`] = offset + line number + parser state at the start of a line. `position()` before
+//! `next_block()` and a later `seek()` to it re-read that line exactly as the first time, also when
+//! it lies inside a multi-line AxiOMA `/* … */`: this is how the interpreter jumps back (loops,
+//! subroutine calls) without keeping the program in memory.
+
+use crate::ast::{Block, ColSpan, Dialect};
+use crate::BlockParser;
+use stanok_canon::Diagnostic;
+use std::io::{BufRead, ErrorKind, Seek, SeekFrom};
+
+/// Longest line kept (1 MiB); the rest of a longer line is skipped with an error.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// Where a line starts, plus the parser's cross-line state there (AxiOMA `/* */` open across
+/// lines), so that the interpreter can jump back to a line (RS274/NGC loops and subroutine calls).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SourcePos {
+    /// Byte offset of the line's first byte.
+    pub offset: u64,
+    /// 1-based line number.
+    pub line: u32,
+    /// The line starts inside an AxiOMA `/* … */` comment.
+    in_comment: bool,
+}
+
+impl SourcePos {
+    /// The start of a program: offset 0, line 1, no open comment.
+    pub fn start() -> Self {
+        SourcePos {
+            offset: 0,
+            line: 1,
+            in_comment: false,
+        }
+    }
+}
+
+/// Streams blocks out of any `BufRead + Seek` (a file, or `std::io::Cursor<&[u8]>`), line by line,
+/// in bounded memory.
+pub struct BlockReader<R: BufRead + Seek> {
+    reader: R,
+    parser: BlockParser,
+    buf: Vec<u8>,
+    offset: u64,
+    line: u32,
+}
+
+impl<R: BufRead + Seek> BlockReader<R> {
+    /// A reader at the current position of `reader`, which is taken to be the start of the program
+    /// (offset 0, line 1).
+    pub fn new(reader: R, dialect: Dialect) -> Self {
+        BlockReader {
+            reader,
+            parser: BlockParser::new(dialect),
+            buf: Vec::new(),
+            offset: 0,
+            line: 1,
+        }
+    }
+
+    /// The dialect being read.
+    pub fn dialect(&self) -> Dialect {
+        self.parser.dialect()
+    }
+
+    /// Reads and parses the next line into `block`. `Ok(false)` at end of input. Lines end with LF
+    /// or CRLF. Invalid UTF-8 is replaced (lossy) and reported as a diagnostic on that line.
+    pub fn next_block(
+        &mut self,
+        block: &mut Block,
+        diags: &mut Vec<Diagnostic>,
+    ) -> std::io::Result<bool> {
+        let (consumed, cut) = self.read_line()?;
+        if consumed == 0 {
+            return Ok(false);
+        }
+        let line = self.line;
+        let offset = self.offset;
+        self.offset += consumed as u64;
+        self.line = self.line.saturating_add(1);
+        // The LF goes here; `parse_line` drops one CR before it (the same rule as `parse`).
+        if self.buf.last() == Some(&b'\n') {
+            self.buf.pop();
+        }
+        let first_diag = diags.len();
+        let mut bad_at = None;
+        // Hand the line buffer to the block as its text (no copy); the block's old text buffer
+        // becomes the next line buffer. Both keep their capacity, so nothing is allocated.
+        let bytes = std::mem::take(&mut self.buf);
+        let mut spare = std::mem::take(&mut block.text).into_bytes();
+        spare.clear();
+        self.buf = spare;
+        match String::from_utf8(bytes) {
+            Ok(text) => block.text = text,
+            Err(e) => {
+                let valid = e.utf8_error().valid_up_to();
+                let incomplete_tail = e.utf8_error().error_len().is_none();
+                let mut bytes = e.into_bytes();
+                if cut && incomplete_tail {
+                    // The cut split a character: drop its first bytes rather than report them.
+                    bytes.truncate(valid);
+                } else {
+                    bad_at = Some(valid);
+                }
+                block.text = String::from_utf8_lossy(&bytes).into_owned();
+            }
+        }
+        self.parser.parse_text_in_place(line, offset, block, diags);
+        if let Some(at) = bad_at {
+            let at = at.min(block.text.len());
+            let d = Diagnostic::error(
+                "syntax::invalid-utf8",
+                "invalid UTF-8: the bad bytes were replaced by `\u{FFFD}`",
+                block.span_of(ColSpan::new(at, at + 1)),
+            );
+            diags.insert(first_diag, d);
+        }
+        if cut {
+            let end = block.text.len();
+            diags.push(Diagnostic::error(
+                "syntax::line-too-long",
+                format!("line longer than {MAX_LINE_BYTES} bytes: the rest of it is ignored"),
+                block.span_of(ColSpan::new(end, end)),
+            ));
+        }
+        Ok(true)
+    }
+
+    /// The position of the NEXT line.
+    pub fn position(&self) -> SourcePos {
+        SourcePos {
+            offset: self.offset,
+            line: self.line,
+            in_comment: self.parser.in_block_comment(),
+        }
+    }
+
+    /// Moves to `pos` (got from [`BlockReader::position`] on this same input).
+    pub fn seek(&mut self, pos: SourcePos) -> std::io::Result<()> {
+        self.reader.seek(SeekFrom::Start(pos.offset))?;
+        self.offset = pos.offset;
+        self.line = pos.line;
+        self.parser.set_in_block_comment(pos.in_comment);
+        Ok(())
+    }
+
+    /// Reads one line (with its LF, if any) into `buf`, keeping at most `MAX_LINE_BYTES` of it.
+    /// Returns the bytes consumed from the input and whether the line was cut.
+    fn read_line(&mut self) -> std::io::Result<(usize, bool)> {
+        self.buf.clear();
+        let mut consumed = 0;
+        let mut cut = false;
+        loop {
+            let available = match self.reader.fill_buf() {
+                Ok(a) => a,
+                Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            };
+            if available.is_empty() {
+                break;
+            }
+            let (chunk, done) = match available.iter().position(|&c| c == b'\n') {
+                Some(i) => (&available[..=i], true),
+                None => (available, false),
+            };
+            let room = MAX_LINE_BYTES.saturating_sub(self.buf.len());
+            let take = room.min(chunk.len());
+            self.buf.extend_from_slice(&chunk[..take]);
+            if take < chunk.len() {
+                cut = true;
+            }
+            let n = chunk.len();
+            self.reader.consume(n);
+            consumed += n;
+            if done {
+                break;
+            }
+        }
+        Ok((consumed, cut))
+    }
+}

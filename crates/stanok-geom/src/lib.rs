@@ -1,14 +1,24 @@
-pub fn add(left: u64, right: u64) -> u64 {
-    left + right
-}
+//! # stanok-geom: the geometry of tool paths
+//!
+//! Pure functions on plain `[f64; N]` points, in millimetres and radians. This crate knows nothing
+//! about G-code, Canon, time or machines: the interpreter uses it to build arcs from programmed
+//! words ([`centre_from_radius`], [`ccw_sweep`]); motion, the simulated machine and the plotter use it
+//! to measure and draw them ([`Helix`]).
+//!
+//! Architecture invariants:
+//! * no function panics and none loops without bound, whatever the input (NaN included): degenerate
+//!   input gives a documented fallback or an error value;
+//! * the arc model is exactly the one of `stanok-canon`'s `ArcMove` (see [`Helix`]), so that every
+//!   consumer agrees on where an arc goes.
+//!
+//! Planned here later: lines and arcs in the plane with offsets and intersections (cutter
+//! compensation), splines (Akima, cubic, NURBS).
+#![deny(missing_docs)]
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+mod arc2d;
+mod helix;
+mod vec3;
 
-    #[test]
-    fn it_works() {
-        let result = add(2, 2);
-        assert_eq!(result, 4);
-    }
-}
+pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};
+pub use helix::Helix;
+pub use vec3::{add, cross, dot, norm, normalize, scale, sub, Vec3};

@@ -1,14 +1,488 @@
-pub fn add(left: u64, right: u64) -> u64 {
-    left + right
+//! # stanok-interp: blocks to the Canon stream
+//!
+//! The interpreter reads a program block by block (streaming, in bounded memory) and produces the
+//! [`Canon`] commands that a control would execute: an iterator of
+//! `Result<Spanned<Canon>, Diagnostic>`. It knows the modal state, units, the work frame, arcs,
+//! RS274/NGC parameters, expressions and O-word control flow; it knows nothing of time,
+//! acceleration or joints.
+//!
+//! ```text
+//!  BlockReader ──Block──▶ Words::fill (STEP 2: evaluate, sort)
+//!                              │
+//!                  rs274::execute / axioma::execute on a scratch copy of the state (STEP 3+4)
+//!                              │ Ok: commit state + commands        Err: yield the diagnostic, stop
+//!                              ▼
+//!                        queue of Spanned<Canon> ──▶ Iterator::next
+//! ```
+//!
+//! Architecture invariants (each has a test):
+//! * a block commits all of its modal changes and commands, or none;
+//! * every command carries its block's span and N label;
+//! * after the first error nothing more is produced (unless `continue_after_error` is set, which
+//!   `stanok check` uses to list every error: the bad block is skipped, the state is unchanged);
+//! * loops, calls and the number of executed blocks are bounded, so no input hangs.
+#![deny(missing_docs)]
+
+mod arc;
+mod axioma;
+mod ctx;
+mod flow;
+mod params;
+mod rs274;
+mod state;
+mod words;
+
+pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
+pub use state::{DistanceMode, ModalState, MotionMode, PathMode, WorkFrame};
+
+use ctx::Ctx;
+use flow::{Flow, FlowAction};
+use rs274::Outcome;
+use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
+use stanok_syntax::{Block, BlockReader, CommentKind, Dialect};
+use std::collections::VecDeque;
+use std::io::{BufRead, Seek};
+use words::Words;
+
+/// Settings of one interpreter run.
+#[derive(Debug, Clone)]
+pub struct InterpOptions {
+    /// Program language.
+    pub dialect: Dialect,
+    /// Which of X Y Z A B C U V W the machine has.
+    pub axes: [bool; 9],
+    /// Where the tool is at program start, machine coordinates, mm.
+    pub initial_position: Pose,
+    /// Units at power-on (RS274/NGC: the machine's units; AxiOMA: G71).
+    pub initial_units: LengthUnits,
+    /// AxiOMA arc tolerance for errors 621/622/623 and the centre correction, mm (machine data).
+    pub arc_tolerance_mm: f64,
+    /// RS274/NGC arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
+    pub rs274_arc_tolerance_mm: Option<f64>,
+    /// Deepest subroutine nesting (RS274/NGC).
+    pub max_call_depth: usize,
+    /// Most iterations of one loop (RS274/NGC while/do/repeat).
+    pub max_loop_iterations: u64,
+    /// Most blocks executed in one run (loops included).
+    pub max_blocks: u64,
+    /// Skip erroneous blocks and go on (for `stanok check`).
+    pub continue_after_error: bool,
+    /// With `continue_after_error`: stop after this many errors.
+    pub max_errors: usize,
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+impl InterpOptions {
+    /// Defaults for a dialect: all nine axes, start at the origin, mm.
+    pub fn new(dialect: Dialect) -> Self {
+        InterpOptions {
+            dialect,
+            axes: [true; 9],
+            initial_position: Pose::ZERO,
+            initial_units: LengthUnits::Millimetres,
+            arc_tolerance_mm: 0.01,
+            rs274_arc_tolerance_mm: None,
+            max_call_depth: 64,
+            max_loop_iterations: 1_000_000,
+            max_blocks: 200_000_000,
+            continue_after_error: false,
+            max_errors: 100,
+        }
+    }
+}
 
-    #[test]
-    fn it_works() {
-        let result = add(2, 2);
-        assert_eq!(result, 4);
+/// Counters of a run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Lines read (including skipped ones).
+    pub lines_read: u64,
+    /// Blocks executed (loop bodies count every time).
+    pub blocks_executed: u64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    Start,
+    Running,
+    Done,
+}
+
+/// The interpreter: an iterator of canonical commands over a program source.
+pub struct Interpreter<R: BufRead + Seek> {
+    reader: BlockReader<R>,
+    block: Block,
+    words: Words,
+    opts: InterpOptions,
+    state: ModalState,
+    params: Parameters,
+    flow: Flow,
+    queue: VecDeque<Spanned<Canon>>,
+    scratch: Vec<Canon>,
+    warnings: Vec<Diagnostic>,
+    syntax: Vec<Diagnostic>,
+    phase: Phase,
+    stats: Stats,
+    errors: usize,
+    percent_open: bool,
+    first_line: bool,
+}
+
+impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
+    /// An interpreter over program text held in memory.
+    pub fn from_text(text: &'a str, opts: InterpOptions) -> Self {
+        Interpreter::new(std::io::Cursor::new(text.as_bytes()), opts)
+    }
+}
+
+impl<R: BufRead + Seek> Interpreter<R> {
+    /// An interpreter reading `source`.
+    pub fn new(source: R, opts: InterpOptions) -> Self {
+        let state = ModalState {
+            motion: match opts.dialect {
+                Dialect::Rs274ngc => MotionMode::None,
+                Dialect::Axioma => MotionMode::Rapid,
+            },
+            plane: Plane::XY,
+            distance: DistanceMode::Absolute,
+            arc_distance: DistanceMode::Incremental,
+            units: match opts.dialect {
+                Dialect::Rs274ngc => opts.initial_units,
+                Dialect::Axioma => LengthUnits::Millimetres,
+            },
+            feed_mode: FeedMode::UnitsPerMinute,
+            feed: 0.0,
+            spindle_speed: [0.0; 4],
+            spindle_on: [false; 4],
+            selected_tool: None,
+            current_tool: 0,
+            path_mode: PathMode::Continuous {
+                blend_tolerance: 0.0,
+            },
+            soft_acceleration: false,
+            retract_to_initial: matches!(opts.dialect, Dialect::Axioma),
+            diameter_mode: false,
+            mist: false,
+            flood: false,
+            g5x_index: match opts.dialect {
+                Dialect::Rs274ngc => 1,
+                Dialect::Axioma => 0,
+            },
+            frame: WorkFrame::default(),
+            position: opts.initial_position,
+        };
+        Interpreter {
+            reader: BlockReader::new(source, opts.dialect),
+            block: Block::default(),
+            words: Words::default(),
+            state,
+            params: Parameters::default(),
+            flow: Flow::default(),
+            queue: VecDeque::new(),
+            scratch: Vec::new(),
+            warnings: Vec::new(),
+            syntax: Vec::new(),
+            phase: Phase::Start,
+            stats: Stats::default(),
+            errors: 0,
+            percent_open: false,
+            first_line: true,
+            opts,
+        }
+    }
+
+    /// Warnings so far (they never stop the run).
+    pub fn warnings(&self) -> &[Diagnostic] {
+        &self.warnings
+    }
+
+    /// Takes the warnings collected so far.
+    pub fn take_warnings(&mut self) -> Vec<Diagnostic> {
+        std::mem::take(&mut self.warnings)
+    }
+
+    /// The modal state after the commands produced so far.
+    pub fn state(&self) -> &ModalState {
+        &self.state
+    }
+
+    /// Parameter storage (RS274/NGC), e.g. to preset work offsets before a run.
+    pub fn parameters_mut(&mut self) -> &mut Parameters {
+        &mut self.params
+    }
+
+    /// Counters.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    fn init_command(&self) -> Canon {
+        Canon::Init {
+            position: self.state.position,
+            units: self.state.units,
+            g5x_index: self.state.g5x_index,
+            g5x_offset: self.state.frame.g5x,
+            g92_offset: self.state.frame.g92,
+            xy_rotation: self.state.frame.rotation_deg,
+        }
+    }
+
+    /// Reads the next line into `self.block`. Ok(false) at end of input.
+    fn read(&mut self) -> Result<bool, Diagnostic> {
+        self.syntax.clear();
+        let more = self
+            .reader
+            .next_block(&mut self.block, &mut self.syntax)
+            .map_err(|e| {
+                Diagnostic::error(
+                    "io::read",
+                    format!("cannot read the program: {e}"),
+                    stanok_canon::Span::default(),
+                )
+            })?;
+        if more {
+            self.stats.lines_read += 1;
+        }
+        Ok(more)
+    }
+
+    /// Executes one line. Ok(true) when the program is over.
+    fn step(&mut self) -> Result<bool, Diagnostic> {
+        let here = self.reader.position();
+        if !self.read()? {
+            return self.end_of_input();
+        }
+        // Syntax problems: warnings are kept, the first error stops here.
+        let mut first_error = None;
+        for d in self.syntax.drain(..) {
+            if d.is_error() {
+                first_error.get_or_insert(d);
+            } else if self.flow.skipping().is_none() {
+                self.warnings.push(d);
+            }
+        }
+        let dialect = self.opts.dialect;
+        // RS274/NGC program delimiters.
+        if dialect == Dialect::Rs274ngc && self.block.percent {
+            let first = std::mem::replace(&mut self.first_line, false);
+            if first {
+                self.percent_open = true;
+                return Ok(false);
+            }
+            if self.percent_open && self.flow.skipping().is_none() {
+                return Ok(true);
+            }
+            return Ok(false);
+        }
+        if !self.block.text.trim().is_empty() {
+            self.first_line = false;
+        }
+        // O-word control flow decides whether this line runs at all.
+        if dialect == Dialect::Rs274ngc {
+            let action = {
+                let eval = params::Evaluator {
+                    block: &self.block,
+                    params: &self.params,
+                    state: &self.state,
+                };
+                if let Some(e) = first_error.take() {
+                    if self.flow.skipping().is_some() {
+                        // Errors in skipped text do not count (LinuxCNC reads it the same way).
+                        None
+                    } else {
+                        return Err(e);
+                    }
+                } else {
+                    Some(self.flow.on_line(
+                        &self.block,
+                        &eval,
+                        here,
+                        self.reader.position(),
+                        &self.opts,
+                    )?)
+                }
+            };
+            match action {
+                None | Some(FlowAction::Skip) => return Ok(false),
+                Some(FlowAction::Seek(pos)) => {
+                    self.reader.seek(pos).map_err(|e| {
+                        Diagnostic::error(
+                            "io::seek",
+                            format!("cannot seek in the program: {e}"),
+                            self.block.span(),
+                        )
+                    })?;
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::Handled) => {
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::Execute) => {}
+            }
+            if self.block.block_delete {
+                return Ok(false);
+            }
+        } else if let Some(e) = first_error {
+            return Err(e);
+        }
+        self.count_block()?;
+        self.execute_block()
+    }
+
+    fn count_block(&mut self) -> Result<(), Diagnostic> {
+        self.stats.blocks_executed += 1;
+        if self.stats.blocks_executed > self.opts.max_blocks {
+            return Err(Diagnostic::error(
+                "interp::too-many-blocks",
+                format!(
+                    "more than {} blocks executed: stopping (endless loop?)",
+                    self.opts.max_blocks
+                ),
+                self.block.span(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Parameter writes a control-flow line requested (call arguments, return values).
+    fn apply_flow_params(&mut self) {
+        for (slot, v) in self.flow.take_param_writes() {
+            match slot {
+                flow::ParamOp::Write(slot) => self.params.write(&slot, v),
+                flow::ParamOp::PushScope => self.params.push_scope(),
+                flow::ParamOp::PopScope => self.params.pop_scope(),
+            }
+        }
+    }
+
+    fn execute_block(&mut self) -> Result<bool, Diagnostic> {
+        let dialect = self.opts.dialect;
+        let mut next = self.state.clone();
+        self.scratch.clear();
+        let mut pending_params: Vec<(params::Slot, f64)> = Vec::new();
+        {
+            let eval = params::Evaluator {
+                block: &self.block,
+                params: &self.params,
+                state: &self.state,
+            };
+            self.words
+                .fill(&self.block, &eval, dialect, &mut self.warnings)?;
+            // Assignments are evaluated with the old values and applied after the line.
+            for a in &self.block.assignments {
+                let v = eval.eval(a.value)?;
+                let slot = eval.slot(&a.target, a.value)?;
+                pending_params.push((slot, v));
+            }
+            if dialect == Dialect::Rs274ngc {
+                // LinuxCNC keeps one comment per line: the last one.
+                if let Some(c) = self.block.comments.iter().rev().find(|c| {
+                    matches!(
+                        c.kind,
+                        CommentKind::Paren | CommentKind::Msg | CommentKind::Debug
+                    )
+                }) {
+                    let text = self.block.slice(c.text);
+                    self.scratch.push(match c.kind {
+                        CommentKind::Msg => Canon::Message {
+                            text: text.to_string(),
+                        },
+                        CommentKind::Debug => Canon::Message {
+                            text: flow::substitute_parameters(text, &eval),
+                        },
+                        _ => Canon::Comment {
+                            text: text.to_string(),
+                        },
+                    });
+                }
+            }
+        }
+        let outcome = {
+            let mut cx = Ctx {
+                block: &self.block,
+                words: &mut self.words,
+                st: &mut next,
+                out: &mut self.scratch,
+                opts: &self.opts,
+                warnings: &mut self.warnings,
+            };
+            match dialect {
+                Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params)?,
+                Dialect::Axioma => axioma::execute(&mut cx)?,
+            }
+        };
+        // Commit.
+        self.state = next;
+        for (slot, v) in pending_params {
+            self.params.write(&slot, v);
+        }
+        let span = self.block.span();
+        let number = self.block.number;
+        self.queue
+            .extend(self.scratch.drain(..).map(|value| Spanned {
+                span,
+                block_number: number,
+                value,
+            }));
+        Ok(outcome == Outcome::End)
+    }
+
+    fn end_of_input(&mut self) -> Result<bool, Diagnostic> {
+        if let Some(d) = self.flow.unterminated(&self.block) {
+            return Err(d);
+        }
+        if self.opts.dialect == Dialect::Rs274ngc && !self.percent_open {
+            return Err(Diagnostic::error(
+                "rs274::no-program-end",
+                "File ended with no percent sign or program end",
+                self.block.span(),
+            )
+            .with_note("end the program with M2 or M30, or enclose it in % lines"));
+        }
+        Ok(true)
+    }
+}
+
+impl<R: BufRead + Seek> Iterator for Interpreter<R> {
+    type Item = Result<Spanned<Canon>, Diagnostic>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            if let Some(c) = self.queue.pop_front() {
+                return Some(Ok(c));
+            }
+            match self.phase {
+                Phase::Done => return None,
+                Phase::Start => {
+                    self.phase = Phase::Running;
+                    let init = self.init_command();
+                    self.queue.push_back(Spanned::new(Default::default(), init));
+                }
+                Phase::Running => match self.step() {
+                    Ok(true) => self.phase = Phase::Done,
+                    Ok(false) => {}
+                    Err(d) => {
+                        self.errors += 1;
+                        let go_on = self.opts.continue_after_error
+                            && self.errors < self.opts.max_errors
+                            && !matches!(
+                                d.code,
+                                stanok_canon::DiagCode::Stanok("rs274::no-program-end")
+                                    | stanok_canon::DiagCode::Stanok("io::read")
+                                    | stanok_canon::DiagCode::Stanok("io::seek")
+                                    | stanok_canon::DiagCode::Stanok("interp::too-many-blocks")
+                            )
+                            && !d.code.to_string().starts_with("flow::");
+                        if !go_on {
+                            self.phase = Phase::Done;
+                            self.queue.clear();
+                        }
+                        return Some(Err(d));
+                    }
+                },
+            }
+        }
     }
 }

@@ -1,0 +1,164 @@
+//! The context a block executes in, and the pieces of execution both dialects share: end points
+//! from axis words, straight moves, arcs, feed for the Canon stream.
+//!
+//! A block executes against a *scratch copy* of the modal state and appends to a scratch command
+//! list; the driver commits both only if the whole block succeeded (invariant: a block commits all
+//! of its modal changes or none, grbl's STEP 3/STEP 4 split done by construction).
+
+use crate::arc::PlanarArc;
+use crate::state::{DistanceMode, ModalState};
+use crate::words::{Val, Words};
+use crate::InterpOptions;
+use stanok_canon::{ArcMove, Canon, Diagnostic, FeedMode, LineMove, Plane, Pose};
+use stanok_syntax::{Block, ColSpan, Dialect};
+
+/// Letters of the nine axes, in `Pose` order.
+pub const AXIS_WORDS: [u8; 9] = [b'X', b'Y', b'Z', b'A', b'B', b'C', b'U', b'V', b'W'];
+
+/// True for the linear axes (converted by the length unit).
+pub fn is_linear(axis: usize) -> bool {
+    !matches!(axis, 3..=5)
+}
+
+/// Everything a block's execution may read or change.
+pub struct Ctx<'a> {
+    /// The parsed block.
+    pub block: &'a Block,
+    /// Its evaluated words.
+    pub words: &'a mut Words,
+    /// Scratch copy of the modal state.
+    pub st: &'a mut ModalState,
+    /// Scratch command list.
+    pub out: &'a mut Vec<Canon>,
+    /// Options.
+    pub opts: &'a InterpOptions,
+    /// Warnings (reported whether or not the block commits).
+    pub warnings: &'a mut Vec<Diagnostic>,
+}
+
+impl Ctx<'_> {
+    /// An error at a word.
+    pub fn err(&self, code: &'static str, msg: impl Into<String>, at: ColSpan) -> Diagnostic {
+        Diagnostic::error(code, msg, self.block.span_of(at))
+    }
+
+    /// An error carrying the manual's number, at a word.
+    pub fn manual(&self, number: u32, msg: impl Into<String>, at: ColSpan) -> Diagnostic {
+        Diagnostic::manual(number, msg, self.block.span_of(at))
+    }
+
+    /// The whole block's range.
+    pub fn whole(&self) -> ColSpan {
+        ColSpan::new(0, self.block.text.len())
+    }
+
+    /// Program units → mm.
+    pub fn mm(&self, v: f64) -> f64 {
+        v * self.st.units.mm_per_unit()
+    }
+
+    /// Reads the axis words (marking them used) and returns the end point in program coordinates
+    /// (mm/deg), honouring G90/G91, and which axes were written.
+    pub fn end_point(&mut self) -> Result<(Pose, [bool; 9]), Diagnostic> {
+        let mut p = self.st.program_position().to_array();
+        let mut given = [false; 9];
+        for (i, &l) in AXIS_WORDS.iter().enumerate() {
+            let Some(val) = self.words.take(l) else {
+                continue;
+            };
+            if !self.opts.axes[i] {
+                return Err(self.err(
+                    "interp::axis-not-configured",
+                    format!("{} axis is not configured on this machine", l as char),
+                    val.span,
+                ));
+            }
+            let v = if is_linear(i) { self.mm(val.v) } else { val.v };
+            p[i] = match self.st.distance {
+                DistanceMode::Absolute => v,
+                DistanceMode::Incremental => p[i] + v,
+            };
+            given[i] = true;
+        }
+        Ok((Pose::from_array(p), given))
+    }
+
+    /// True if any axis word is present (not marking them used).
+    pub fn has_axis_words(&self) -> bool {
+        self.words.any(&AXIS_WORDS)
+    }
+
+    /// Emits a straight move to `end` (program coordinates) and moves the state there.
+    pub fn straight(&mut self, rapid: bool, end: Pose, feed: f64) {
+        let end_m = self.st.frame.to_machine(&end);
+        let m = LineMove {
+            start: self.st.position,
+            end: end_m,
+            feed: if rapid { 0.0 } else { feed },
+        };
+        self.out.push(if rapid {
+            Canon::StraightTraverse(m)
+        } else {
+            Canon::StraightFeed(m)
+        });
+        self.st.position = end_m;
+    }
+
+    /// Emits an arc to `end` (program coordinates) about the planar centre, and moves there.
+    pub fn arc(&mut self, plane: Plane, ccw: bool, end: Pose, arc: PlanarArc, feed: f64) {
+        let (a, b, n) = plane.axes();
+        let mut centre = self.st.program_position().to_array();
+        centre[a] = arc.centre[0];
+        centre[b] = arc.centre[1];
+        let centre_m = self.st.frame.to_machine(&Pose::from_array(centre)).xyz();
+        let mut normal = [0.0; 3];
+        normal[n] = if ccw { 1.0 } else { -1.0 };
+        let axis = self.st.frame.rotate_to_machine(normal);
+        let end_m = self.st.frame.to_machine(&end);
+        self.out.push(Canon::ArcFeed(ArcMove {
+            start: self.st.position,
+            end: end_m,
+            centre: centre_m,
+            axis,
+            turns: arc.turns,
+            plane,
+            feed,
+        }));
+        self.st.position = end_m;
+    }
+
+    /// The path feed in mm/min for a feed move of `length_mm`, from the feed mode:
+    /// G94 the F value, G95 F × the main spindle's commanded speed, G93 length × F.
+    pub fn path_feed(&self, length_mm: f64) -> f64 {
+        match self.st.feed_mode {
+            FeedMode::UnitsPerMinute => self.st.feed,
+            FeedMode::UnitsPerRevolution => self.st.feed * self.st.spindle_speed[0],
+            FeedMode::InverseTime => self.st.feed * length_mm,
+        }
+    }
+
+    /// Reports the first word nothing consumed (LinuxCNC: "… word with no G code that uses it").
+    pub fn check_all_used(&self) -> Result<(), Diagnostic> {
+        if let Some((l, v)) = self.words.first_unused() {
+            let msg = match self.opts.dialect {
+                Dialect::Rs274ngc => format!("{} word with no g code that uses it", l as char),
+                Dialect::Axioma => format!("{} has no meaning in this block", l as char),
+            };
+            return Err(self.err("interp::unused-word", msg, v.span));
+        }
+        Ok(())
+    }
+
+    /// A letter's value that must be a non-negative integer (P turns, T numbers…).
+    pub fn non_negative_integer(&self, v: Val, what: &str) -> Result<u32, Diagnostic> {
+        let r = v.v.round();
+        if (v.v - r).abs() > 1e-6 || r < 0.0 || r > u32::MAX as f64 {
+            return Err(self.err(
+                "interp::not-an-integer",
+                format!("{what} must be a non-negative integer, got {}", v.v),
+                v.span,
+            ));
+        }
+        Ok(r as u32)
+    }
+}

@@ -1,0 +1,201 @@
+//! STEP 2 of a block (grbl's "import words"): the words of a parsed block, their values evaluated,
+//! sorted into G codes, M codes and letter slots, with the span of each so that later checks can
+//! point at the word that is wrong.
+//!
+//! Invariant: after `Words::fill` succeeds every letter appears at most once (RS274/NGC rejects a
+//! repeated letter; AxiOMA keeps the last one and warns, as its manual says). `used` records which
+//! letters a function consumed, so that a word nothing consumed is reported instead of ignored.
+
+use crate::params::Evaluator;
+use stanok_canon::Diagnostic;
+use stanok_syntax::{Address, Block, ColSpan, Dialect, Keyword, Value};
+
+/// One evaluated value and the word it came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Val {
+    /// Value as written (program units, not yet converted).
+    pub v: f64,
+    /// The word.
+    pub span: ColSpan,
+}
+
+/// The evaluated words of one block.
+#[derive(Debug, Default)]
+pub struct Words {
+    /// G codes ×10 (`G91.1` → 911), in written order.
+    pub g: Vec<(u32, ColSpan)>,
+    /// M codes, in written order.
+    pub m: Vec<(u32, ColSpan)>,
+    /// Single-letter words other than G, M and N (`letter[b'X' - b'A']`).
+    pub letter: [Option<Val>; 26],
+    /// Letters a function has consumed.
+    pub used: u32,
+    /// AxiOMA extended addresses (`S2=1000` → (b'S', 2, 1000)).
+    pub indexed: Vec<(u8, u8, Val)>,
+    /// AxiOMA keywords with their index and value.
+    pub keywords: Vec<(Keyword, Option<u8>, Option<Val>, ColSpan)>,
+}
+
+fn idx(letter: u8) -> usize {
+    (letter.to_ascii_uppercase() - b'A') as usize
+}
+
+impl Words {
+    /// Clears for reuse.
+    pub fn clear(&mut self) {
+        self.g.clear();
+        self.m.clear();
+        self.letter = [None; 26];
+        self.used = 0;
+        self.indexed.clear();
+        self.keywords.clear();
+    }
+
+    /// Evaluates and sorts the words of `block`.
+    pub fn fill(
+        &mut self,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        dialect: Dialect,
+        warnings: &mut Vec<Diagnostic>,
+    ) -> Result<(), Diagnostic> {
+        self.clear();
+        for w in &block.words {
+            let value = match w.value {
+                Value::None => None,
+                Value::Number(v) => Some(v),
+                Value::Expr(e) => Some(eval.eval(e)?),
+            };
+            let val = value.map(|v| Val { v, span: w.span });
+            match w.address {
+                Address::Letter(l) => {
+                    let Some(val) = val else {
+                        return Err(Diagnostic::error(
+                            "interp::missing-value",
+                            format!("{} word has no value", l as char),
+                            block.span_of(w.span),
+                        ));
+                    };
+                    if !val.v.is_finite() {
+                        return Err(Diagnostic::error(
+                            "interp::bad-value",
+                            format!("{} word value is not a finite number", l as char),
+                            block.span_of(w.span),
+                        ));
+                    }
+                    match l {
+                        b'G' => {
+                            let code = (val.v * 10.0).round();
+                            if (val.v * 10.0 - code).abs() > 1e-3 || !(0.0..=9999.0).contains(&code)
+                            {
+                                return Err(Diagnostic::error(
+                                    "interp::unknown-g-code",
+                                    format!("Unknown g code used: G{}", val.v),
+                                    block.span_of(w.span),
+                                ));
+                            }
+                            self.g.push((code as u32, w.span));
+                        }
+                        b'M' => {
+                            let code = val.v.round();
+                            if (val.v - code).abs() > 1e-6 || !(0.0..=9999.0).contains(&code) {
+                                return Err(Diagnostic::error(
+                                    "interp::unknown-m-code",
+                                    format!("Unknown m code used: M{}", val.v),
+                                    block.span_of(w.span),
+                                ));
+                            }
+                            self.m.push((code as u32, w.span));
+                        }
+                        b'A'..=b'Z' => {
+                            let slot = &mut self.letter[idx(l)];
+                            if let Some(prev) = slot {
+                                match dialect {
+                                    Dialect::Rs274ngc => {
+                                        return Err(Diagnostic::error(
+                                            "rs274::multiple-words",
+                                            format!(
+                                                "Multiple {} words on one line",
+                                                (l as char).to_ascii_lowercase()
+                                            ),
+                                            block.span_of(w.span),
+                                        ))
+                                    }
+                                    Dialect::Axioma => warnings.push(
+                                        Diagnostic::warning(
+                                            "axioma::repeated-word",
+                                            format!(
+                                                "{} appears twice in this block: only the last one takes effect",
+                                                l as char
+                                            ),
+                                            block.span_of(w.span),
+                                        )
+                                        .with_note(format!(
+                                            "the earlier one is `{}`",
+                                            block.slice(prev.span)
+                                        )),
+                                    ),
+                                }
+                            }
+                            *slot = Some(val);
+                        }
+                        _ => {
+                            return Err(Diagnostic::error(
+                                "interp::bad-address",
+                                "not a word address",
+                                block.span_of(w.span),
+                            ))
+                        }
+                    }
+                }
+                Address::Indexed { letter, index } => {
+                    let Some(val) = val else {
+                        return Err(Diagnostic::error(
+                            "interp::missing-value",
+                            format!("{}{}= has no value", letter as char, index),
+                            block.span_of(w.span),
+                        ));
+                    };
+                    self.indexed.push((letter, index, val));
+                }
+                Address::Keyword { keyword, index } => {
+                    self.keywords.push((keyword, index, val, w.span));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value of a letter, marking it used.
+    pub fn take(&mut self, letter: u8) -> Option<Val> {
+        let i = idx(letter);
+        let v = self.letter[i];
+        if v.is_some() {
+            self.used |= 1 << i;
+        }
+        v
+    }
+
+    /// True if the letter was written (does not mark it used).
+    pub fn has(&self, letter: u8) -> bool {
+        self.letter[idx(letter)].is_some()
+    }
+
+    /// The first letter that was written but never consumed, if any.
+    pub fn first_unused(&self) -> Option<(u8, Val)> {
+        (0..26).find_map(|i| match self.letter[i] {
+            Some(v) if self.used & (1 << i) == 0 => Some((b'A' + i as u8, v)),
+            _ => None,
+        })
+    }
+
+    /// True if the letter was consumed already.
+    pub fn is_used(&self, letter: u8) -> bool {
+        self.used & (1 << idx(letter)) != 0
+    }
+
+    /// True if any of the given letters was written.
+    pub fn any(&self, letters: &[u8]) -> bool {
+        letters.iter().any(|&l| self.has(l))
+    }
+}

@@ -1,0 +1,457 @@
+//! Machine data: what a machine can do, read from TOML.
+//!
+//! ## Schema (version 0: the start of one)
+//!
+//! ```toml
+//! name = "mill"                 # required, non-empty
+//! description = "…"             # optional
+//! rapid_rate = 10000.0          # mm/min, > 0
+//! max_feed = 5000.0             # mm/min, > 0
+//! arc_tolerance = 0.01          # mm, ≥ 0
+//! [[axis]]                      # one table per axis, at least one
+//! name = "X"                    # X Y Z U V W (linear, mm) or A B C (rotary, deg); no duplicates
+//! kind = "linear"               # "linear" | "rotary", must match the letter
+//! min = -500.0                  # mm | deg, ≤ max (±inf allowed: an endless rotary axis)
+//! max = 500.0
+//! max_velocity = 10000.0        # mm/min | deg/min, > 0
+//! max_acceleration = 1000.0     # mm/s² | deg/s², > 0
+//! max_jerk = 20000.0            # mm/s³ | deg/s³, > 0
+//! ```
+//! `machines/mill.toml` at the repository root is a commented example, equal to the built-in `mill`.
+//!
+//! ## Reading
+//!
+//! 1. `toml` parses the text into private `Raw*` structs whose fields are `toml::Spanned`, so every
+//!    value keeps the byte range it was written at. Unknown keys are errors (a typo must not be
+//!    silently ignored on a machine).
+//! 2. Validation walks the rules above in file order and stops at the first violation.
+//! 3. Any failure becomes a [`Diagnostic`] with code `machine::bad-data`, the byte range converted to
+//!    a 1-based line and column, and a note naming the file. Nothing here panics on any input.
+
+use serde::{Deserialize, Serialize};
+use stanok_canon::{Diagnostic, Span, AXIS_LETTERS};
+use std::ops::Range;
+use std::path::Path;
+use toml::Spanned;
+
+/// Diagnostic code of every machine-data problem.
+pub const BAD_DATA: &str = "machine::bad-data";
+
+/// What a machine is and can do. All values are in the units their docs give; positions are machine
+/// coordinates.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MachineData {
+    /// Short name, as given to `--machine` (e.g. `mill`).
+    pub name: String,
+    /// One line for people.
+    pub description: String,
+    /// Rapid (G0) path rate of the channel, mm/min.
+    pub rapid_rate: f64,
+    /// Highest programmable path feed, mm/min; a higher F is clamped to it.
+    pub max_feed: f64,
+    /// How far the end of a programmed arc may miss the circle, mm (AxiOMA 621/622/623; spec
+    /// axioma-2 §2.3.8).
+    pub arc_tolerance: f64,
+    /// The axes, in file order.
+    pub axes: Vec<AxisData>,
+}
+
+/// Linear or rotary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisKind {
+    /// Positions in mm (X Y Z U V W).
+    Linear,
+    /// Positions in degrees (A B C).
+    Rotary,
+}
+
+/// One axis. "unit" below is mm for a linear axis and degrees for a rotary one.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AxisData {
+    /// Axis letter, one of X Y Z A B C U V W.
+    pub name: char,
+    /// Linear or rotary (fixed by the letter).
+    pub kind: AxisKind,
+    /// Lower travel (software) limit, unit.
+    pub min: f64,
+    /// Upper travel limit, unit.
+    pub max: f64,
+    /// Maximum velocity, unit/min.
+    pub max_velocity: f64,
+    /// Maximum acceleration, unit/s² (used by the planner).
+    pub max_acceleration: f64,
+    /// Maximum jerk, unit/s³ (used by the planner in SOFT mode).
+    pub max_jerk: f64,
+}
+
+impl AxisData {
+    /// Index of this axis in `Pose::to_array` order (X Y Z A B C U V W).
+    pub fn pose_index(&self) -> usize {
+        letter_index(self.name).unwrap_or(0)
+    }
+}
+
+fn letter_index(letter: char) -> Option<usize> {
+    AXIS_LETTERS.iter().position(|&l| l == letter)
+}
+
+fn kind_of(letter: char) -> AxisKind {
+    if matches!(letter, 'A' | 'B' | 'C') {
+        AxisKind::Rotary
+    } else {
+        AxisKind::Linear
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawMachine {
+    name: Spanned<String>,
+    #[serde(default)]
+    description: String,
+    rapid_rate: Spanned<f64>,
+    max_feed: Spanned<f64>,
+    arc_tolerance: Spanned<f64>,
+    axis: Spanned<Vec<RawAxis>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawAxis {
+    name: Spanned<String>,
+    kind: Spanned<AxisKind>,
+    min: Spanned<f64>,
+    max: Spanned<f64>,
+    max_velocity: Spanned<f64>,
+    max_acceleration: Spanned<f64>,
+    max_jerk: Spanned<f64>,
+}
+
+/// A validation failure: message and the byte range to blame.
+type Invalid = (String, Range<usize>);
+
+fn positive(value: &Spanned<f64>, what: &str, unit: &str) -> Result<f64, Invalid> {
+    let v = *value.get_ref();
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err((
+            format!("{what} must be a positive number of {unit}, not {v}"),
+            value.span(),
+        ))
+    }
+}
+
+impl RawAxis {
+    fn validate(self, seen: &[AxisData]) -> Result<AxisData, Invalid> {
+        let text = self.name.get_ref();
+        let mut chars = text.chars();
+        let letter = match (chars.next(), chars.next()) {
+            (Some(c), None) if letter_index(c).is_some() => c,
+            _ => {
+                return Err((
+                    format!("axis name must be one of X Y Z A B C U V W, not \"{text}\""),
+                    self.name.span(),
+                ))
+            }
+        };
+        if seen.iter().any(|a| a.name == letter) {
+            return Err((format!("axis {letter} is defined twice"), self.name.span()));
+        }
+        let kind = *self.kind.get_ref();
+        let (unit, per_min, per_s2, per_s3) = match kind_of(letter) {
+            AxisKind::Linear => ("mm", "mm/min", "mm/s²", "mm/s³"),
+            AxisKind::Rotary => ("deg", "deg/min", "deg/s²", "deg/s³"),
+        };
+        if kind != kind_of(letter) {
+            let want = if kind_of(letter) == AxisKind::Rotary {
+                "rotary"
+            } else {
+                "linear"
+            };
+            return Err((
+                format!("axis {letter} is {want} (its positions are in {unit})"),
+                self.kind.span(),
+            ));
+        }
+        let (min, max) = (*self.min.get_ref(), *self.max.get_ref());
+        if min.is_nan() {
+            return Err((
+                format!("axis {letter}: min is not a number"),
+                self.min.span(),
+            ));
+        }
+        if max.is_nan() || min > max {
+            return Err((
+                format!("axis {letter}: min {min} {unit} is greater than max {max} {unit}"),
+                self.max.span(),
+            ));
+        }
+        Ok(AxisData {
+            name: letter,
+            kind,
+            min,
+            max,
+            max_velocity: positive(&self.max_velocity, "max_velocity", per_min)?,
+            max_acceleration: positive(&self.max_acceleration, "max_acceleration", per_s2)?,
+            max_jerk: positive(&self.max_jerk, "max_jerk", per_s3)?,
+        })
+    }
+}
+
+impl RawMachine {
+    fn validate(self) -> Result<MachineData, Invalid> {
+        if self.name.get_ref().trim().is_empty() {
+            return Err(("machine name is empty".into(), self.name.span()));
+        }
+        let rapid_rate = positive(&self.rapid_rate, "rapid_rate", "mm/min")?;
+        let max_feed = positive(&self.max_feed, "max_feed", "mm/min")?;
+        let tol = *self.arc_tolerance.get_ref();
+        if !(tol.is_finite() && tol >= 0.0) {
+            return Err((
+                format!("arc_tolerance must be zero or a positive number of mm, not {tol}"),
+                self.arc_tolerance.span(),
+            ));
+        }
+        let axes_span = self.axis.span();
+        let mut axes = Vec::new();
+        for raw in self.axis.into_inner() {
+            let axis = raw.validate(&axes)?;
+            axes.push(axis);
+        }
+        if axes.is_empty() {
+            return Err(("a machine needs at least one [[axis]]".into(), axes_span));
+        }
+        Ok(MachineData {
+            name: self.name.into_inner(),
+            description: self.description,
+            rapid_rate,
+            max_feed,
+            arc_tolerance: tol,
+            axes,
+        })
+    }
+}
+
+/// Line and column (1-based, column in characters) of byte `offset` in `text`.
+fn line_column(text: &str, offset: usize) -> (u32, u32) {
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    let column = before[line_start..].chars().count() + 1;
+    (
+        u32::try_from(line).unwrap_or(u32::MAX),
+        u32::try_from(column).unwrap_or(u32::MAX),
+    )
+}
+
+fn bad_data(text: &str, file_name: &str, message: &str, range: Option<Range<usize>>) -> Diagnostic {
+    let span = match range {
+        Some(r) => {
+            let (line, column) = line_column(text, r.start);
+            Span::new(r.start as u64, r.end as u64, line, column)
+        }
+        None => Span::default(),
+    };
+    Diagnostic::error(BAD_DATA, message.trim_end(), span)
+        .with_note(format!("in machine data file {file_name}"))
+}
+
+impl MachineData {
+    /// The built-in machine called `name` (`"mill"`), if there is one.
+    pub fn builtin(name: &str) -> Option<MachineData> {
+        match name {
+            "mill" => Some(Self::default_mill()),
+            _ => None,
+        }
+    }
+
+    /// The default 3-axis mill: X, Y ±500 mm, Z ±300 mm, 10 000 mm/min per axis and rapid, 5 000
+    /// mm/min feed, 1 000 mm/s², 20 000 mm/s³. Equal to `machines/mill.toml`.
+    pub fn default_mill() -> MachineData {
+        let axis = |name: char, limit: f64| AxisData {
+            name,
+            kind: AxisKind::Linear,
+            min: -limit,
+            max: limit,
+            max_velocity: 10_000.0,
+            max_acceleration: 1_000.0,
+            max_jerk: 20_000.0,
+        };
+        MachineData {
+            name: "mill".into(),
+            description: "Built-in 3-axis vertical mill, travel generous enough for every corpus \
+                          example started at the origin"
+                .into(),
+            rapid_rate: 10_000.0,
+            max_feed: 5_000.0,
+            arc_tolerance: 0.01,
+            axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
+        }
+    }
+
+    /// Parses and validates machine data. `file_name` is only used in the diagnostic's note.
+    pub fn from_toml_str(text: &str, file_name: &str) -> Result<MachineData, Diagnostic> {
+        let raw: RawMachine =
+            toml::from_str(text).map_err(|e| bad_data(text, file_name, e.message(), e.span()))?;
+        raw.validate()
+            .map_err(|(message, range)| bad_data(text, file_name, &message, Some(range)))
+    }
+
+    /// Reads machine data from a file.
+    pub fn load(path: impl AsRef<Path>) -> Result<MachineData, Diagnostic> {
+        let path = path.as_ref();
+        let name = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            Diagnostic::error(
+                BAD_DATA,
+                format!("cannot read machine data file {name}: {e}"),
+                Span::default(),
+            )
+        })?;
+        Self::from_toml_str(&text, &name)
+    }
+
+    /// Which of the nine axes (X Y Z A B C U V W, `Pose::to_array` order) the machine has.
+    pub fn axis_mask(&self) -> [bool; 9] {
+        let mut mask = [false; 9];
+        for a in &self.axes {
+            mask[a.pose_index()] = true;
+        }
+        mask
+    }
+
+    /// The axis with letter `name`, if the machine has it.
+    pub fn axis(&self, name: char) -> Option<&AxisData> {
+        self.axes.iter().find(|a| a.name == name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GOOD: &str = r#"
+name = "tiny"
+rapid_rate = 6000
+max_feed = 3000.0
+arc_tolerance = 0.002
+[[axis]]
+name = "X"
+kind = "linear"
+min = -10.0
+max = 10.0
+max_velocity = 6000.0
+max_acceleration = 500.0
+max_jerk = 5000.0
+[[axis]]
+name = "C"
+kind = "rotary"
+min = -inf
+max = inf
+max_velocity = 3600.0
+max_acceleration = 360.0
+max_jerk = 3600.0
+"#;
+
+    fn err(text: &str) -> Diagnostic {
+        MachineData::from_toml_str(text, "m.toml").unwrap_err()
+    }
+
+    #[test]
+    fn reads_a_good_file() {
+        let m = MachineData::from_toml_str(GOOD, "m.toml").unwrap();
+        assert_eq!(m.name, "tiny");
+        assert_eq!(m.rapid_rate, 6000.0); // an integer is accepted for a float
+        assert_eq!(m.axes.len(), 2);
+        assert_eq!(m.axis('C').unwrap().kind, AxisKind::Rotary);
+        assert_eq!(m.axis('C').unwrap().pose_index(), 5);
+        assert_eq!(m.axis('C').unwrap().max, f64::INFINITY);
+        assert_eq!(m.description, "");
+        let mut mask = [false; 9];
+        (mask[0], mask[5]) = (true, true);
+        assert_eq!(m.axis_mask(), mask);
+    }
+
+    #[test]
+    fn machines_mill_toml_equals_the_builtin() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../machines/mill.toml");
+        assert_eq!(MachineData::load(path), Ok(MachineData::default_mill()));
+        assert_eq!(
+            MachineData::builtin("mill"),
+            Some(MachineData::default_mill())
+        );
+        assert_eq!(MachineData::builtin("lathe"), None);
+    }
+
+    #[test]
+    fn syntax_errors_have_line_and_column() {
+        let d = err("name = \"m\"\nrapid_rate = = 3\n");
+        assert_eq!(d.code.to_string(), BAD_DATA);
+        assert_eq!((d.span.line, d.span.column), (2, 14), "{d}");
+        assert_eq!(d.notes, vec!["in machine data file m.toml".to_string()]);
+    }
+
+    #[test]
+    fn unknown_keys_and_kinds_are_errors() {
+        let d = err(&GOOD.replace("max_feed", "max_fed"));
+        assert!(d.message.contains("max_fed"), "{d}");
+        assert_eq!(d.span.line, 4);
+        let d = err(&GOOD.replace("\"linear\"", "\"linaer\""));
+        assert!(d.message.contains("linaer"), "{d}");
+        assert_eq!((d.span.line, d.span.column), (8, 8), "{d}");
+        let d = err(&GOOD.replace("min = -inf\n", ""));
+        assert!(d.message.contains("min"), "{d}");
+    }
+
+    #[test]
+    fn validation_errors_point_at_the_value() {
+        let d = err(&GOOD.replace("max = 10.0", "max = -20.0"));
+        assert!(d.message.contains("greater than max"), "{d}");
+        assert_eq!((d.span.line, d.span.column), (10, 7), "{d}");
+        let d = err(&GOOD.replace("rapid_rate = 6000", "rapid_rate = -6000"));
+        assert!(d.message.contains("rapid_rate"), "{d}");
+        assert_eq!((d.span.line, d.span.column), (3, 14), "{d}");
+        let d = err(&GOOD.replace("name = \"C\"", "name = \"X\""));
+        assert!(d.message.contains("defined twice"), "{d}");
+        assert_eq!(d.span.line, 15);
+        let d = err(&GOOD.replace("name = \"C\"", "name = \"Q\""));
+        assert!(d.message.contains("one of X Y Z"), "{d}");
+        let d = err(&GOOD.replace("\"rotary\"", "\"linear\""));
+        assert!(d.message.contains("axis C is rotary"), "{d}");
+        let d = err(&GOOD.replace("max_jerk = 5000.0", "max_jerk = 0.0"));
+        assert!(d.message.contains("max_jerk"), "{d}");
+        let d = err(&GOOD.replace("arc_tolerance = 0.002", "arc_tolerance = nan"));
+        assert!(d.message.contains("arc_tolerance"), "{d}");
+        let d =
+            err("name = \"m\"\nrapid_rate = 1.0\nmax_feed = 1.0\narc_tolerance = 0.0\naxis = []\n");
+        assert!(d.message.contains("at least one"), "{d}");
+        assert_eq!(d.span.line, 5);
+    }
+
+    #[test]
+    fn never_panics_on_odd_text() {
+        for text in [
+            "",
+            "\u{feff}",
+            "name = \"é\"\n[[axis]]\nname = \"ЖЖ\"",
+            "[[[",
+            "axis = 3",
+        ] {
+            assert!(MachineData::from_toml_str(text, "x.toml").is_err());
+        }
+        assert_eq!(line_column("aé\nb", 2), (1, 2)); // inside 'é': backs off to its start
+        assert_eq!(line_column("aé\nb", 99), (2, 2));
+    }
+
+    #[test]
+    fn load_reports_a_missing_file() {
+        let d = MachineData::load("/nonexistent/stanok-machine.toml").unwrap_err();
+        assert!(d.message.contains("cannot read"), "{d}");
+    }
+}

@@ -1,0 +1,719 @@
+//! The simulated machine: executes a Canon stream with nominal timing and builds the run report.
+//!
+//! ## One command, check first, then commit (grbl's STEP 3 / STEP 4)
+//!
+//! `SimMachine::apply` first checks everything that can refuse the command and only then changes
+//! state, so a refused command leaves no trace in the report:
+//! 1. **Axes.** A move may only change axes the machine has (`machine::missing-axis`).
+//! 2. **Travel limits** (`machine::travel-limit`). A straight move is checked at its end point (its
+//!    start is the previous end, already checked; the `Init` position is checked on its own). An arc
+//!    is checked over its tight bounding box from `stanok-geom`, so an arc whose end points are inside
+//!    but whose bulge is not is refused. Non-XYZ axes of an arc move linearly and are checked at the
+//!    end. A limit may be touched: positions within 1e-9 mm (deg) of it pass, so that rounding in the
+//!    interpreter does not refuse a move programmed exactly to the limit.
+//! 3. **Commit.** Counters, distances, nominal time (`stanok_motion::nominal`), bounding box, the
+//!    M-function and message logs, the position.
+//!
+//! ## Length and time of a move (spec axioma-2 §3.2, LinuxCNC canon)
+//!
+//! The length a rate applies to is the XYZ length if XYZ moves; otherwise the UVW length; otherwise
+//! the ABC length in degrees (a rotary-only feed is in deg/min). Only millimetre lengths add to the
+//! report's distances. An arc's length is the helix length of its XYZ part ([`Helix::length`]).
+//! Feeds above the machine's `max_feed` are clamped to it, as a control does; a feed of zero (which
+//! the interpreter never emits) takes no time. Rapids run at `rapid_rate`, slowed so that no axis
+//! exceeds its `max_velocity`.
+//!
+//! Invariant: the report only grows by commands that were accepted; no input makes `apply` panic or
+//! put a NaN or ∞ into the times (degenerate geometry is the interpreter's to refuse).
+
+use crate::data::{AxisData, AxisKind, MachineData};
+use serde::Serialize;
+use stanok_canon::{
+    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
+    AXIS_LETTERS,
+};
+use stanok_geom::Helix;
+use stanok_motion::nominal::{self, AxisLimits};
+use std::collections::BTreeMap;
+
+/// Positions within this distance beyond a limit (mm or deg) still pass.
+const LIMIT_SLACK: f64 = 1e-9;
+
+/// An axis-aligned box in machine X Y Z, mm.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct BoundingBox {
+    /// Smallest X, Y, Z.
+    pub min: [f64; 3],
+    /// Largest X, Y, Z.
+    pub max: [f64; 3],
+}
+
+impl BoundingBox {
+    fn include(bbox: &mut Option<BoundingBox>, lo: [f64; 3], hi: [f64; 3]) {
+        let b = bbox.get_or_insert(BoundingBox { min: lo, max: hi });
+        for i in 0..3 {
+            b.min[i] = b.min[i].min(lo[i]);
+            b.max[i] = b.max[i].max(hi[i]);
+        }
+    }
+}
+
+/// Something that happened at a source line.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LoggedEvent {
+    /// 1-based source line of the block.
+    pub line: u32,
+    /// What happened, e.g. `M3 spindle 0 clockwise, 1200 rpm`.
+    pub text: String,
+}
+
+/// What a run did, with nominal timing (no acceleration).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunReport {
+    /// Machine data name.
+    pub machine: String,
+    /// Blocks executed: filled in by the caller (the machine sees commands, not blocks); 0 here.
+    pub blocks: u64,
+    /// All motion commands: rapid + feed + arc.
+    pub motion_segments: u64,
+    /// G0 moves.
+    pub rapid_segments: u64,
+    /// Straight feed moves (G1).
+    pub feed_segments: u64,
+    /// Arcs and helices (G2/G3).
+    pub arc_segments: u64,
+    /// Path length of the rapids, mm.
+    pub rapid_distance_mm: f64,
+    /// Path length of the feed moves (lines and arcs), mm.
+    pub feed_distance_mm: f64,
+    /// Rapids + feeds + dwells, seconds, no acceleration.
+    pub nominal_time_s: f64,
+    /// Dwells alone, seconds.
+    pub dwell_time_s: f64,
+    /// Box around the whole tool path incl. arc extrema, machine X Y Z, mm; `None` without motion.
+    pub bounding_box: Option<BoundingBox>,
+    /// Tools put in the spindle, in order of their first change.
+    pub tools_used: Vec<u32>,
+    /// Number of tool changes (M6).
+    pub tool_changes: u64,
+    /// Operator messages, in order.
+    pub messages: Vec<LoggedEvent>,
+    /// Spindle, coolant, tool change, auxiliary M functions, stops and program end, in order.
+    pub m_functions: Vec<LoggedEvent>,
+    /// Where the machine stands after the last accepted command.
+    pub final_position: Pose,
+    /// True once a program end (M2/M30) was executed.
+    pub program_ended: bool,
+}
+
+/// Executes Canon commands on a simulated machine (see the module doc).
+#[derive(Debug, Clone)]
+pub struct SimMachine {
+    machine: MachineData,
+    /// The machine's axis for each index of `Pose::to_array`, if it has one.
+    axes: [Option<AxisData>; 9],
+    /// Last commanded speed of each spindle, rev/min.
+    spindle_rpm: BTreeMap<u8, f64>,
+    report: RunReport,
+}
+
+/// Which counter a straight move goes to.
+#[derive(Clone, Copy)]
+enum LineKind {
+    Rapid,
+    Feed,
+}
+
+fn unit(axis: &AxisData) -> &'static str {
+    match axis.kind {
+        AxisKind::Linear => "mm",
+        AxisKind::Rotary => "deg",
+    }
+}
+
+/// Length a rate applies to, and whether it is in mm (module doc).
+fn line_length(start: &Pose, end: &Pose) -> (f64, bool) {
+    let (s, e) = (start.to_array(), end.to_array());
+    let len = |r: std::ops::Range<usize>| r.map(|i| (e[i] - s[i]).powi(2)).sum::<f64>().sqrt();
+    let (xyz, abc, uvw) = (len(0..3), len(3..6), len(6..9));
+    if xyz > 0.0 {
+        (xyz, true)
+    } else if uvw > 0.0 {
+        (uvw, true)
+    } else {
+        (abc, false)
+    }
+}
+
+impl SimMachine {
+    /// A machine standing at the origin with an empty report.
+    pub fn new(machine: MachineData) -> Self {
+        let mut axes: [Option<AxisData>; 9] = Default::default();
+        for a in &machine.axes {
+            axes[a.pose_index()] = Some(a.clone());
+        }
+        let report = RunReport {
+            machine: machine.name.clone(),
+            blocks: 0,
+            motion_segments: 0,
+            rapid_segments: 0,
+            feed_segments: 0,
+            arc_segments: 0,
+            rapid_distance_mm: 0.0,
+            feed_distance_mm: 0.0,
+            nominal_time_s: 0.0,
+            dwell_time_s: 0.0,
+            bounding_box: None,
+            tools_used: Vec::new(),
+            tool_changes: 0,
+            messages: Vec::new(),
+            m_functions: Vec::new(),
+            final_position: Pose::ZERO,
+            program_ended: false,
+        };
+        SimMachine {
+            machine,
+            axes,
+            spindle_rpm: BTreeMap::new(),
+            report,
+        }
+    }
+
+    /// The machine data this machine runs with.
+    pub fn machine(&self) -> &MachineData {
+        &self.machine
+    }
+
+    /// Applies one command. Returns `Err(Diagnostic)` if it cannot run (an axis the machine lacks, a
+    /// travel-limit violation); the state is then unchanged and the run stops there.
+    pub fn apply(&mut self, cmd: &Spanned<Canon>) -> Result<(), Diagnostic> {
+        let span = cmd.span;
+        let line = span.line;
+        match &cmd.value {
+            Canon::Init { position, .. } => {
+                let p = position.to_array();
+                self.check_limits(&p, &p, span)?;
+                self.report.final_position = *position;
+            }
+            Canon::StraightTraverse(m) => self.apply_line(m, LineKind::Rapid, span)?,
+            Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
+            Canon::ArcFeed(a) => self.apply_arc(a, span)?,
+            Canon::Dwell { seconds } => {
+                let t = nominal::dwell_time(*seconds);
+                self.report.dwell_time_s += t;
+                self.report.nominal_time_s += t;
+            }
+            Canon::SetSpindleSpeed { spindle, rpm } => {
+                self.spindle_rpm.insert(*spindle, *rpm);
+            }
+            Canon::StartSpindle { spindle, direction } => {
+                let (code, sense) = match direction {
+                    SpindleDirection::Clockwise => ("M3", "clockwise"),
+                    SpindleDirection::CounterClockwise => ("M4", "counter-clockwise"),
+                };
+                let speed = match self.spindle_rpm.get(spindle) {
+                    Some(rpm) => format!(", {rpm} rpm"),
+                    None => String::new(),
+                };
+                self.log(line, format!("{code} spindle {spindle} {sense}{speed}"));
+            }
+            Canon::StopSpindle { spindle } => self.log(line, format!("M5 spindle {spindle} stop")),
+            Canon::Mist { on } => self.log(line, if *on { "M7 mist on" } else { "M9 mist off" }),
+            Canon::Flood { on } => self.log(line, if *on { "M8 flood on" } else { "M9 flood off" }),
+            Canon::ChangeTool { tool } => {
+                if !self.report.tools_used.contains(tool) {
+                    self.report.tools_used.push(*tool);
+                }
+                self.report.tool_changes += 1;
+                self.log(line, format!("M6 tool change to T{tool}"));
+            }
+            Canon::AuxiliaryFunction { number, timing } => {
+                let when = match timing {
+                    AuxTiming::Prefix => "before",
+                    AuxTiming::Postfix => "after",
+                };
+                self.log(
+                    line,
+                    format!("M{number} auxiliary function ({when} motion)"),
+                );
+            }
+            Canon::ProgramStop { optional } => self.log(
+                line,
+                if *optional {
+                    "M1 optional stop"
+                } else {
+                    "M0 program stop"
+                },
+            ),
+            Canon::PalletShuttle => self.log(line, "pallet shuttle"),
+            Canon::ProgramEnd => {
+                self.report.program_ended = true;
+                self.log(line, "M2/M30 program end");
+            }
+            Canon::Message { text } => {
+                if !text.is_empty() {
+                    self.report.messages.push(LoggedEvent {
+                        line,
+                        text: text.clone(),
+                    });
+                }
+            }
+            // State for printers and the interpreter; nothing happens on the machine.
+            Canon::SetFeedRate { .. }
+            | Canon::SetFeedMode { .. }
+            | Canon::SelectPlane { .. }
+            | Canon::UseLengthUnits { .. }
+            | Canon::SetG5xOffset { .. }
+            | Canon::SetG92Offset { .. }
+            | Canon::SetXyRotation { .. }
+            | Canon::SetSpindleMode { .. }
+            | Canon::SelectTool { .. }
+            | Canon::UseToolLengthOffset { .. }
+            | Canon::StartToolChange
+            | Canon::Comment { .. } => {}
+        }
+        Ok(())
+    }
+
+    /// The report so far (call after the last command).
+    pub fn report(&self) -> RunReport {
+        self.report.clone()
+    }
+
+    fn log(&mut self, line: u32, text: impl Into<String>) {
+        self.report.m_functions.push(LoggedEvent {
+            line,
+            text: text.into(),
+        });
+    }
+
+    /// Rules 1 and 2 of the module doc for a move that spans `lo..=hi` per axis and goes start → end.
+    fn check_move(
+        &self,
+        start: &Pose,
+        end: &Pose,
+        lo: &[f64; 9],
+        hi: &[f64; 9],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        let (s, e) = (start.to_array(), end.to_array());
+        for i in 0..9 {
+            if self.axes[i].is_none() && (s[i] != e[i] || lo[i] != hi[i]) {
+                let letter = AXIS_LETTERS[i];
+                return Err(Diagnostic::error(
+                    "machine::missing-axis",
+                    format!(
+                        "machine {} has no {letter} axis, but this block moves {letter} from {} to {}",
+                        self.machine.name, s[i], e[i]
+                    ),
+                    span,
+                ));
+            }
+        }
+        self.check_limits(lo, hi, span)
+    }
+
+    /// Travel limits for positions spanning `lo..=hi` per axis.
+    fn check_limits(&self, lo: &[f64; 9], hi: &[f64; 9], span: Span) -> Result<(), Diagnostic> {
+        for (i, axis) in self.axes.iter().enumerate() {
+            let Some(axis) = axis else { continue };
+            let u = unit(axis);
+            let violation = if lo[i].is_nan() || hi[i].is_nan() {
+                Some(format!("{} position is not a number", axis.name))
+            } else if lo[i] < axis.min - LIMIT_SLACK {
+                Some(format!(
+                    "{} would reach {:.4} {u}, beyond its minimum {:.4} {u}",
+                    axis.name, lo[i], axis.min
+                ))
+            } else if hi[i] > axis.max + LIMIT_SLACK {
+                Some(format!(
+                    "{} would reach {:.4} {u}, beyond its maximum {:.4} {u}",
+                    axis.name, hi[i], axis.max
+                ))
+            } else {
+                None
+            };
+            if let Some(message) = violation {
+                return Err(Diagnostic::error("machine::travel-limit", message, span));
+            }
+        }
+        Ok(())
+    }
+
+    fn apply_line(&mut self, m: &LineMove, kind: LineKind, span: Span) -> Result<(), Diagnostic> {
+        let (s, e) = (m.start.to_array(), m.end.to_array());
+        self.check_move(&m.start, &m.end, &e, &e, span)?;
+        let (length, in_mm) = line_length(&m.start, &m.end);
+        let distance = if in_mm { length } else { 0.0 };
+        let r = &mut self.report;
+        let time = match kind {
+            LineKind::Rapid => {
+                let deltas: Vec<f64> = s.iter().zip(&e).map(|(a, b)| b - a).collect();
+                let limits: Vec<AxisLimits> = self
+                    .axes
+                    .iter()
+                    .map(|a| AxisLimits {
+                        max_velocity_per_min: a.as_ref().map_or(0.0, |a| a.max_velocity),
+                    })
+                    .collect();
+                r.rapid_segments += 1;
+                r.rapid_distance_mm += distance;
+                nominal::rapid_time(length, &deltas, self.machine.rapid_rate, &limits)
+            }
+            LineKind::Feed => {
+                r.feed_segments += 1;
+                r.feed_distance_mm += distance;
+                nominal::feed_time(length, clamp_feed(m.feed, self.machine.max_feed))
+            }
+        };
+        r.motion_segments += 1;
+        r.nominal_time_s += time;
+        let (ps, pe) = (m.start.xyz(), m.end.xyz());
+        BoundingBox::include(&mut r.bounding_box, ps, ps);
+        BoundingBox::include(&mut r.bounding_box, pe, pe);
+        r.final_position = m.end;
+        Ok(())
+    }
+
+    fn apply_arc(&mut self, a: &ArcMove, span: Span) -> Result<(), Diagnostic> {
+        let helix = Helix {
+            start: a.start.xyz(),
+            end: a.end.xyz(),
+            centre: a.centre,
+            axis: a.axis,
+            turns: a.turns,
+        };
+        let (box_lo, box_hi) = helix.bounding_box();
+        let (s, e) = (a.start.to_array(), a.end.to_array());
+        let mut lo = [0.0; 9];
+        let mut hi = [0.0; 9];
+        for i in 0..9 {
+            (lo[i], hi[i]) = if i < 3 {
+                (box_lo[i], box_hi[i])
+            } else {
+                (s[i].min(e[i]), s[i].max(e[i]))
+            };
+        }
+        self.check_move(&a.start, &a.end, &lo, &hi, span)?;
+        let length = helix.length();
+        let r = &mut self.report;
+        r.arc_segments += 1;
+        r.motion_segments += 1;
+        r.feed_distance_mm += length;
+        r.nominal_time_s += nominal::feed_time(length, clamp_feed(a.feed, self.machine.max_feed));
+        BoundingBox::include(&mut r.bounding_box, box_lo, box_hi);
+        r.final_position = a.end;
+        Ok(())
+    }
+}
+
+/// The feed a control would run: the programmed one, at most `max_feed` (NaN stays NaN and so takes
+/// no time in `nominal::feed_time`).
+fn clamp_feed(feed: f64, max_feed: f64) -> f64 {
+    if feed > max_feed {
+        max_feed
+    } else {
+        feed
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stanok_canon::{LengthUnits, Plane};
+    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
+
+    fn at(line: u32, value: Canon) -> Spanned<Canon> {
+        Spanned::new(Span::new(0, 0, line, 1), value)
+    }
+
+    fn p(x: f64, y: f64, z: f64) -> Pose {
+        Pose::ZERO.with_xyz([x, y, z])
+    }
+
+    fn init(position: Pose) -> Canon {
+        Canon::Init {
+            position,
+            units: LengthUnits::Millimetres,
+            g5x_index: 1,
+            g5x_offset: Pose::ZERO,
+            g92_offset: Pose::ZERO,
+            xy_rotation: 0.0,
+        }
+    }
+
+    fn line(start: Pose, end: Pose, feed: f64) -> LineMove {
+        LineMove { start, end, feed }
+    }
+
+    /// A 90° counter-clockwise XY arc from (100, 50) centred so that it bulges to x = c + 10.
+    fn bulging_arc(feed: f64) -> ArcMove {
+        let c = [
+            100.0 - 10.0 * FRAC_1_SQRT_2,
+            50.0 + 10.0 * FRAC_1_SQRT_2,
+            0.0,
+        ];
+        ArcMove {
+            start: p(100.0, 50.0, 0.0),
+            end: p(100.0, c[1] + 10.0 * FRAC_1_SQRT_2, 0.0),
+            centre: c,
+            axis: [0.0, 0.0, 1.0],
+            turns: 1,
+            plane: Plane::XY,
+            feed,
+        }
+    }
+
+    fn run(machine: MachineData, cmds: &[Spanned<Canon>]) -> (SimMachine, Option<Diagnostic>) {
+        let mut sim = SimMachine::new(machine);
+        for c in cmds {
+            if let Err(d) = sim.apply(c) {
+                return (sim, Some(d));
+            }
+        }
+        (sim, None)
+    }
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() <= 1e-9 * b.abs().max(1.0)
+    }
+
+    #[test]
+    fn rapid_feed_arc_dwell_report() {
+        let o = p(0.0, 0.0, 0.0);
+        let cmds = [
+            at(1, init(o)),
+            at(2, Canon::StraightTraverse(line(o, p(100.0, 0.0, 0.0), 0.0))),
+            at(
+                3,
+                Canon::StraightFeed(line(p(100.0, 0.0, 0.0), p(100.0, 50.0, 0.0), 1000.0)),
+            ),
+            at(4, Canon::ArcFeed(bulging_arc(600.0))),
+            at(5, Canon::Dwell { seconds: 2.0 }),
+        ];
+        let (sim, err) = run(MachineData::default_mill(), &cmds);
+        assert_eq!(err, None);
+        let r = sim.report();
+        assert_eq!(r.machine, "mill");
+        assert_eq!(
+            (
+                r.motion_segments,
+                r.rapid_segments,
+                r.feed_segments,
+                r.arc_segments
+            ),
+            (3, 1, 1, 1)
+        );
+        assert!(close(r.rapid_distance_mm, 100.0));
+        // 50 mm line + quarter circle of r = 10 (5π mm).
+        assert!(
+            close(r.feed_distance_mm, 50.0 + 5.0 * PI),
+            "{}",
+            r.feed_distance_mm
+        );
+        assert!(close(r.dwell_time_s, 2.0));
+        // 100 mm at 10 000 mm/min = 0.6 s; 50 mm at 1000 mm/min = 3 s; 5π mm at 600 mm/min = π/2 s.
+        assert!(
+            close(r.nominal_time_s, 0.6 + 3.0 + FRAC_PI_2 + 2.0),
+            "{}",
+            r.nominal_time_s
+        );
+        let b = r.bounding_box.unwrap();
+        assert_eq!(b.min, [0.0, 0.0, 0.0]);
+        // The arc's extreme point x = c + r lies beyond both of its end points (x = 100).
+        assert!(close(b.max[0], 110.0 - 10.0 * FRAC_1_SQRT_2), "{:?}", b);
+        assert!(close(b.max[1], 50.0 + 20.0 * FRAC_1_SQRT_2), "{:?}", b);
+        assert_eq!(r.final_position, bulging_arc(0.0).end);
+        assert!(!r.program_ended);
+    }
+
+    #[test]
+    fn arc_bulging_out_of_limits_is_refused() {
+        let mut m = MachineData::default_mill();
+        m.axes[0].max = 102.0; // end points (x = 100) inside, bulge (x ≈ 102.93) outside
+        let start = p(100.0, 50.0, 0.0);
+        let cmds = [
+            at(1, init(start)),
+            at(7, Canon::ArcFeed(bulging_arc(600.0))),
+        ];
+        let (sim, err) = run(m, &cmds);
+        let d = err.expect("travel limit");
+        assert_eq!(d.code.to_string(), "machine::travel-limit");
+        assert_eq!(d.span.line, 7);
+        assert!(
+            d.message
+                .contains("X would reach 102.9289 mm, beyond its maximum 102.0000 mm"),
+            "{d}"
+        );
+        let r = sim.report();
+        assert_eq!((r.arc_segments, r.motion_segments), (0, 0));
+        assert_eq!(r.bounding_box, None);
+        assert_eq!(r.final_position, start);
+    }
+
+    #[test]
+    fn straight_moves_and_init_are_checked_too() {
+        let o = p(0.0, 0.0, 0.0);
+        let cmds = [
+            at(1, init(o)),
+            at(
+                2,
+                Canon::StraightTraverse(line(o, p(0.0, 0.0, -300.5), 0.0)),
+            ),
+        ];
+        let d = run(MachineData::default_mill(), &cmds).1.unwrap();
+        assert!(
+            d.message
+                .contains("Z would reach -300.5000 mm, beyond its minimum -300.0000 mm"),
+            "{d}"
+        );
+        let d = run(
+            MachineData::default_mill(),
+            &[at(1, init(p(501.0, 0.0, 0.0)))],
+        )
+        .1
+        .unwrap();
+        assert_eq!(d.code.to_string(), "machine::travel-limit");
+        // Exactly at the limit (with interpreter rounding) passes.
+        let edge = p(500.0 + 1e-12, -500.0, 300.0);
+        assert_eq!(
+            run(
+                MachineData::default_mill(),
+                &[
+                    at(1, init(o)),
+                    at(2, Canon::StraightFeed(line(o, edge, 100.0)))
+                ]
+            )
+            .1,
+            None
+        );
+    }
+
+    #[test]
+    fn an_axis_the_machine_lacks_must_not_move() {
+        let o = p(0.0, 0.0, 0.0);
+        let mut turned = o;
+        turned.a = 90.0;
+        let cmds = [
+            at(1, init(o)),
+            at(3, Canon::StraightFeed(line(o, turned, 100.0))),
+        ];
+        let d = run(MachineData::default_mill(), &cmds).1.unwrap();
+        assert_eq!(d.code.to_string(), "machine::missing-axis");
+        assert!(d.message.contains("no A axis"), "{d}");
+    }
+
+    #[test]
+    fn feeds_are_clamped_and_zero_feed_takes_no_time() {
+        let o = p(0.0, 0.0, 0.0);
+        let cmds = [
+            at(
+                1,
+                Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 20_000.0)),
+            ), // clamped to 5000
+            at(2, Canon::StraightFeed(line(p(100.0, 0.0, 0.0), o, 0.0))),
+            at(3, Canon::StraightFeed(line(o, o, f64::NAN))),
+        ];
+        let r = run(MachineData::default_mill(), &cmds).0.report();
+        assert!(close(r.nominal_time_s, 1.2), "{}", r.nominal_time_s);
+        assert!(close(r.feed_distance_mm, 200.0));
+        assert_eq!(r.feed_segments, 3);
+    }
+
+    #[test]
+    fn rapids_are_slowed_by_axis_velocity() {
+        let mut m = MachineData::default_mill();
+        m.axes[2].max_velocity = 2_000.0;
+        let o = p(0.0, 0.0, 0.0);
+        // 100 mm in Z at 2000 mm/min: 3 s instead of 0.6 s.
+        let cmds = [at(
+            1,
+            Canon::StraightTraverse(line(o, p(0.0, 0.0, -100.0), 0.0)),
+        )];
+        let r = run(m, &cmds).0.report();
+        assert!(close(r.nominal_time_s, 3.0), "{}", r.nominal_time_s);
+    }
+
+    #[test]
+    fn logs_m_functions_tools_and_messages_with_lines() {
+        let cmds = [
+            at(
+                1,
+                Canon::Message {
+                    text: "load part".into(),
+                },
+            ),
+            at(2, Canon::SelectTool { tool: 3 }),
+            at(2, Canon::ChangeTool { tool: 3 }),
+            at(
+                3,
+                Canon::SetSpindleSpeed {
+                    spindle: 0,
+                    rpm: 1200.0,
+                },
+            ),
+            at(
+                3,
+                Canon::StartSpindle {
+                    spindle: 0,
+                    direction: SpindleDirection::Clockwise,
+                },
+            ),
+            at(4, Canon::Flood { on: true }),
+            at(5, Canon::ChangeTool { tool: 7 }),
+            at(6, Canon::ChangeTool { tool: 3 }),
+            at(
+                7,
+                Canon::AuxiliaryFunction {
+                    number: 73,
+                    timing: AuxTiming::Postfix,
+                },
+            ),
+            at(8, Canon::ProgramStop { optional: true }),
+            at(
+                9,
+                Canon::Message {
+                    text: String::new(),
+                },
+            ),
+            at(9, Canon::StopSpindle { spindle: 0 }),
+            at(9, Canon::Flood { on: false }),
+            at(10, Canon::PalletShuttle),
+            at(10, Canon::ProgramEnd),
+        ];
+        let r = run(MachineData::default_mill(), &cmds).0.report();
+        assert_eq!(r.tools_used, vec![3, 7]);
+        assert_eq!(r.tool_changes, 3);
+        assert_eq!(
+            r.messages,
+            vec![LoggedEvent {
+                line: 1,
+                text: "load part".into()
+            }]
+        );
+        let log: Vec<(u32, &str)> = r
+            .m_functions
+            .iter()
+            .map(|e| (e.line, e.text.as_str()))
+            .collect();
+        assert_eq!(
+            log,
+            vec![
+                (2, "M6 tool change to T3"),
+                (3, "M3 spindle 0 clockwise, 1200 rpm"),
+                (4, "M8 flood on"),
+                (5, "M6 tool change to T7"),
+                (6, "M6 tool change to T3"),
+                (7, "M73 auxiliary function (after motion)"),
+                (8, "M1 optional stop"),
+                (9, "M5 spindle 0 stop"),
+                (9, "M9 flood off"),
+                (10, "pallet shuttle"),
+                (10, "M2/M30 program end"),
+            ]
+        );
+        assert!(r.program_ended);
+        assert_eq!(r.bounding_box, None);
+        assert_eq!(r.nominal_time_s, 0.0);
+    }
+}

@@ -1,3 +1,274 @@
-fn main() {
-    println!("Hello, world!");
+//! `stanok`: the command line of the Stanok CNC control kernel.
+//!
+//! Glue only (ripgrep's core/main.rs in spirit): it opens files, builds an interpreter and a
+//! simulated machine, wires the Canon stream between them and prints what comes out. Every
+//! decision about G-code lives in `stanok-interp`, every decision about the machine in
+//! `stanok-machine`.
+
+mod cli;
+mod diagnostics;
+mod report;
+
+use clap::Parser;
+use cli::{CanonFormat, Cli, Command};
+use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
+use stanok_interp::{InterpOptions, Interpreter};
+use stanok_machine::{MachineData, SimMachine};
+use stanok_syntax::Dialect;
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(code) => code,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<ExitCode, String> {
+    match cli.command {
+        Command::Check { file, dialect } => check(&file, dialect.map(Into::into)),
+        Command::Run {
+            file,
+            dialect,
+            machine,
+            json,
+        } => run_program(&file, dialect.map(Into::into), &machine, json),
+        Command::Canon {
+            file,
+            dialect,
+            format,
+            machine,
+        } => canon(&file, dialect.map(Into::into), format, &machine),
+        Command::Plot {
+            file,
+            dialect,
+            output,
+            machine,
+        } => plot(&file, dialect.map(Into::into), &output, &machine),
+    }
+}
+
+/// Writes to stdout; a closed pipe (`stanok … | head`) ends the program quietly instead of panicking.
+fn write_stdout(text: &str) -> Result<(), String> {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+fn quiet_on_broken_pipe(e: std::io::Error) -> Result<ExitCode, String> {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        Ok(ExitCode::SUCCESS)
+    } else {
+        Err(e.to_string())
+    }
+}
+
+/// Opens a program and builds its interpreter.
+fn interpreter(
+    file: &Path,
+    dialect: Option<Dialect>,
+    machine: &MachineData,
+    check_mode: bool,
+) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
+    let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
+    let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
+    let mut opts = InterpOptions::new(dialect);
+    opts.axes = machine.axis_mask();
+    opts.arc_tolerance_mm = machine.arc_tolerance;
+    opts.continue_after_error = check_mode;
+    Ok((Interpreter::new(BufReader::new(f), opts), dialect))
+}
+
+fn load_machine(spec: &str, file_for_errors: &Path) -> Result<MachineData, ExitCode> {
+    if let Some(m) = MachineData::builtin(spec) {
+        return Ok(m);
+    }
+    let path = PathBuf::from(spec);
+    match MachineData::load(&path) {
+        Ok(m) => Ok(m),
+        Err(d) => {
+            let _ = file_for_errors;
+            diagnostics::render(&path, &d);
+            Err(ExitCode::from(1))
+        }
+    }
+}
+
+fn check(file: &Path, dialect: Option<Dialect>) -> Result<ExitCode, String> {
+    let machine = MachineData::default_mill();
+    let (mut interp, _) = interpreter(file, dialect, &machine, true)?;
+    let mut errors = Vec::new();
+    for item in interp.by_ref() {
+        if let Err(d) = item {
+            errors.push(d);
+        }
+    }
+    let mut all: Vec<Diagnostic> = interp.take_warnings();
+    all.extend(errors.iter().cloned());
+    all.sort_by_key(|d| (d.span.line, d.span.column));
+    for d in &all {
+        diagnostics::render(file, d);
+    }
+    let warnings = all.len() - errors.len();
+    if errors.is_empty() {
+        eprintln!("{}: ok ({warnings} warning(s))", file.display());
+        Ok(ExitCode::SUCCESS)
+    } else {
+        eprintln!(
+            "{}: {} error(s), {warnings} warning(s)",
+            file.display(),
+            errors.len()
+        );
+        Ok(ExitCode::from(1))
+    }
+}
+
+fn run_program(
+    file: &Path,
+    dialect: Option<Dialect>,
+    machine_spec: &str,
+    json: bool,
+) -> Result<ExitCode, String> {
+    let machine = match load_machine(machine_spec, file) {
+        Ok(m) => m,
+        Err(code) => return Ok(code),
+    };
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    let mut sim = SimMachine::new(machine);
+    let mut failure: Option<Diagnostic> = None;
+    for item in interp.by_ref() {
+        let applied = item.and_then(|cmd| sim.apply(&cmd));
+        if let Err(d) = applied {
+            failure = Some(d);
+            break;
+        }
+    }
+    let warnings = interp.take_warnings();
+    let mut rep = sim.report();
+    rep.blocks = interp.stats().blocks_executed;
+    if json {
+        let mut out = report::json(file, dialect, &rep, failure.as_ref(), &warnings);
+        out.push('\n');
+        write_stdout(&out)?;
+    } else {
+        for w in &warnings {
+            diagnostics::render(file, w);
+        }
+        if let Some(d) = &failure {
+            diagnostics::render(file, d);
+        }
+        write_stdout(&report::text(file, dialect, &rep, failure.as_ref()))?;
+    }
+    Ok(if failure.is_some() {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+fn canon(
+    file: &Path,
+    dialect: Option<Dialect>,
+    format: Option<CanonFormat>,
+    machine_spec: &str,
+) -> Result<ExitCode, String> {
+    let machine = match load_machine(machine_spec, file) {
+        Ok(m) => m,
+        Err(code) => return Ok(code),
+    };
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
+    let format = format.unwrap_or(match dialect {
+        Dialect::Rs274ngc => CanonFormat::Linuxcnc,
+        Dialect::Axioma => CanonFormat::Jsonl,
+    });
+    let stdout = std::io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    let mut printer = LinuxCncPrinter::new();
+    let mut failure = None;
+    for item in interp.by_ref() {
+        match item {
+            Ok(cmd) => {
+                let text = match format {
+                    CanonFormat::Linuxcnc => printer.print(&cmd).to_string(),
+                    CanonFormat::Jsonl => report::canon_json_line(&cmd),
+                };
+                if let Err(e) = out.write_all(text.as_bytes()) {
+                    return quiet_on_broken_pipe(e);
+                }
+            }
+            Err(d) => {
+                failure = Some(d);
+                break;
+            }
+        }
+    }
+    if format == CanonFormat::Linuxcnc {
+        if let Err(e) = out.write_all(printer.finish().as_bytes()) {
+            return quiet_on_broken_pipe(e);
+        }
+    }
+    if let Err(e) = out.flush() {
+        return quiet_on_broken_pipe(e);
+    }
+    drop(out);
+    for w in interp.take_warnings() {
+        diagnostics::render(file, &w);
+    }
+    if let Some(d) = failure {
+        diagnostics::render(file, &d);
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn plot(
+    file: &Path,
+    dialect: Option<Dialect>,
+    output: &Path,
+    machine_spec: &str,
+) -> Result<ExitCode, String> {
+    let machine = match load_machine(machine_spec, file) {
+        Ok(m) => m,
+        Err(code) => return Ok(code),
+    };
+    let (mut interp, _) = interpreter(file, dialect, &machine, false)?;
+    let mut commands: Vec<Spanned<Canon>> = Vec::new();
+    let mut failure = None;
+    for item in interp.by_ref() {
+        match item {
+            Ok(c) => commands.push(c),
+            Err(d) => {
+                failure = Some(d);
+                break;
+            }
+        }
+    }
+    let title = file
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let options = stanok_plot::PlotOptions {
+        title,
+        ..Default::default()
+    };
+    let svg = stanok_plot::render_svg(&commands, &options);
+    std::fs::write(output, svg).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
+    if let Some(d) = failure {
+        diagnostics::render(file, &d);
+        eprintln!("plotted up to the error: {}", output.display());
+        return Ok(ExitCode::from(1));
+    }
+    eprintln!("wrote {}", output.display());
+    Ok(ExitCode::SUCCESS)
 }

@@ -1,0 +1,171 @@
+//! The command line, end to end: exit codes, the run report's numbers, the canon formats, the plot
+//! sheet and diagnostics with file:line:column.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn stanok(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_stanok"))
+        .args(args)
+        .output()
+        .expect("run stanok");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn corpus(path: &str) -> String {
+    PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/corpus"
+    ))
+    .join(path)
+    .display()
+    .to_string()
+}
+
+fn temp(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("stanok-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
+}
+
+#[test]
+fn run_json_reports_the_helix_example() {
+    let file = corpus("axioma/s5_3_6-helix-extra-turns-p-example-5_14.nc");
+    let (code, out, err) = stanok(&["run", &file, "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let r = json(&out);
+    assert_eq!(r["status"], "ok");
+    assert_eq!(r["arc_segments"], 2);
+    // 633.391 + 318.113 mm of helix (spec axioma-2 W §5.3).
+    let feed = r["feed_distance_mm"].as_f64().unwrap();
+    assert!((feed - 951.504).abs() < 1e-3, "{feed}");
+    // 21.113 s + 10.604 s of helices plus the two rapids (80 mm Z and √(60²+100²) at 10 m/min).
+    let rapid = r["rapid_distance_mm"].as_f64().unwrap();
+    assert!((rapid - (80.0 + (60f64.powi(2) + 100f64.powi(2)).sqrt())).abs() < 1e-9);
+    let t = r["nominal_time_s"].as_f64().unwrap();
+    assert!(
+        (t - (21.113 + 10.604 + rapid / 10000.0 * 60.0)).abs() < 2e-3,
+        "{t}"
+    );
+    let fp = &r["final_position"];
+    assert_eq!(
+        (fp["x"].as_f64(), fp["y"].as_f64(), fp["z"].as_f64()),
+        (Some(100.0), Some(0.0), Some(50.0))
+    );
+    assert_eq!(r["program_ended"], true);
+    let bb = &r["bounding_box"];
+    assert_eq!(bb["min"][1].as_f64(), Some(-20.0));
+    assert_eq!(bb["max"][1].as_f64(), Some(20.0));
+}
+
+#[test]
+fn run_text_report_and_error_exit() {
+    let file = corpus("axioma/s2_3-msg-example-2_1.nc");
+    let (code, out, _) = stanok(&["run", &file]);
+    assert_eq!(code, 0);
+    assert!(out.contains("line    16  Tool T3 is active"), "{out}");
+    assert!(out.contains("T3 (1 change(s))"), "{out}");
+    let bad = temp(
+        "bad.nc",
+        "G17 G90 F100\nG01 X10\nG02 X20 Y0 R4\nG01 X0\nM30\n",
+    );
+    let (code, out, err) = stanok(&["run", &bad]);
+    assert_eq!(code, 1);
+    assert!(out.contains("stopped at line 3"), "{out}");
+    assert!(out.contains("Final       X10.000 Y0.000"), "{out}");
+    assert!(err.contains("E623") && err.contains("bad.nc:3:"), "{err}");
+}
+
+#[test]
+fn check_lists_every_error_with_file_line_column() {
+    let bad = temp(
+        "check.ngc",
+        "G21 F100\nG1 X1 X2\nG1 Y#<nope>\nG2 X1 Y1\nM2\n",
+    );
+    let (code, _, err) = stanok(&["check", &bad]);
+    assert_eq!(code, 1);
+    for (line, code) in [
+        (2, "rs274::multiple-words"),
+        (3, "rs274::named-parameter-undefined"),
+        (4, "rs274::arc-r-ijk-missing"),
+    ] {
+        assert!(
+            err.contains(&format!("check.ngc:{line}:")),
+            "line {line}: {err}"
+        );
+        assert!(err.contains(code), "{code}: {err}");
+    }
+    assert!(err.contains("3 error(s)"), "{err}");
+    let good = corpus("axioma/s5_3_2-arc-radius-example-5_7.nc");
+    assert_eq!(stanok(&["check", &good]).0, 0);
+}
+
+#[test]
+fn canon_linuxcnc_matches_rs274_for_a_program_with_m2() {
+    // g01-linear-example-1 ends with M2 and needs only `G20` as setup.
+    let text = std::fs::read_to_string(corpus("rs274ngc/g01-linear-example-1.ngc")).unwrap();
+    let prog = temp("g01.ngc", &format!("G20\n{text}"));
+    let (code, out, err) = stanok(&["canon", &prog]);
+    assert_eq!(code, 0, "{err}");
+    let expected =
+        std::fs::read_to_string(corpus("rs274ngc/expected/g01-linear-example-1.canon.txt"))
+            .unwrap();
+    let expected: Vec<&str> = expected.lines().take_while(|l| *l != "executing").collect();
+    let ours: Vec<&str> = out.lines().collect();
+    assert_eq!(ours, expected);
+}
+
+#[test]
+fn canon_jsonl_has_kind_end_centre_and_line() {
+    let file = corpus("axioma/s5_3_3-arc-cr-signed-radius-example-5_9.nc");
+    let (code, out, _) = stanok(&["canon", &file]);
+    assert_eq!(code, 0);
+    let arcs: Vec<serde_json::Value> = out
+        .lines()
+        .map(json)
+        .filter(|v| v["kind"] == "arc_feed")
+        .collect();
+    assert_eq!(arcs.len(), 2);
+    assert_eq!(arcs[0]["line"], 15);
+    assert_eq!(arcs[0]["n"], 20);
+    assert!((arcs[0]["centre"][0].as_f64().unwrap() - 49.8568).abs() < 1e-3);
+    assert!((arcs[1]["centre"][1].as_f64().unwrap() - 68.1560).abs() < 1e-3);
+    assert_eq!(arcs[1]["end"]["x"].as_f64(), Some(17.203));
+    assert_eq!(arcs[0]["axis"][2].as_f64(), Some(1.0));
+}
+
+#[test]
+fn plot_writes_four_views() {
+    let file = corpus("axioma/s4_8_1-absolute-centre-turning-example-4_18.nc");
+    let out = temp("plot.svg", "");
+    let (code, _, err) = stanok(&["plot", &file, "-o", &out]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    for view in ["xy", "xz", "yz", "iso"] {
+        assert!(svg.contains(&format!("data-view=\"{view}\"")), "{view}");
+    }
+    // The G18 arc is an SVG elliptical-arc command (radius 30 mm at the sheet scale) in the XZ view.
+    assert!(
+        svg.contains("A112.43 112.43 0 0 1"),
+        "the G18 arc must be drawn as a true arc"
+    );
+}
+
+#[test]
+fn bad_machine_file_gives_a_located_diagnostic() {
+    let m = temp("m.toml", "name = \"x\"\nrapid_rate = \"fast\"\n");
+    let prog = corpus("axioma/s5_1-rapid-positioning-milling-example-5_1.nc");
+    let (code, _, err) = stanok(&["run", &prog, "--machine", &m]);
+    assert_eq!(code, 1);
+    assert!(err.contains("m.toml:2:"), "{err}");
+}

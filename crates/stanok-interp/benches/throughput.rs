@@ -48,7 +48,7 @@ fn parse_and_interpret(c: &mut Criterion) {
                 let cmd = cmd.expect("the generated program is valid");
                 n += cmd.value.motion().is_some() as usize;
             }
-            assert_eq!(n as u64, blocks - 3);
+            assert_eq!(n, BLOCKS + 2);
             n
         })
     });

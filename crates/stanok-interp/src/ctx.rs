@@ -1,16 +1,39 @@
 //! The context a block executes in, and the pieces of execution both dialects share: end points
 //! from axis words, straight moves, arcs, feed for the Canon stream.
 //!
-//! A block executes against a *scratch copy* of the modal state and appends to a scratch command
-//! list; the driver commits both only if the whole block succeeded (invariant: a block commits all
-//! of its modal changes or none, grbl's STEP 3/STEP 4 split done by construction).
+//! A block executes against a *scratch copy* of the modal state and appends its commands to the
+//! output queue behind a mark; the driver commits the state only if the whole block succeeded and
+//! otherwise truncates the queue back to the mark (invariant: a block commits all of its modal
+//! changes and commands or none — grbl's STEP 3/STEP 4 split, done by construction).
 
 use crate::arc::PlanarArc;
 use crate::state::{DistanceMode, ModalState};
 use crate::words::{Val, Words};
 use crate::InterpOptions;
-use stanok_canon::{ArcMove, Canon, Diagnostic, FeedMode, LineMove, Plane, Pose};
+use stanok_canon::{ArcMove, Canon, Diagnostic, FeedMode, LineMove, Plane, Pose, Span, Spanned};
 use stanok_syntax::{Block, ColSpan, Dialect};
+use std::collections::VecDeque;
+
+/// Appends a block's commands, each with the block's span and N label, to the output queue.
+pub struct Emitter<'a> {
+    /// The interpreter's output queue.
+    pub queue: &'a mut VecDeque<Spanned<Canon>>,
+    /// The block's span.
+    pub span: Span,
+    /// The block's N label.
+    pub number: Option<u32>,
+}
+
+impl Emitter<'_> {
+    /// Queues one command of the current block.
+    pub fn push(&mut self, value: Canon) {
+        self.queue.push_back(Spanned {
+            span: self.span,
+            block_number: self.number,
+            value,
+        });
+    }
+}
 
 /// Letters of the nine axes, in `Pose` order.
 pub const AXIS_WORDS: [u8; 9] = [b'X', b'Y', b'Z', b'A', b'B', b'C', b'U', b'V', b'W'];
@@ -28,8 +51,8 @@ pub struct Ctx<'a> {
     pub words: &'a mut Words,
     /// Scratch copy of the modal state.
     pub st: &'a mut ModalState,
-    /// Scratch command list.
-    pub out: &'a mut Vec<Canon>,
+    /// Where the block's commands go (truncated again if the block fails).
+    pub out: Emitter<'a>,
     /// Options.
     pub opts: &'a InterpOptions,
     /// Warnings (reported whether or not the block commits).

@@ -116,7 +116,6 @@ pub struct Interpreter<R: BufRead + Seek> {
     params: Parameters,
     flow: Flow,
     queue: VecDeque<Spanned<Canon>>,
-    scratch: Vec<Canon>,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -177,7 +176,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
             params: Parameters::default(),
             flow: Flow::default(),
             queue: VecDeque::new(),
-            scratch: Vec::new(),
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -359,8 +357,15 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
         let dialect = self.opts.dialect;
-        let mut next = self.state.clone();
-        self.scratch.clear();
+        let mut next = self.state;
+        let mark = self.queue.len();
+        let span = self.block.span();
+        let number = self.block.number;
+        let mut out = ctx::Emitter {
+            queue: &mut self.queue,
+            span,
+            number,
+        };
         let mut pending_params: Vec<(params::Slot, f64)> = Vec::new();
         {
             let eval = params::Evaluator {
@@ -385,7 +390,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     )
                 }) {
                     let text = self.block.slice(c.text);
-                    self.scratch.push(match c.kind {
+                    out.push(match c.kind {
                         CommentKind::Msg => Canon::Message {
                             text: text.to_string(),
                         },
@@ -399,18 +404,26 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 }
             }
         }
-        let outcome = {
+        let result = {
             let mut cx = Ctx {
                 block: &self.block,
                 words: &mut self.words,
                 st: &mut next,
-                out: &mut self.scratch,
+                out,
                 opts: &self.opts,
                 warnings: &mut self.warnings,
             };
             match dialect {
-                Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params)?,
-                Dialect::Axioma => axioma::execute(&mut cx)?,
+                Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
+                Dialect::Axioma => axioma::execute(&mut cx),
+            }
+        };
+        let outcome = match result {
+            Ok(o) => o,
+            Err(d) => {
+                // Nothing of a failing block leaves the interpreter.
+                self.queue.truncate(mark);
+                return Err(d);
             }
         };
         // Commit.
@@ -418,14 +431,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
-        let span = self.block.span();
-        let number = self.block.number;
-        self.queue
-            .extend(self.scratch.drain(..).map(|value| Spanned {
-                span,
-                block_number: number,
-                value,
-            }));
         Ok(outcome == Outcome::End)
     }
 

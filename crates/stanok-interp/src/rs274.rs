@@ -105,25 +105,32 @@ fn g_name(code: u32) -> String {
     }
 }
 
-/// The G codes of one block, one per group.
-#[derive(Default)]
+/// Number of groups in [`Group`].
+const GROUPS: usize = 14;
+/// "No code of this group in the block".
+const NO_CODE: u32 = u32::MAX;
+
+/// The G codes of one block, one per group (plain arrays: this runs for every block).
 struct GCodes {
-    non_modal: Option<(u32, ColSpan)>,
-    motion: Option<(u32, ColSpan)>,
-    plane: Option<(u32, ColSpan)>,
-    distance: Option<(u32, ColSpan)>,
-    arc_distance: Option<(u32, ColSpan)>,
-    feed_mode: Option<(u32, ColSpan)>,
-    units: Option<(u32, ColSpan)>,
-    cutter_comp: Option<(u32, ColSpan)>,
-    tool_length: Option<(u32, ColSpan)>,
-    retract: Option<(u32, ColSpan)>,
-    coord_system: Option<(u32, ColSpan)>,
-    path_control: Option<(u32, ColSpan)>,
-    spindle_mode: Option<(u32, ColSpan)>,
-    lathe_diameter: Option<(u32, ColSpan)>,
+    code: [u32; GROUPS],
+    span: [ColSpan; GROUPS],
     /// G53 travels with the motion group in LinuxCNC ("G53 may share a line with G0/G1").
     g53: Option<ColSpan>,
+}
+
+impl GCodes {
+    fn new() -> Self {
+        GCodes {
+            code: [NO_CODE; GROUPS],
+            span: [ColSpan::default(); GROUPS],
+            g53: None,
+        }
+    }
+
+    fn get(&self, g: Group) -> Option<(u32, ColSpan)> {
+        let c = self.code[g as usize];
+        (c != NO_CODE).then(|| (c, self.span[g as usize]))
+    }
 }
 
 fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
@@ -136,7 +143,7 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
 }
 
 fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
-    let mut g = GCodes::default();
+    let mut g = GCodes::new();
     for &(code, span) in &cx.words.g {
         let Some(group) = group_of(code) else {
             return Err(cx.err(
@@ -149,48 +156,47 @@ fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
             g.g53 = Some(span);
             continue;
         }
-        let slot = match group {
-            Group::NonModal => &mut g.non_modal,
-            Group::Motion => &mut g.motion,
-            Group::Plane => &mut g.plane,
-            Group::Distance => &mut g.distance,
-            Group::ArcDistance => &mut g.arc_distance,
-            Group::FeedMode => &mut g.feed_mode,
-            Group::Units => &mut g.units,
-            Group::CutterComp => &mut g.cutter_comp,
-            Group::ToolLength => &mut g.tool_length,
-            Group::Retract => &mut g.retract,
-            Group::CoordSystem => &mut g.coord_system,
-            Group::PathControl => &mut g.path_control,
-            Group::SpindleMode => &mut g.spindle_mode,
-            Group::LatheDiameter => &mut g.lathe_diameter,
-        };
-        if let Some((prev, _)) = slot {
+        let prev = g.code[group as usize];
+        if prev != NO_CODE {
             return Err(cx
                 .err(
                     "rs274::two-g-codes-same-group",
                     "Two g codes used from same modal group",
                     span,
                 )
-                .with_note(format!("{} and {}", g_name(*prev), g_name(code))));
+                .with_note(format!("{} and {}", g_name(prev), g_name(code))));
         }
-        *slot = Some((code, span));
+        g.code[group as usize] = code;
+        g.span[group as usize] = span;
     }
     Ok(g)
 }
 
-/// M codes by LinuxCNC's modal groups: stopping (4), tool change (6), spindle (7), coolant (8).
-#[derive(Default)]
+/// M codes by LinuxCNC's modal groups: stopping (4), tool change (6), spindle (7), coolant (8),
+/// user-defined (M100–M199). Plain fields with a sentinel: this runs for every block.
 struct MCodes {
-    stop: Option<(u32, ColSpan)>,
-    tool_change: Option<(u32, ColSpan)>,
-    spindle: Option<(u32, ColSpan)>,
-    coolant: Vec<(u32, ColSpan)>,
-    user: Vec<(u32, ColSpan)>,
+    stop: u32,
+    stop_span: ColSpan,
+    tool_change: bool,
+    spindle: u32,
+    /// Coolant codes in written order (at most four M words per line).
+    coolant: [u32; 4],
+    n_coolant: usize,
+    user: [u32; 4],
+    n_user: usize,
 }
 
 fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
-    let mut m = MCodes::default();
+    let mut m = MCodes {
+        stop: NO_CODE,
+        stop_span: ColSpan::default(),
+        tool_change: false,
+        spindle: NO_CODE,
+        coolant: [0; 4],
+        n_coolant: 0,
+        user: [0; 4],
+        n_user: 0,
+    };
     if cx.words.m.len() > 4 {
         return Err(cx.err(
             "rs274::too-many-m-codes",
@@ -199,17 +205,24 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
         ));
     }
     for &(code, span) in &cx.words.m {
-        let slot = match code {
-            0 | 1 | 2 | 30 | 60 => &mut m.stop,
-            6 => &mut m.tool_change,
-            3..=5 => &mut m.spindle,
+        let taken = match code {
+            0 | 1 | 2 | 30 | 60 => {
+                let t = m.stop != NO_CODE;
+                m.stop = code;
+                m.stop_span = span;
+                t
+            }
+            6 => std::mem::replace(&mut m.tool_change, true),
+            3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE,
             7..=9 => {
-                m.coolant.push((code, span));
-                continue;
+                m.coolant[m.n_coolant] = code;
+                m.n_coolant += 1;
+                false
             }
             100..=199 => {
-                m.user.push((code, span));
-                continue;
+                m.user[m.n_user] = code;
+                m.n_user += 1;
+                false
             }
             19 | 48..=53 | 61..=68 | 70..=73 => {
                 return Err(unsupported(
@@ -227,14 +240,13 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                 ))
             }
         };
-        if slot.is_some() {
+        if taken {
             return Err(cx.err(
                 "rs274::two-m-codes-same-group",
                 "Two m codes used from same modal group",
                 span,
             ));
         }
-        *slot = Some((code, span));
     }
     Ok(m)
 }
@@ -257,13 +269,13 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
 
     // Codes recognised but belonging to later capabilities.
     for (code, span) in [
-        g.non_modal,
-        g.motion,
-        g.cutter_comp,
-        g.tool_length,
-        g.spindle_mode,
-        g.lathe_diameter,
-        g.plane,
+        g.get(Group::NonModal),
+        g.get(Group::Motion),
+        g.get(Group::CutterComp),
+        g.get(Group::ToolLength),
+        g.get(Group::SpindleMode),
+        g.get(Group::LatheDiameter),
+        g.get(Group::Plane),
     ]
     .into_iter()
     .flatten()
@@ -287,7 +299,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
 
     // 2. Feed mode.
-    if let Some((code, _)) = g.feed_mode {
+    if let Some((code, _)) = g.get(Group::FeedMode) {
         let (mode, text) = match code {
             930 => (FeedMode::InverseTime, "inverse time"),
             950 => (FeedMode::UnitsPerRevolution, "units per revolution"),
@@ -337,7 +349,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.out.push(Canon::SelectTool { tool });
     }
     // 6. M6.
-    if m.tool_change.is_some() {
+    if m.tool_change {
         let tool = cx.st.selected_tool.unwrap_or(cx.st.current_tool);
         cx.out.push(Canon::StartToolChange);
         cx.out.push(Canon::StopSpindle { spindle: 0 });
@@ -346,7 +358,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.st.current_tool = tool;
     }
     // 7. Spindle, coolant, user M codes.
-    if let Some((code, _)) = m.spindle {
+    if m.spindle != NO_CODE {
+        let code = m.spindle;
         match code {
             3 | 4 => {
                 let direction = if code == 3 {
@@ -366,7 +379,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             }
         }
     }
-    for &(code, _) in &m.coolant {
+    for &code in &m.coolant[..m.n_coolant] {
         match code {
             7 => {
                 cx.st.mist = true;
@@ -384,14 +397,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             }
         }
     }
-    for &(code, _) in &m.user {
+    for &code in &m.user[..m.n_user] {
         cx.out.push(Canon::AuxiliaryFunction {
             number: code,
             timing: stanok_canon::AuxTiming::Prefix,
         });
     }
     // 8. Dwell.
-    if let Some((40, span)) = g.non_modal {
+    if let Some((40, span)) = g.get(Group::NonModal) {
         let Some(p) = cx.words.take(b'P') else {
             return Err(cx.err(
                 "rs274::dwell-p-missing",
@@ -409,7 +422,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.out.push(Canon::Dwell { seconds: p.v });
     }
     // 9. Plane.
-    if let Some((code, _)) = g.plane {
+    if let Some((code, _)) = g.get(Group::Plane) {
         let plane = match code {
             180 => Plane::ZX,
             190 => Plane::YZ,
@@ -419,7 +432,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.out.push(Canon::SelectPlane { plane });
     }
     // 10. Units.
-    if let Some((code, _)) = g.units {
+    if let Some((code, _)) = g.get(Group::Units) {
         let units = if code == 200 {
             LengthUnits::Inches
         } else {
@@ -430,13 +443,13 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 11. Cutter compensation: only G40 reaches here (G41/G42 rejected above).
     // 12. Tool length: only G49 reaches here.
-    if let Some((490, _)) = g.tool_length {
+    if let Some((490, _)) = g.get(Group::ToolLength) {
         cx.st.frame.tlo = Pose::ZERO;
         cx.out
             .push(Canon::UseToolLengthOffset { offset: Pose::ZERO });
     }
     // 13. Coordinate system.
-    if let Some((code, _)) = g.coord_system {
+    if let Some((code, _)) = g.get(Group::CoordSystem) {
         let index = match code {
             591 => 7,
             592 => 8,
@@ -452,7 +465,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
     }
     // 14. Path control.
-    if let Some((code, _)) = g.path_control {
+    if let Some((code, _)) = g.get(Group::PathControl) {
         cx.st.path_mode = match code {
             610 => PathMode::ExactPath,
             611 => PathMode::ExactStop,
@@ -464,7 +477,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         };
     }
     // 15. Distance mode.
-    if let Some((code, _)) = g.distance {
+    if let Some((code, _)) = g.get(Group::Distance) {
         let mode = if code == 900 {
             DistanceMode::Absolute
         } else {
@@ -485,7 +498,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
     }
     // 17. Arc distance mode.
-    if let Some((code, _)) = g.arc_distance {
+    if let Some((code, _)) = g.get(Group::ArcDistance) {
         let mode = if code == 901 {
             DistanceMode::Absolute
         } else {
@@ -506,7 +519,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
     }
     // 18. Retract mode.
-    if let Some((code, _)) = g.retract {
+    if let Some((code, _)) = g.get(Group::Retract) {
         cx.st.retract_to_initial = code == 980;
         cx.out.push(Canon::Comment {
             text: format!(
@@ -517,8 +530,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 19. G10.
     let mut axis_words_used_by_modal_0 = false;
-    if let Some((100, span)) = g.non_modal {
-        if g.motion.is_some() {
+    if let Some((100, span)) = g.get(Group::NonModal) {
+        if g.get(Group::Motion).is_some() {
             return Err(cx.err(
                 "rs274::two-axis-g-codes",
                 "Cannot use two g codes that both use axis values",
@@ -529,7 +542,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         axis_words_used_by_modal_0 = true;
     }
     // 20. Motion.
-    let motion = match g.motion {
+    let motion = match g.get(Group::Motion) {
         Some((code, span)) => Some((code, span, true)),
         None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
             let code = match cx.st.motion {
@@ -555,7 +568,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
     cx.check_all_used()?;
     // 21. Stops.
-    if let Some((code, span)) = m.stop {
+    if m.stop != NO_CODE {
+        let (code, span) = (m.stop, m.stop_span);
         match code {
             0 => cx.out.push(Canon::ProgramStop { optional: false }),
             1 => cx.out.push(Canon::ProgramStop { optional: true }),

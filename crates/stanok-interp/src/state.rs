@@ -81,10 +81,12 @@ impl WorkFrame {
         for (x, o) in v.iter_mut().zip(g92) {
             *x += o;
         }
-        let (s, c) = self.rotation_deg.to_radians().sin_cos();
-        let (x, y) = (v[0], v[1]);
-        v[0] = x * c - y * s;
-        v[1] = x * s + y * c;
+        if self.rotation_deg != 0.0 {
+            let (s, c) = self.rotation_deg.to_radians().sin_cos();
+            let (x, y) = (v[0], v[1]);
+            v[0] = x * c - y * s;
+            v[1] = x * s + y * c;
+        }
         let g5x = self.g5x.to_array();
         let tlo = self.tlo.to_array();
         for i in 0..9 {
@@ -101,10 +103,12 @@ impl WorkFrame {
         for i in 0..9 {
             v[i] -= g5x[i] + tlo[i];
         }
-        let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
-        let (x, y) = (v[0], v[1]);
-        v[0] = x * c - y * s;
-        v[1] = x * s + y * c;
+        if self.rotation_deg != 0.0 {
+            let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
+            let (x, y) = (v[0], v[1]);
+            v[0] = x * c - y * s;
+            v[1] = x * s + y * c;
+        }
         let g92 = self.g92.to_array();
         for (x, o) in v.iter_mut().zip(g92) {
             *x -= o;
@@ -114,13 +118,16 @@ impl WorkFrame {
 
     /// Rotates a direction (no translation) from the program frame to the machine frame.
     pub fn rotate_to_machine(&self, d: [f64; 3]) -> [f64; 3] {
+        if self.rotation_deg == 0.0 {
+            return d;
+        }
         let (s, c) = self.rotation_deg.to_radians().sin_cos();
         [d[0] * c - d[1] * s, d[0] * s + d[1] * c, d[2]]
     }
 }
 
-/// Everything that persists from block to block.
-#[derive(Debug, Clone)]
+/// Everything that persists from block to block. `Copy`: a block works on a copy (no heap data).
+#[derive(Debug, Clone, Copy)]
 pub struct ModalState {
     /// Interpolate group.
     pub motion: MotionMode,

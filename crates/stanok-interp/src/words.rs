@@ -20,20 +20,39 @@ pub struct Val {
 }
 
 /// The evaluated words of one block.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub struct Words {
     /// G codes ×10 (`G91.1` → 911), in written order.
     pub g: Vec<(u32, ColSpan)>,
     /// M codes, in written order.
     pub m: Vec<(u32, ColSpan)>,
-    /// Single-letter words other than G, M and N (`letter[b'X' - b'A']`).
-    pub letter: [Option<Val>; 26],
+    /// Single-letter words other than G, M (`letter[b'X' - b'A']`), valid where `present` has the bit.
+    letter: [Val; 26],
+    /// Letters written in this block (bit i = letter `A + i`).
+    present: u32,
     /// Letters a function has consumed.
-    pub used: u32,
+    used: u32,
     /// AxiOMA extended addresses (`S2=1000` → (b'S', 2, 1000)).
     pub indexed: Vec<(u8, u8, Val)>,
     /// AxiOMA keywords with their index and value.
     pub keywords: Vec<(Keyword, Option<u8>, Option<Val>, ColSpan)>,
+}
+
+impl Default for Words {
+    fn default() -> Self {
+        Words {
+            g: Vec::new(),
+            m: Vec::new(),
+            letter: [Val {
+                v: 0.0,
+                span: ColSpan::default(),
+            }; 26],
+            present: 0,
+            used: 0,
+            indexed: Vec::new(),
+            keywords: Vec::new(),
+        }
+    }
 }
 
 fn idx(letter: u8) -> usize {
@@ -45,7 +64,7 @@ impl Words {
     pub fn clear(&mut self) {
         self.g.clear();
         self.m.clear();
-        self.letter = [None; 26];
+        self.present = 0;
         self.used = 0;
         self.indexed.clear();
         self.keywords.clear();
@@ -108,8 +127,9 @@ impl Words {
                             self.m.push((code as u32, w.span));
                         }
                         b'A'..=b'Z' => {
-                            let slot = &mut self.letter[idx(l)];
-                            if let Some(prev) = slot {
+                            let i = idx(l);
+                            if self.present & (1 << i) != 0 {
+                                let prev = self.letter[i];
                                 match dialect {
                                     Dialect::Rs274ngc => {
                                         return Err(Diagnostic::error(
@@ -137,7 +157,8 @@ impl Words {
                                     ),
                                 }
                             }
-                            *slot = Some(val);
+                            self.letter[i] = val;
+                            self.present |= 1 << i;
                         }
                         _ => {
                             return Err(Diagnostic::error(
@@ -169,24 +190,26 @@ impl Words {
     /// The value of a letter, marking it used.
     pub fn take(&mut self, letter: u8) -> Option<Val> {
         let i = idx(letter);
-        let v = self.letter[i];
-        if v.is_some() {
-            self.used |= 1 << i;
+        if self.present & (1 << i) == 0 {
+            return None;
         }
-        v
+        self.used |= 1 << i;
+        Some(self.letter[i])
     }
 
     /// True if the letter was written (does not mark it used).
     pub fn has(&self, letter: u8) -> bool {
-        self.letter[idx(letter)].is_some()
+        self.present & (1 << idx(letter)) != 0
     }
 
     /// The first letter that was written but never consumed, if any.
     pub fn first_unused(&self) -> Option<(u8, Val)> {
-        (0..26).find_map(|i| match self.letter[i] {
-            Some(v) if self.used & (1 << i) == 0 => Some((b'A' + i as u8, v)),
-            _ => None,
-        })
+        let left = self.present & !self.used;
+        if left == 0 {
+            return None;
+        }
+        let i = left.trailing_zeros() as usize;
+        Some((b'A' + i as u8, self.letter[i]))
     }
 
     /// True if the letter was consumed already.

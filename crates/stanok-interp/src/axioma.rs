@@ -528,22 +528,7 @@ fn run_m(
                 }
             }
         }
-        MAction::Coolant(n) => match n {
-            7 => {
-                cx.st.mist = true;
-                cx.out.push(Canon::Mist { on: true });
-            }
-            8 => {
-                cx.st.flood = true;
-                cx.out.push(Canon::Flood { on: true });
-            }
-            _ => {
-                cx.st.mist = false;
-                cx.st.flood = false;
-                cx.out.push(Canon::Mist { on: false });
-                cx.out.push(Canon::Flood { on: false });
-            }
-        },
+        MAction::Coolant(n) => cx.coolant(n),
         MAction::ToolChange => {
             if !*t_done {
                 if let Some(t) = tool {

@@ -160,6 +160,26 @@ impl Ctx<'_> {
         }
     }
 
+    /// M7 (mist on), M8 (flood on), M9 (both off) — the same in both dialects.
+    pub fn coolant(&mut self, code: u32) {
+        match code {
+            7 => {
+                self.st.mist = true;
+                self.out.push(Canon::Mist { on: true });
+            }
+            8 => {
+                self.st.flood = true;
+                self.out.push(Canon::Flood { on: true });
+            }
+            _ => {
+                self.st.mist = false;
+                self.st.flood = false;
+                self.out.push(Canon::Mist { on: false });
+                self.out.push(Canon::Flood { on: false });
+            }
+        }
+    }
+
     /// Reports the first word nothing consumed (LinuxCNC: "… word with no G code that uses it").
     pub fn check_all_used(&self) -> Result<(), Diagnostic> {
         if let Some((l, v)) = self.words.first_unused() {

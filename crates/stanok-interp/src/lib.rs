@@ -357,7 +357,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
         let dialect = self.opts.dialect;
-        let mut next = self.state;
+        // The block runs on the live state; a failure restores this copy (one copy per block).
+        let backup = self.state;
         let mark = self.queue.len();
         let span = self.block.span();
         let number = self.block.number;
@@ -408,7 +409,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             let mut cx = Ctx {
                 block: &self.block,
                 words: &mut self.words,
-                st: &mut next,
+                st: &mut self.state,
                 out,
                 opts: &self.opts,
                 warnings: &mut self.warnings,
@@ -423,11 +424,11 @@ impl<R: BufRead + Seek> Interpreter<R> {
             Err(d) => {
                 // Nothing of a failing block leaves the interpreter.
                 self.queue.truncate(mark);
+                self.state = backup;
                 return Err(d);
             }
         };
         // Commit.
-        self.state = next;
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }

@@ -22,7 +22,11 @@ fn main() {
                 words += block.words.len();
                 offset += line.len() as u64 + 1;
             }
-            println!("{} bytes, {words} words, {} diagnostics", text.len(), diags.len());
+            println!(
+                "{} bytes, {words} words, {} diagnostics",
+                text.len(),
+                diags.len()
+            );
         }
         _ => {
             let n = Interpreter::from_text(&text, InterpOptions::new(Dialect::Rs274ngc))

@@ -8,7 +8,9 @@
 //! * [`Canon`] and its payload types ([`Pose`], [`LineMove`], [`ArcMove`], …), with every field's frame and
 //!   unit in its doc;
 //! * [`Span`] and [`Diagnostic`], shared by every stage;
-//! * [`linuxcnc`], a printer of the stream in the exact format of LinuxCNC's `rs274 -g`.
+//! * [`linuxcnc`], a printer of the stream in the exact format of LinuxCNC's `rs274 -g`;
+//! * [`setup`], the stored control data (tool table, offset tables, home positions) that flows the
+//!   other way, from machine data into the interpreter.
 //!
 //! Architecture invariant: positions in a `Canon` are machine Cartesian millimetres/degrees; the state
 //! items (`SetG5xOffset`, `UseLengthUnits`, …) never change the meaning of a position.
@@ -17,6 +19,7 @@
 mod canon;
 mod diag;
 pub mod linuxcnc;
+pub mod setup;
 mod span;
 
 pub use canon::{

@@ -1,0 +1,207 @@
+//! The control's stored data that the interpreter reads: tool table, zero-offset tables, workpiece
+//! coordinate systems, home positions.
+//!
+//! These types cross a boundary too, in the other direction from `Canon`: `stanok-machine` loads
+//! them (machine-data TOML, LinuxCNC `.tbl` and `.var` files) and the interpreter receives them in
+//! its options, so neither crate depends on the other. All lengths are mm, angles degrees, in the
+//! machine's frame; none is affected by a program's G20/G70 or diameter programming.
+
+use crate::canon::Pose;
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Number of zero-offset systems: G54…G59 (AxiOMA and LinuxCNC) and G59.1…G59.3 (LinuxCNC).
+pub const ZERO_OFFSET_SYSTEMS: usize = 9;
+/// Pages per zero-offset and workpiece table (AxiOMA `P1`…`P32`; LinuxCNC uses page 1).
+pub const PAGES: usize = 32;
+/// Workpiece coordinate-system tables: AxiOMA G154…G159.
+pub const WORKPIECE_SYSTEMS: usize = 6;
+/// Home positions: AxiOMA H1…H8.
+pub const HOME_POSITIONS: usize = 8;
+
+/// AxiOMA tool groups (manual tables 9.1 and 9.2): they decide which axis each length L1…L3 acts on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ToolKind {
+    /// Milling cutter (table 9.1).
+    #[default]
+    Milling,
+    /// Drill (table 9.1).
+    Drilling,
+    /// Special tool (table 9.1).
+    Special,
+    /// Turning tool (table 9.2).
+    Turning,
+    /// Grinding tool (table 9.2).
+    Grinding,
+}
+
+/// One cutting edge (AxiOMA D1…D4; a LinuxCNC tool has exactly one).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ToolEdge {
+    /// AxiOMA lengths L1, L2, L3, mm (assigned to axes by plane and tool kind).
+    pub length: [f64; 3],
+    /// Wear of L1…L3, mm (effective length = L + wear).
+    pub length_wear: [f64; 3],
+    /// Cutter radius r1, mm.
+    pub radius: f64,
+    /// Wear of r1, mm.
+    pub radius_wear: f64,
+    /// LinuxCNC per-axis tool offset X Y Z A B C U V W (mm/deg): what `G43` applies.
+    pub offset: Pose,
+    /// Lathe cutting-edge position code 0…9 (AxiOMA "edge position", LinuxCNC `Q`); 0 = none.
+    pub orientation: u8,
+    /// Front angle, degrees (LinuxCNC `I`).
+    pub front_angle: f64,
+    /// Back angle, degrees (LinuxCNC `J`).
+    pub back_angle: f64,
+}
+
+/// One tool of the tool table.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Tool {
+    /// T number.
+    pub number: u32,
+    /// Magazine pocket (LinuxCNC `P`).
+    pub pocket: u32,
+    /// AxiOMA tool group.
+    pub kind: ToolKind,
+    /// Edges D1…D4 (at least one).
+    pub edges: Vec<ToolEdge>,
+    /// Free text.
+    pub comment: String,
+}
+
+/// The tool table, by T number.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ToolTable {
+    /// Tools by number.
+    pub tools: BTreeMap<u32, Tool>,
+}
+
+impl ToolTable {
+    /// A tool by number.
+    pub fn get(&self, number: u32) -> Option<&Tool> {
+        self.tools.get(&number)
+    }
+
+    /// An edge: `edge` is 1-based (D1 = 1); None if the tool or edge does not exist.
+    pub fn edge(&self, number: u32, edge: u32) -> Option<&ToolEdge> {
+        let i = (edge as usize).checked_sub(1)?;
+        self.get(number)?.edges.get(i)
+    }
+}
+
+/// One zero offset: a translation, plus LinuxCNC's rotation about Z (`G10 L2 R`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ZeroOffset {
+    /// X Y Z A B C U V W, mm/deg.
+    pub offset: Pose,
+    /// Rotation of the system about Z, degrees counter-clockwise.
+    pub rotation_xy: f64,
+}
+
+/// An AxiOMA table workpiece coordinate system (G154…G159): `p_MCS = origin + R(φ,θ,ψ)·p_WCS`,
+/// R = Rz(φ)·Ry(θ)·Rz(ψ) (Euler ZY'Z'', spec axioma-1 §10, A16).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct WorkpieceFrame {
+    /// Origin of the system in machine coordinates, mm.
+    pub origin: [f64; 3],
+    /// Euler angles φ, θ, ψ (ZY'Z''), degrees.
+    pub euler: [f64; 3],
+}
+
+/// All stored offsets.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct OffsetTables {
+    /// `zero[s][p]`: system s (0 = G54 … 5 = G59, 6…8 = G59.1…G59.3), page p (0 = P1).
+    pub zero: Vec<Vec<ZeroOffset>>,
+    /// `workpiece[s][p]`: G154 + s, page p + 1.
+    pub workpiece: Vec<Vec<WorkpieceFrame>>,
+    /// AxiOMA home positions H1…H8 in machine coordinates; None = not used (G28 to it is an error).
+    pub home: Vec<Option<Pose>>,
+    /// LinuxCNC G28 position (parameters 5161…5169), machine coordinates.
+    pub g28: Pose,
+    /// LinuxCNC G30 position (parameters 5181…5189), machine coordinates.
+    pub g30: Pose,
+    /// LinuxCNC G92 offset (5211…5219) and whether it is applied (5210).
+    pub g92: Pose,
+    /// See `g92`.
+    pub g92_applied: bool,
+    /// LinuxCNC active system at start (5220): 1 = G54 … 9 = G59.3.
+    pub active_system: u8,
+}
+
+impl Default for OffsetTables {
+    fn default() -> Self {
+        OffsetTables {
+            zero: vec![vec![ZeroOffset::default(); PAGES]; ZERO_OFFSET_SYSTEMS],
+            workpiece: vec![vec![WorkpieceFrame::default(); PAGES]; WORKPIECE_SYSTEMS],
+            home: vec![None; HOME_POSITIONS],
+            g28: Pose::ZERO,
+            g30: Pose::ZERO,
+            g92: Pose::ZERO,
+            g92_applied: false,
+            active_system: 1,
+        }
+    }
+}
+
+impl OffsetTables {
+    /// A zero offset; `system` 1 = G54 … 9 = G59.3, `page` 1…32. None outside the tables.
+    pub fn zero_offset(&self, system: u8, page: u8) -> Option<&ZeroOffset> {
+        let s = (system as usize).checked_sub(1)?;
+        let p = (page as usize).checked_sub(1)?;
+        self.zero.get(s)?.get(p)
+    }
+
+    /// A workpiece frame; `system` 1 = G154 … 6 = G159, `page` 1…32.
+    pub fn workpiece_frame(&self, system: u8, page: u8) -> Option<&WorkpieceFrame> {
+        let s = (system as usize).checked_sub(1)?;
+        let p = (page as usize).checked_sub(1)?;
+        self.workpiece.get(s)?.get(p)
+    }
+}
+
+/// Everything stored in the control that a program can read.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ControlData {
+    /// Tool table.
+    pub tools: ToolTable,
+    /// Offset tables and stored positions.
+    pub offsets: OffsetTables,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lookups_are_one_based_and_bounded() {
+        let mut t = OffsetTables::default();
+        t.zero[5][11].offset.x = 7.0;
+        assert_eq!(t.zero_offset(6, 12).map(|z| z.offset.x), Some(7.0));
+        assert!(t.zero_offset(0, 1).is_none());
+        assert!(t.zero_offset(1, 33).is_none());
+        assert!(t.zero_offset(10, 1).is_none());
+        let mut tools = ToolTable::default();
+        tools.tools.insert(
+            3,
+            Tool {
+                number: 3,
+                edges: vec![
+                    ToolEdge::default(),
+                    ToolEdge {
+                        radius: 4.0,
+                        ..Default::default()
+                    },
+                ],
+                ..Default::default()
+            },
+        );
+        assert_eq!(tools.edge(3, 2).map(|e| e.radius), Some(4.0));
+        assert!(tools.edge(3, 0).is_none());
+        assert!(tools.edge(3, 3).is_none());
+        assert!(tools.edge(4, 1).is_none());
+    }
+}

@@ -131,7 +131,11 @@ impl Rs<'_> {
         if matches!(self.peek(), Some(b'o' | b'O')) {
             return self.oword();
         }
-        while let Some(c) = self.peek() {
+        loop {
+            self.plain_words();
+            let Some(c) = self.peek() else {
+                return Ok(());
+            };
             match c {
                 b'(' => self.paren_comment()?,
                 b';' => {
@@ -170,7 +174,34 @@ impl Rs<'_> {
                 _ => return self.unexpected("a word, `#`, `(` or `;`"),
             }
         }
-        Ok(())
+    }
+
+    /// The hot path: a run of `<letter><number>` words (`G1 X10.5 Y-3`), the bulk of every program.
+    /// One tight loop: the number's trailing blanks are skipped once, by `parse_number`, and the
+    /// next letter is tested right there. Anything else (N, O, `$`, expressions, comments, a number
+    /// the general path must judge) stops the run and goes through [`Rs::line`]'s `match`, where
+    /// [`Rs::word`] gives the same result for a word this loop did not take.
+    #[inline(always)]
+    fn plain_words(&mut self) {
+        let b = self.b;
+        let mut p = skip_blanks(b, self.pos);
+        while let Some(&c) = b.get(p) {
+            // ASCII letters only: clearing bit 5 maps `a..z` onto `A..Z` and nothing else there.
+            let letter = c & !0x20;
+            if !letter.is_ascii_uppercase() || letter == b'N' || letter == b'O' {
+                break;
+            }
+            let Some(n) = parse_number(b, p + 1, true) else {
+                break;
+            };
+            self.out.words.push(Word {
+                address: Address::Letter(letter),
+                value: Value::Number(n.value),
+                span: ColSpan::new(p, n.end),
+            });
+            p = n.next;
+        }
+        self.pos = p;
     }
 
     #[inline(never)]

@@ -100,7 +100,7 @@ impl<R: BufRead + Seek> BlockReader<R> {
         let mut spare = std::mem::take(&mut block.text).into_bytes();
         spare.clear();
         self.buf = spare;
-        match String::from_utf8(bytes) {
+        match into_string(bytes) {
             Ok(text) => block.text = text,
             Err(e) => {
                 let valid = e.utf8_error().valid_up_to();
@@ -169,7 +169,7 @@ impl<R: BufRead + Seek> BlockReader<R> {
             if available.is_empty() {
                 break;
             }
-            let (chunk, done) = match available.iter().position(|&c| c == b'\n') {
+            let (chunk, done) = match find_lf(available) {
                 Some(i) => (&available[..=i], true),
                 None => (available, false),
             };
@@ -187,5 +187,79 @@ impl<R: BufRead + Seek> BlockReader<R> {
             }
         }
         Ok((consumed, cut))
+    }
+}
+
+/// `String::from_utf8`, with a fast path for the usual all-ASCII line: `is_ascii` checks eight bytes
+/// at a time, where full UTF-8 validation (needed only for lines with non-ASCII bytes, e.g. Cyrillic
+/// comments) costs several instructions per byte.
+#[inline]
+fn into_string(bytes: Vec<u8>) -> Result<String, std::string::FromUtf8Error> {
+    if bytes.is_ascii() {
+        // SAFETY: every byte is below 0x80, and an all-ASCII byte string is valid UTF-8.
+        return Ok(unsafe { String::from_utf8_unchecked(bytes) });
+    }
+    String::from_utf8(bytes)
+}
+
+/// The index of the first LF in `b`, eight bytes at a time (a byte loop costs ~5 instructions per
+/// byte, and every byte of the program passes through here).
+///
+/// SWAR "has zero byte": with `x = word ^ 0x0a0a…`, an LF byte is a zero byte of `x`, and
+/// `(x - 0x0101…) & !x & 0x8080…` has its lowest set bit in the first zero byte (borrows can only
+/// mark bytes above a zero byte, never below it).
+#[inline]
+fn find_lf(b: &[u8]) -> Option<usize> {
+    const LO: u64 = 0x0101_0101_0101_0101;
+    const HI: u64 = 0x8080_8080_8080_8080;
+    let mut chunks = b.chunks_exact(8);
+    let mut base = 0;
+    for chunk in &mut chunks {
+        let mut word = [0u8; 8];
+        word.copy_from_slice(chunk);
+        let x = u64::from_le_bytes(word) ^ (LO * b'\n' as u64);
+        let zero = x.wrapping_sub(LO) & !x & HI;
+        if zero != 0 {
+            return Some(base + (zero.trailing_zeros() / 8) as usize);
+        }
+        base += 8;
+    }
+    chunks
+        .remainder()
+        .iter()
+        .position(|&c| c == b'\n')
+        .map(|i| base + i)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn find_lf_finds_the_first_lf() {
+        for len in 0..40 {
+            for at in 0..=len {
+                let mut b = vec![b'x'; len];
+                // Bytes that a sloppy zero-byte test confuses with LF (0x0b = LF + 1, 0x8a, 0x0a ^ 0x80).
+                for (i, c) in b.iter_mut().enumerate() {
+                    *c = [b'x', 0x0b, 0x8a, 0x09, 0xff, 0x00][i % 6];
+                }
+                if at < len {
+                    b[at] = b'\n';
+                    if at + 1 < len {
+                        b[at + 1] = b'\n';
+                    }
+                }
+                let expected = b.iter().position(|&c| c == b'\n');
+                assert_eq!(find_lf(&b), expected, "len {len} at {at}");
+            }
+        }
+    }
+
+    #[test]
+    fn into_string_accepts_ascii_and_checks_the_rest() {
+        assert_eq!(into_string(b"G1 X1".to_vec()).unwrap(), "G1 X1");
+        assert_eq!(into_string("(Ж)".as_bytes().to_vec()).unwrap(), "(Ж)");
+        assert!(into_string(vec![b'G', 0xff, b'1']).is_err());
     }
 }

@@ -270,7 +270,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             }
             return Ok(false);
         }
-        if !self.block.text.trim().is_empty() {
+        // Only the first non-blank line matters here: do not scan every line's text.
+        if self.first_line && !self.block.text.trim().is_empty() {
             self.first_line = false;
         }
         // O-word control flow decides whether this line runs at all.

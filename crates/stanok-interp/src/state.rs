@@ -75,45 +75,33 @@ impl Default for WorkFrame {
 
 impl WorkFrame {
     /// Program (work) coordinates → machine coordinates, mm.
+    ///
+    /// Written field by field (no `[f64; 9]` round trips: this runs two or three times per move),
+    /// with the same operations in the same order as the formula, so results are bit-identical
+    /// (`-0.0 + 0.0` is `+0.0` here too, which the LinuxCNC traces show).
+    #[inline]
     pub fn to_machine(&self, p: &Pose) -> Pose {
-        let mut v = p.to_array();
-        let g92 = self.g92.to_array();
-        for (x, o) in v.iter_mut().zip(g92) {
-            *x += o;
-        }
+        let mut v = add(p, &self.g92);
         if self.rotation_deg != 0.0 {
             let (s, c) = self.rotation_deg.to_radians().sin_cos();
-            let (x, y) = (v[0], v[1]);
-            v[0] = x * c - y * s;
-            v[1] = x * s + y * c;
+            let (x, y) = (v.x, v.y);
+            v.x = x * c - y * s;
+            v.y = x * s + y * c;
         }
-        let g5x = self.g5x.to_array();
-        let tlo = self.tlo.to_array();
-        for i in 0..9 {
-            v[i] += g5x[i] + tlo[i];
-        }
-        Pose::from_array(v)
+        add(&v, &add(&self.g5x, &self.tlo))
     }
 
     /// Machine coordinates → program (work) coordinates, mm.
+    #[inline]
     pub fn to_program(&self, m: &Pose) -> Pose {
-        let mut v = m.to_array();
-        let g5x = self.g5x.to_array();
-        let tlo = self.tlo.to_array();
-        for i in 0..9 {
-            v[i] -= g5x[i] + tlo[i];
-        }
+        let mut v = sub(m, &add(&self.g5x, &self.tlo));
         if self.rotation_deg != 0.0 {
             let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
-            let (x, y) = (v[0], v[1]);
-            v[0] = x * c - y * s;
-            v[1] = x * s + y * c;
+            let (x, y) = (v.x, v.y);
+            v.x = x * c - y * s;
+            v.y = x * s + y * c;
         }
-        let g92 = self.g92.to_array();
-        for (x, o) in v.iter_mut().zip(g92) {
-            *x -= o;
-        }
-        Pose::from_array(v)
+        sub(&v, &self.g92)
     }
 
     /// Rotates a direction (no translation) from the program frame to the machine frame.
@@ -123,6 +111,38 @@ impl WorkFrame {
         }
         let (s, c) = self.rotation_deg.to_radians().sin_cos();
         [d[0] * c - d[1] * s, d[0] * s + d[1] * c, d[2]]
+    }
+}
+
+/// `a + b`, axis by axis.
+#[inline(always)]
+fn add(a: &Pose, b: &Pose) -> Pose {
+    Pose {
+        x: a.x + b.x,
+        y: a.y + b.y,
+        z: a.z + b.z,
+        a: a.a + b.a,
+        b: a.b + b.b,
+        c: a.c + b.c,
+        u: a.u + b.u,
+        v: a.v + b.v,
+        w: a.w + b.w,
+    }
+}
+
+/// `a - b`, axis by axis.
+#[inline(always)]
+fn sub(a: &Pose, b: &Pose) -> Pose {
+    Pose {
+        x: a.x - b.x,
+        y: a.y - b.y,
+        z: a.z - b.z,
+        a: a.a - b.a,
+        b: a.b - b.b,
+        c: a.c - b.c,
+        u: a.u - b.u,
+        v: a.v - b.v,
+        w: a.w - b.w,
     }
 }
 
@@ -173,6 +193,7 @@ pub struct ModalState {
 
 impl ModalState {
     /// Current position in program coordinates (mm).
+    #[inline]
     pub fn program_position(&self) -> Pose {
         self.frame.to_program(&self.position)
     }

@@ -115,9 +115,14 @@ impl BlockParser {
         diags: &mut Vec<Diagnostic>,
     ) {
         let text = text.strip_suffix('\n').unwrap_or(text);
-        block.text.clear();
+        let text = text.strip_suffix('\r').unwrap_or(text);
+        block.clear();
         block.text.push_str(text);
-        self.parse_text_in_place(line, offset, block, diags);
+        block.line = line;
+        block.offset = offset;
+        // Parse from the caller's text: no need to move the block's copy out and back.
+        self.parse_bytes(text.as_bytes(), block);
+        self.flush_pending(block, diags);
     }
 
     /// [`BlockParser::parse_line`] for a line already in `block.text` (without its LF): used by
@@ -137,20 +142,35 @@ impl BlockParser {
         block.clear();
         block.line = line;
         block.offset = offset;
+        self.parse_bytes(owned.as_bytes(), block);
+        block.text = owned;
+        self.flush_pending(block, diags);
+    }
+
+    /// Parses `text` (the line, without terminator) into `block` (cleared, line and offset set).
+    /// Diagnostics wait in `pending` until `block.text` holds the line: then `flush_pending`.
+    #[inline]
+    fn parse_bytes(&mut self, text: &[u8], block: &mut Block) {
         self.pending.0.clear();
         match self.dialect {
-            Dialect::Axioma => axioma::parse_line(
-                owned.as_bytes(),
-                block,
-                &mut self.pending,
-                &mut self.in_block_comment,
-            ),
-            Dialect::Rs274ngc => rs274::parse_line(owned.as_bytes(), block, &mut self.pending),
+            Dialect::Axioma => {
+                axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
+            }
+            Dialect::Rs274ngc => rs274::parse_line(text, block, &mut self.pending),
         }
-        block.text = owned;
-        if self.pending.0.is_empty() {
-            return;
+    }
+
+    /// Turns the line's pending diagnostics into [`Diagnostic`]s (spans need `block.text`).
+    #[inline(always)]
+    fn flush_pending(&mut self, block: &Block, diags: &mut Vec<Diagnostic>) {
+        if !self.pending.0.is_empty() {
+            self.flush_pending_cold(block, diags);
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn flush_pending_cold(&mut self, block: &Block, diags: &mut Vec<Diagnostic>) {
         for p in self.pending.0.drain(..) {
             let span = block.span_of(p.span);
             diags.push(match p.severity {

@@ -25,6 +25,21 @@ use crate::ast::{
 use crate::lexer::{char_end, excerpt, find_byte, is_blank, letters_end, skip_blanks, Pendings};
 use crate::number::{parse_digits, parse_number};
 
+/// For each byte: the upper-case letter if it starts a plain word (`A`…`Z` either case, except `N`
+/// and `O`, which have their own rules), else 0. One load instead of four compares per word.
+static WORD_LETTER: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut c = b'A';
+    while c <= b'Z' {
+        if c != b'N' && c != b'O' {
+            t[c as usize] = c;
+            t[c.to_ascii_lowercase() as usize] = c;
+        }
+        c += 1;
+    }
+    t
+};
+
 /// A diagnostic has been recorded; the rest of the line is not parsed.
 #[derive(Debug)]
 pub(crate) struct Stop;
@@ -118,18 +133,21 @@ impl Rs<'_> {
         let Some(first) = self.peek() else {
             return Ok(());
         };
-        if first == b'%' {
-            return self.percent_line();
-        }
-        if first == b'/' {
-            self.out.block_delete = true;
-            self.pos += 1;
-        }
-        if matches!(self.peek(), Some(b'n' | b'N')) {
-            self.line_number()?;
-        }
-        if matches!(self.peek(), Some(b'o' | b'O')) {
-            return self.oword();
+        // A line that starts with a plain word (most lines) has none of the prefixes below.
+        if WORD_LETTER[first as usize] == 0 {
+            if first == b'%' {
+                return self.percent_line();
+            }
+            if first == b'/' {
+                self.out.block_delete = true;
+                self.pos += 1;
+            }
+            if matches!(self.peek(), Some(b'n' | b'N')) {
+                self.line_number()?;
+            }
+            if matches!(self.peek(), Some(b'o' | b'O')) {
+                return self.oword();
+            }
         }
         loop {
             self.plain_words();
@@ -186,9 +204,8 @@ impl Rs<'_> {
         let b = self.b;
         let mut p = skip_blanks(b, self.pos);
         while let Some(&c) = b.get(p) {
-            // ASCII letters only: clearing bit 5 maps `a..z` onto `A..Z` and nothing else there.
-            let letter = c & !0x20;
-            if !letter.is_ascii_uppercase() || letter == b'N' || letter == b'O' {
+            let letter = WORD_LETTER[c as usize];
+            if letter == 0 {
                 break;
             }
             let Some(n) = parse_number(b, p + 1, true) else {
@@ -581,4 +598,19 @@ pub(crate) enum Operand {
     Number(f64, ColSpan),
     /// Anything else, already in the arena.
     Expr(crate::ast::ExprId),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::WORD_LETTER;
+
+    #[test]
+    fn word_letters_are_ascii_letters_but_n_and_o() {
+        for c in 0..=255u8 {
+            let expected = (c.is_ascii_alphabetic() && !matches!(c, b'n' | b'N' | b'o' | b'O'))
+                .then(|| c.to_ascii_uppercase())
+                .unwrap_or(0);
+            assert_eq!(WORD_LETTER[c as usize], expected, "{c:#x}");
+        }
+    }
 }

@@ -170,6 +170,10 @@ pub struct ControlData {
     pub tools: ToolTable,
     /// Offset tables and stored positions.
     pub offsets: OffsetTables,
+    /// Other numbered parameters to preset before a program runs, by number: what a LinuxCNC `.var`
+    /// file holds besides the offsets above (e.g. user parameters 31…5000 that a machine keeps).
+    /// Values exactly as stored: their meaning, and so their unit, is the program's.
+    pub parameters: BTreeMap<u32, f64>,
 }
 
 #[cfg(test)]

@@ -250,11 +250,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
         }
         // Syntax problems: warnings are kept, the first error stops here.
         let mut first_error = None;
-        for d in self.syntax.drain(..) {
-            if d.is_error() {
-                first_error.get_or_insert(d);
-            } else if self.flow.skipping().is_none() {
-                self.warnings.push(d);
+        // Most lines have no syntax diagnostics: skip setting up the drain then.
+        if !self.syntax.is_empty() {
+            for d in self.syntax.drain(..) {
+                if d.is_error() {
+                    first_error.get_or_insert(d);
+                } else if self.flow.skipping().is_none() {
+                    self.warnings.push(d);
+                }
             }
         }
         let dialect = self.opts.dialect;

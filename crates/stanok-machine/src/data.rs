@@ -1,6 +1,6 @@
-//! Machine data: what a machine can do, read from TOML.
+//! Machine data: what a machine can do and what its control stores, read from TOML.
 //!
-//! ## Schema (version 0: the start of one)
+//! ## Schema
 //!
 //! ```toml
 //! name = "mill"                 # required, non-empty
@@ -8,6 +8,7 @@
 //! rapid_rate = 10000.0          # mm/min, > 0
 //! max_feed = 5000.0             # mm/min, > 0
 //! arc_tolerance = 0.01          # mm, ≥ 0
+//! linuxcnc_units = "mm"         # optional, "mm" | "inch": units of LinuxCNC .tbl/.var files
 //! [[axis]]                      # one table per axis, at least one
 //! name = "X"                    # X Y Z U V W (linear, mm) or A B C (rotary, deg); no duplicates
 //! kind = "linear"               # "linear" | "rotary", must match the letter
@@ -17,19 +18,33 @@
 //! max_acceleration = 1000.0     # mm/s² | deg/s², > 0
 //! max_jerk = 20000.0            # mm/s³ | deg/s³, > 0
 //! ```
-//! `machines/mill.toml` at the repository root is a commented example, equal to the built-in `mill`.
+//! plus the optional stored-data sections of [`crate::control`] (`active_system`, `[[zero_offset]]`,
+//! `[[workpiece]]`, `[[home]]`, `[g28]`, `[g30]`, `[g92]`, `[parameters]`, `[[tool]]`).
+//! `machines/mill.toml` at the repository root is a commented example, equal to the built-in `mill`;
+//! `machines/example-offsets-tools.toml` shows every section; `machines/README.md` documents every
+//! key.
 //!
 //! ## Reading
 //!
 //! 1. `toml` parses the text into private `Raw*` structs whose fields are `toml::Spanned`, so every
 //!    value keeps the byte range it was written at. Unknown keys are errors (a typo must not be
 //!    silently ignored on a machine).
-//! 2. Validation walks the rules above in file order and stops at the first violation.
+//! 2. Validation walks the rules above and stops at a violation (of the sections, the one first in
+//!    the file).
 //! 3. Any failure becomes a [`Diagnostic`] with code `machine::bad-data`, the byte range converted to
 //!    a 1-based line and column, and a note naming the file. Nothing here panics on any input.
+//!
+//! A tool or offset file given to `stanok --tools/--offsets` is the same TOML holding only the
+//! `[[tool]]` sections, or only the offset sections ([`tools_from_toml_str`],
+//! [`offsets_from_toml_str`]).
 
+use crate::control::{control_toml_parts, toml_float, toml_string, RawControl};
+use crate::control::{RawG92, RawHome, RawPose, RawTool, RawWorkpiece, RawZeroOffset};
 use serde::{Deserialize, Serialize};
-use stanok_canon::{Diagnostic, Span, AXIS_LETTERS};
+use stanok_canon::setup::{ControlData, OffsetTables, ToolTable};
+use stanok_canon::{Diagnostic, LengthUnits, Span, AXIS_LETTERS};
+use std::collections::BTreeMap;
+use std::fmt::Write;
 use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
@@ -37,8 +52,8 @@ use toml::Spanned;
 /// Diagnostic code of every machine-data problem.
 pub const BAD_DATA: &str = "machine::bad-data";
 
-/// What a machine is and can do. All values are in the units their docs give; positions are machine
-/// coordinates.
+/// What a machine is and can do, and what its control stores. All values are in the units their
+/// docs give; positions are machine coordinates.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct MachineData {
     /// Short name, as given to `--machine` (e.g. `mill`).
@@ -54,6 +69,12 @@ pub struct MachineData {
     pub arc_tolerance: f64,
     /// The axes, in file order.
     pub axes: Vec<AxisData>,
+    /// Length unit of the LinuxCNC tool tables (`.tbl`) and parameter files (`.var`) this machine
+    /// exchanges: LinuxCNC writes them in the machine's units (its `[TRAJ] LINEAR_UNITS`). Stanok's
+    /// own data is always mm.
+    pub linuxcnc_units: LengthUnits,
+    /// The stored data the interpreter reads: tool table, offset tables, preset parameters.
+    pub control: ControlData,
 }
 
 /// Linear or rotary.
@@ -104,16 +125,26 @@ fn kind_of(letter: char) -> AxisKind {
     }
 }
 
+/// Every key a machine-data file may have; which are required depends on the file's use.
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
-struct RawMachine {
-    name: Spanned<String>,
-    #[serde(default)]
-    description: String,
-    rapid_rate: Spanned<f64>,
-    max_feed: Spanned<f64>,
-    arc_tolerance: Spanned<f64>,
-    axis: Spanned<Vec<RawAxis>>,
+struct RawFile {
+    name: Option<Spanned<String>>,
+    description: Option<Spanned<String>>,
+    rapid_rate: Option<Spanned<f64>>,
+    max_feed: Option<Spanned<f64>>,
+    arc_tolerance: Option<Spanned<f64>>,
+    linuxcnc_units: Option<Spanned<String>>,
+    axis: Option<Spanned<Vec<RawAxis>>>,
+    active_system: Option<Spanned<String>>,
+    zero_offset: Option<Spanned<Vec<Spanned<RawZeroOffset>>>>,
+    workpiece: Option<Spanned<Vec<Spanned<RawWorkpiece>>>>,
+    home: Option<Spanned<Vec<Spanned<RawHome>>>>,
+    g28: Option<Spanned<RawPose>>,
+    g30: Option<Spanned<RawPose>>,
+    g92: Option<Spanned<RawG92>>,
+    parameters: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
 }
 
 #[derive(Deserialize)]
@@ -129,7 +160,7 @@ struct RawAxis {
 }
 
 /// A validation failure: message and the byte range to blame.
-type Invalid = (String, Range<usize>);
+pub(crate) type Invalid = (String, Range<usize>);
 
 fn positive(value: &Spanned<f64>, what: &str, unit: &str) -> Result<f64, Invalid> {
     let v = *value.get_ref();
@@ -144,7 +175,7 @@ fn positive(value: &Spanned<f64>, what: &str, unit: &str) -> Result<f64, Invalid
 }
 
 impl RawAxis {
-    fn validate(self, seen: &[AxisData]) -> Result<AxisData, Invalid> {
+    fn validate(&self, seen: &[AxisData]) -> Result<AxisData, Invalid> {
         let text = self.name.get_ref();
         let mut chars = text.chars();
         let letter = match (chars.next(), chars.next()) {
@@ -200,42 +231,194 @@ impl RawAxis {
     }
 }
 
-impl RawMachine {
-    fn validate(self) -> Result<MachineData, Invalid> {
-        if self.name.get_ref().trim().is_empty() {
-            return Err(("machine name is empty".into(), self.name.span()));
+fn required<T>(value: Option<Spanned<T>>, key: &str) -> Result<Spanned<T>, Invalid> {
+    value.ok_or_else(|| {
+        (
+            format!("missing field `{key}` (machine data needs it)"),
+            0..0,
+        )
+    })
+}
+
+/// `linuxcnc_units = "mm" | "inch"`.
+fn units(value: &Option<Spanned<String>>) -> Result<LengthUnits, Invalid> {
+    match value {
+        None => Ok(LengthUnits::Millimetres),
+        Some(v) => match v.get_ref().as_str() {
+            "mm" => Ok(LengthUnits::Millimetres),
+            "inch" => Ok(LengthUnits::Inches),
+            other => Err((
+                format!("linuxcnc_units must be \"mm\" or \"inch\", not \"{other}\""),
+                v.span(),
+            )),
+        },
+    }
+}
+
+/// What a tool or offset file (`--tools`, `--offsets`) may hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Fragment {
+    Tools,
+    Offsets,
+}
+
+impl RawFile {
+    fn parse(text: &str, file_name: &str) -> Result<RawFile, Diagnostic> {
+        toml::from_str(text)
+            .map_err(|e| bad_data(text, &data_note(file_name), e.message(), e.span()))
+    }
+
+    fn control(&self) -> RawControl<'_> {
+        RawControl {
+            active_system: &self.active_system,
+            zero_offset: &self.zero_offset,
+            workpiece: &self.workpiece,
+            home: &self.home,
+            g28: &self.g28,
+            g30: &self.g30,
+            g92: &self.g92,
+            parameters: &self.parameters,
+            tool: &self.tool,
         }
-        let rapid_rate = positive(&self.rapid_rate, "rapid_rate", "mm/min")?;
-        let max_feed = positive(&self.max_feed, "max_feed", "mm/min")?;
-        let tol = *self.arc_tolerance.get_ref();
+    }
+
+    /// The keys present, with where they start, as (key, byte range).
+    fn present_keys(&self) -> Vec<(&'static str, Range<usize>)> {
+        fn at<T>(v: &Option<Spanned<T>>) -> Option<Range<usize>> {
+            v.as_ref().map(Spanned::span)
+        }
+        let keys = [
+            ("name", at(&self.name)),
+            ("description", at(&self.description)),
+            ("rapid_rate", at(&self.rapid_rate)),
+            ("max_feed", at(&self.max_feed)),
+            ("arc_tolerance", at(&self.arc_tolerance)),
+            ("linuxcnc_units", at(&self.linuxcnc_units)),
+            ("axis", at(&self.axis)),
+            ("active_system", at(&self.active_system)),
+            ("zero_offset", at(&self.zero_offset)),
+            ("workpiece", at(&self.workpiece)),
+            ("home", at(&self.home)),
+            ("g28", at(&self.g28)),
+            ("g30", at(&self.g30)),
+            ("g92", at(&self.g92)),
+            ("parameters", at(&self.parameters)),
+            ("tool", at(&self.tool)),
+        ];
+        keys.into_iter()
+            .filter_map(|(k, r)| r.map(|r| (k, r)))
+            .collect()
+    }
+
+    /// Refuses the keys a fragment of this kind must not hold (the first one in the file).
+    fn check_fragment(&self, kind: Fragment) -> Result<(), Invalid> {
+        let allowed: &[&str] = match kind {
+            Fragment::Tools => &["tool"],
+            Fragment::Offsets => &[
+                "active_system",
+                "zero_offset",
+                "workpiece",
+                "home",
+                "g28",
+                "g30",
+                "g92",
+                "parameters",
+            ],
+        };
+        let wrong = self
+            .present_keys()
+            .into_iter()
+            .filter(|(k, _)| !allowed.contains(k))
+            .min_by_key(|(_, r)| r.start);
+        match (wrong, kind) {
+            (None, _) => Ok(()),
+            (Some((key, range)), Fragment::Tools) => Err((
+                format!("a tool file holds only [[tool]] sections, not `{key}`"),
+                range,
+            )),
+            (Some((key, range)), Fragment::Offsets) => Err((
+                format!(
+                    "an offset file holds only active_system, [[zero_offset]], [[workpiece]], \
+                     [[home]], [g28], [g30], [g92] and [parameters], not `{key}`"
+                ),
+                range,
+            )),
+        }
+    }
+
+    fn validate(self) -> Result<MachineData, Invalid> {
+        let control = self.control().validate();
+        let machine = self.validate_machine();
+        match (machine, control) {
+            (Ok(mut m), Ok(c)) => {
+                m.control = c;
+                Ok(m)
+            }
+            (Err(a), Err(b)) => Err(if b.1.start < a.1.start { b } else { a }),
+            (Err(e), _) | (_, Err(e)) => Err(e),
+        }
+    }
+
+    fn validate_machine(&self) -> Result<MachineData, Invalid> {
+        let name = required(self.name.clone(), "name")?;
+        if name.get_ref().trim().is_empty() {
+            return Err(("machine name is empty".into(), name.span()));
+        }
+        let rapid_rate = positive(
+            &required(self.rapid_rate.clone(), "rapid_rate")?,
+            "rapid_rate",
+            "mm/min",
+        )?;
+        let max_feed = positive(
+            &required(self.max_feed.clone(), "max_feed")?,
+            "max_feed",
+            "mm/min",
+        )?;
+        let arc_tolerance = required(self.arc_tolerance.clone(), "arc_tolerance")?;
+        let tol = *arc_tolerance.get_ref();
         if !(tol.is_finite() && tol >= 0.0) {
             return Err((
                 format!("arc_tolerance must be zero or a positive number of mm, not {tol}"),
-                self.arc_tolerance.span(),
+                arc_tolerance.span(),
             ));
         }
-        let axes_span = self.axis.span();
+        let linuxcnc_units = units(&self.linuxcnc_units)?;
+        let Some(raw_axes) = &self.axis else {
+            return Err((
+                "missing field `axis` (a machine needs at least one [[axis]])".into(),
+                0..0,
+            ));
+        };
         let mut axes = Vec::new();
-        for raw in self.axis.into_inner() {
+        for raw in raw_axes.get_ref() {
             let axis = raw.validate(&axes)?;
             axes.push(axis);
         }
         if axes.is_empty() {
-            return Err(("a machine needs at least one [[axis]]".into(), axes_span));
+            return Err((
+                "a machine needs at least one [[axis]]".into(),
+                raw_axes.span(),
+            ));
         }
         Ok(MachineData {
-            name: self.name.into_inner(),
-            description: self.description,
+            name: name.into_inner(),
+            description: self
+                .description
+                .as_ref()
+                .map(|d| d.get_ref().clone())
+                .unwrap_or_default(),
             rapid_rate,
             max_feed,
             arc_tolerance: tol,
             axes,
+            linuxcnc_units,
+            control: ControlData::default(),
         })
     }
 }
 
 /// Line and column (1-based, column in characters) of byte `offset` in `text`.
-fn line_column(text: &str, offset: usize) -> (u32, u32) {
+pub(crate) fn line_column(text: &str, offset: usize) -> (u32, u32) {
     let mut end = offset.min(text.len());
     while !text.is_char_boundary(end) {
         end -= 1;
@@ -250,7 +433,17 @@ fn line_column(text: &str, offset: usize) -> (u32, u32) {
     )
 }
 
-fn bad_data(text: &str, file_name: &str, message: &str, range: Option<Range<usize>>) -> Diagnostic {
+fn data_note(file_name: &str) -> String {
+    format!("in machine data file {file_name}")
+}
+
+/// A `machine::bad-data` error at byte range `range` of `text`, with `note` (which file).
+pub(crate) fn bad_data(
+    text: &str,
+    note: &str,
+    message: &str,
+    range: Option<Range<usize>>,
+) -> Diagnostic {
     let span = match range {
         Some(r) => {
             let (line, column) = line_column(text, r.start);
@@ -258,8 +451,50 @@ fn bad_data(text: &str, file_name: &str, message: &str, range: Option<Range<usiz
         }
         None => Span::default(),
     };
-    Diagnostic::error(BAD_DATA, message.trim_end(), span)
-        .with_note(format!("in machine data file {file_name}"))
+    Diagnostic::error(BAD_DATA, message.trim_end(), span).with_note(note)
+}
+
+/// Reads a whole file for machine data; `what` names it in the error ("machine data file").
+pub(crate) fn read_text(path: &Path, what: &str) -> Result<String, Diagnostic> {
+    std::fs::read_to_string(path).map_err(|e| {
+        Diagnostic::error(
+            BAD_DATA,
+            format!("cannot read {what} {}: {e}", path.display()),
+            Span::default(),
+        )
+    })
+}
+
+/// Reads a tool file in machine-data TOML: only `[[tool]]` sections. `file_name` is only used in
+/// the diagnostic's note.
+pub fn tools_from_toml_str(text: &str, file_name: &str) -> Result<ToolTable, Diagnostic> {
+    let raw = RawFile::parse(text, file_name)?;
+    raw.check_fragment(Fragment::Tools)
+        .and_then(|()| raw.control().validate())
+        .map(|c| c.tools)
+        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
+}
+
+/// Offset tables and the other numbered parameters: what `--offsets` replaces.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct StoredOffsets {
+    /// Zero offsets, workpiece frames, home and stored positions.
+    pub offsets: OffsetTables,
+    /// Other numbered parameters to preset (see `ControlData::parameters`).
+    pub parameters: BTreeMap<u32, f64>,
+}
+
+/// Reads an offset file in machine-data TOML: only `active_system`, `[[zero_offset]]`,
+/// `[[workpiece]]`, `[[home]]`, `[g28]`, `[g30]`, `[g92]` and `[parameters]`.
+pub fn offsets_from_toml_str(text: &str, file_name: &str) -> Result<StoredOffsets, Diagnostic> {
+    let raw = RawFile::parse(text, file_name)?;
+    raw.check_fragment(Fragment::Offsets)
+        .and_then(|()| raw.control().validate())
+        .map(|c| StoredOffsets {
+            offsets: c.offsets,
+            parameters: c.parameters,
+        })
+        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
 }
 
 impl MachineData {
@@ -272,7 +507,7 @@ impl MachineData {
     }
 
     /// The default 3-axis mill: X, Y ±500 mm, Z ±300 mm, 10 000 mm/min per axis and rapid, 5 000
-    /// mm/min feed, 1 000 mm/s², 20 000 mm/s³. Equal to `machines/mill.toml`.
+    /// mm/min feed, 1 000 mm/s², 20 000 mm/s³; no stored data. Equal to `machines/mill.toml`.
     pub fn default_mill() -> MachineData {
         let axis = |name: char, limit: f64| AxisData {
             name,
@@ -292,29 +527,67 @@ impl MachineData {
             max_feed: 5_000.0,
             arc_tolerance: 0.01,
             axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
+            linuxcnc_units: LengthUnits::Millimetres,
+            control: ControlData::default(),
         }
     }
 
     /// Parses and validates machine data. `file_name` is only used in the diagnostic's note.
     pub fn from_toml_str(text: &str, file_name: &str) -> Result<MachineData, Diagnostic> {
-        let raw: RawMachine =
-            toml::from_str(text).map_err(|e| bad_data(text, file_name, e.message(), e.span()))?;
-        raw.validate()
-            .map_err(|(message, range)| bad_data(text, file_name, &message, Some(range)))
+        RawFile::parse(text, file_name)?
+            .validate()
+            .map_err(|(message, range)| {
+                bad_data(text, &data_note(file_name), &message, Some(range))
+            })
     }
 
     /// Reads machine data from a file.
     pub fn load(path: impl AsRef<Path>) -> Result<MachineData, Diagnostic> {
         let path = path.as_ref();
-        let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| {
-            Diagnostic::error(
-                BAD_DATA,
-                format!("cannot read machine data file {name}: {e}"),
-                Span::default(),
-            )
-        })?;
-        Self::from_toml_str(&text, &name)
+        let text = read_text(path, "machine data file")?;
+        Self::from_toml_str(&text, &path.display().to_string())
+    }
+
+    /// The machine data as TOML that [`MachineData::from_toml_str`] reads back to the same value;
+    /// the stored data is written sparsely ([`crate::control::control_to_toml`]).
+    pub fn to_toml(&self) -> String {
+        let (control_keys, control_tables) = control_toml_parts(&self.control);
+        let mut out = String::new();
+        let _ = writeln!(out, "name = {}", toml_string(&self.name));
+        if !self.description.is_empty() {
+            let _ = writeln!(out, "description = {}", toml_string(&self.description));
+        }
+        let _ = writeln!(out, "rapid_rate = {}", toml_float(self.rapid_rate));
+        let _ = writeln!(out, "max_feed = {}", toml_float(self.max_feed));
+        let _ = writeln!(out, "arc_tolerance = {}", toml_float(self.arc_tolerance));
+        let units = match self.linuxcnc_units {
+            LengthUnits::Millimetres => "mm",
+            LengthUnits::Inches => "inch",
+        };
+        let _ = writeln!(out, "linuxcnc_units = \"{units}\"");
+        out.push_str(&control_keys);
+        for a in &self.axes {
+            let kind = match a.kind {
+                AxisKind::Linear => "linear",
+                AxisKind::Rotary => "rotary",
+            };
+            let _ = writeln!(
+                out,
+                "\n[[axis]]\nname = \"{}\"\nkind = \"{kind}\"\nmin = {}\nmax = {}\nmax_velocity = {}\n\
+                 max_acceleration = {}\nmax_jerk = {}",
+                a.name,
+                toml_float(a.min),
+                toml_float(a.max),
+                toml_float(a.max_velocity),
+                toml_float(a.max_acceleration),
+                toml_float(a.max_jerk)
+            );
+        }
+        if !control_tables.is_empty() {
+            out.push('\n');
+            out.push_str(&control_tables);
+        }
+        out
     }
 
     /// Which of the nine axes (X Y Z A B C U V W, `Pose::to_array` order) the machine has.

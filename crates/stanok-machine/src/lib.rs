@@ -1,21 +1,32 @@
 //! # stanok-machine: the machine a program runs on
 //!
-//! * [`MachineData`]: what a machine is (axes, travel limits, rates, acceleration, jerk), read from
-//!   TOML with diagnostics that point at the offending line, plus the built-in machines
-//!   ([`MachineData::builtin`]: `mill`).
+//! * [`MachineData`]: what a machine is (axes, travel limits, rates, acceleration, jerk) and what its
+//!   control stores ([`MachineData::control`]: tool table, zero-offset and workpiece tables, home
+//!   positions, preset parameters), read from TOML with diagnostics that point at the offending
+//!   line, plus the built-in machines ([`MachineData::builtin`]: `mill`). [`MachineData::to_toml`]
+//!   writes it back.
+//! * [`control`]: the TOML sections of the stored data, their validation and the sparse writer.
+//! * [`linuxcnc`]: LinuxCNC tool tables (`.tbl`) and parameter files (`.var`), read and written.
+//! * [`files`]: the `--tools` / `--offsets` files, read by extension.
 //! * [`SimMachine`]: executes a Canon stream on a simulated machine, refusing what the machine cannot
 //!   do (travel limits, missing axes) with a [`Diagnostic`](stanok_canon::Diagnostic) at the block,
 //!   and builds the [`RunReport`] with nominal timing (`stanok_motion::nominal`: no acceleration yet).
 //!
-//! Planned here later: tool and offset tables (incl. LinuxCNC `.tbl`/`.var` import), built-in lathe
-//! and 5-axis machines, running the planner's setpoints instead of nominal times.
+//! Planned here later: built-in lathe and 5-axis machines, running the planner's setpoints instead
+//! of nominal times.
 //!
 //! Architecture invariant: this crate reads Canon, never G-code; machine data never panics on any
 //! text, and the simulated machine never lets an accepted command exceed a travel limit.
 #![deny(missing_docs)]
 
+pub mod control;
 mod data;
+pub mod files;
+pub mod linuxcnc;
 mod sim;
 
-pub use data::{AxisData, AxisKind, MachineData, BAD_DATA};
+pub use data::{
+    offsets_from_toml_str, tools_from_toml_str, AxisData, AxisKind, MachineData, StoredOffsets,
+    BAD_DATA,
+};
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};

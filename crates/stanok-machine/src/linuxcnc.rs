@@ -1,0 +1,730 @@
+//! LinuxCNC's tool table (`.tbl`) and parameter file (`.var`): read and write, so that users can
+//! bring their machine's data along (and take it back).
+//!
+//! ## Tool table
+//!
+//! One tool per line, words in any order, letters in either case, separated by blanks; `;` starts
+//! the tool's comment, which runs to the end of the line. A line that starts with `;`, or is blank,
+//! is skipped.
+//!
+//! ```text
+//! T1 P1 Z-1.5 D0.25 ;tool 1
+//! ```
+//!
+//! | word | meaning | Stanok field |
+//! |---|---|---|
+//! | `T` | tool number, whole, ≥ 1, once per table (required) | `Tool::number` |
+//! | `P` | pocket, whole, ≥ 0 (absent = 0) | `Tool::pocket` |
+//! | `X Y Z U V W` | tool offset, file units | `ToolEdge::offset` (mm) |
+//! | `A B C` | tool offset, degrees | `ToolEdge::offset` |
+//! | `D` | **diameter**, file units, ≥ 0 | `ToolEdge::radius` = D / 2 (mm) |
+//! | `I`, `J` | front and back angle, degrees | `front_angle`, `back_angle` |
+//! | `Q` | lathe orientation 0…9 | `ToolEdge::orientation` |
+//!
+//! A LinuxCNC tool has one edge (D1) and kind `milling`; AxiOMA's lengths L1…L3 and the wear values
+//! stay 0. LinuxCNC skips a line it cannot read; Stanok refuses it (file:line:column), as it refuses
+//! a word given twice, a second line for the same T, and a negative diameter (which LinuxCNC takes
+//! as "compensate on the other side").
+//!
+//! ## Parameter file
+//!
+//! One parameter per line: its number, blanks, its value (`5221\t100.000000`), numbers strictly
+//! increasing (LinuxCNC refuses a file out of order). Lines starting with `#` or `;` and blank lines
+//! are skipped. Mapping (axis index k = 0…8 for X Y Z A B C U V W, system n = 1…9 for G54…G59.3):
+//!
+//! | parameters | Stanok field |
+//! |---|---|
+//! | 5161 + k | `OffsetTables::g28` |
+//! | 5181 + k | `OffsetTables::g30` |
+//! | 5210 | `g92_applied` (0 or 1) |
+//! | 5211 + k | `g92` |
+//! | 5220 | `active_system` (1…9) |
+//! | 5201 + 20·n + k | `zero[n − 1][page 1].offset` |
+//! | 5210 + 20·n | `zero[n − 1][page 1].rotation_xy`, degrees |
+//! | any other 1…5601 | [`StoredOffsets::parameters`], value as written |
+//!
+//! Linear values are in the file's units (`units`: LinuxCNC writes the machine's units) and are
+//! converted to mm; angles are degrees either way.
+
+use crate::control::{is_offset_parameter, MAX_ORIENTATION, MAX_PARAMETER};
+use crate::data::{bad_data, line_column};
+use crate::StoredOffsets;
+use stanok_canon::setup::{OffsetTables, Tool, ToolEdge, ToolKind, ToolTable, ZERO_OFFSET_SYSTEMS};
+use stanok_canon::{Diagnostic, LengthUnits, Pose, AXIS_LETTERS};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+use std::ops::Range;
+
+/// Is axis k (X Y Z A B C U V W order) a linear one (converted with the file's units)?
+fn is_linear(k: usize) -> bool {
+    !(3..=5).contains(&k)
+}
+
+/// The lines of `text` without their line ends, with the byte offset each starts at.
+fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
+    let mut start = 0;
+    text.split_inclusive('\n').map(move |l| {
+        let at = start;
+        start += l.len();
+        let l = l.strip_suffix('\n').unwrap_or(l);
+        (at, l.strip_suffix('\r').unwrap_or(l))
+    })
+}
+
+/// The blank-separated words of `s`, each with its byte range relative to `s`.
+fn words(s: &str) -> impl Iterator<Item = (Range<usize>, &str)> {
+    let mut rest = s;
+    let mut offset = 0;
+    std::iter::from_fn(move || {
+        let skip = rest.len() - rest.trim_start().len();
+        offset += skip;
+        rest = &rest[skip..];
+        if rest.is_empty() {
+            return None;
+        }
+        let len = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        let word = &rest[..len];
+        let range = offset..offset + len;
+        offset += len;
+        rest = &rest[len..];
+        Some((range, word))
+    })
+}
+
+/// Formats `value` (mm or deg) in file units so that reading it back gives `value` again: LinuxCNC's
+/// own six decimals when they suffice, else the shortest exact text. `back` is what the reader does
+/// with the number it reads; `sign` writes a `+` on positive numbers (`%+f`, the tool table's style).
+fn exact(file_value: f64, value: f64, back: impl Fn(f64) -> f64, sign: bool) -> String {
+    let six = if sign {
+        format!("{file_value:+.6}")
+    } else {
+        format!("{file_value:.6}")
+    };
+    if six.parse::<f64>().map(&back) == Ok(value) {
+        return six;
+    }
+    if sign {
+        format!("{file_value:+?}")
+    } else {
+        format!("{file_value:?}")
+    }
+}
+
+struct ToolLine {
+    number: Option<(u32, Range<usize>)>,
+    pocket: u32,
+    edge: ToolEdge,
+}
+
+fn parse_tool_word(
+    word: &str,
+    at: &Range<usize>,
+    scale: f64,
+    into: &mut ToolLine,
+) -> Result<(), (String, Range<usize>)> {
+    let mut chars = word.chars();
+    let letter = chars.next().unwrap_or(' ').to_ascii_uppercase();
+    let value = chars.as_str();
+    let whole = |what: &str| {
+        value.parse::<i64>().map_err(|_| {
+            (
+                format!("{letter} ({what}) needs a whole number, not \"{value}\""),
+                at.clone(),
+            )
+        })
+    };
+    let number = |what: &str| match value.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(v),
+        _ => Err((
+            format!("{letter} ({what}) needs a number, not \"{value}\""),
+            at.clone(),
+        )),
+    };
+    match letter {
+        'T' => {
+            let t = whole("tool number")?;
+            let t = u32::try_from(t).ok().filter(|t| *t >= 1).ok_or_else(|| {
+                (
+                    format!("T (tool number) must be 1…{}, not {t}", u32::MAX),
+                    at.clone(),
+                )
+            })?;
+            into.number = Some((t, at.clone()));
+        }
+        'P' => {
+            let p = whole("pocket")?;
+            into.pocket = u32::try_from(p).map_err(|_| {
+                (
+                    format!("P (pocket) must be 0…{}, not {p}", u32::MAX),
+                    at.clone(),
+                )
+            })?;
+        }
+        'D' => {
+            let d = number("diameter")?;
+            if d < 0.0 {
+                return Err((
+                    format!("D (diameter) must not be negative, not {d}"),
+                    at.clone(),
+                ));
+            }
+            into.edge.radius = d * scale / 2.0;
+        }
+        'I' => into.edge.front_angle = number("front angle")?,
+        'J' => into.edge.back_angle = number("back angle")?,
+        'Q' => {
+            let q = whole("orientation")?;
+            into.edge.orientation = u8::try_from(q)
+                .ok()
+                .filter(|q| *q <= MAX_ORIENTATION)
+                .ok_or_else(|| {
+                    (
+                        format!("Q (orientation) must be 0…{MAX_ORIENTATION}, not {q}"),
+                        at.clone(),
+                    )
+                })?;
+        }
+        _ => {
+            let Some(k) = AXIS_LETTERS.iter().position(|l| *l == letter) else {
+                return Err((
+                    format!(
+                        "unknown word \"{word}\": a tool table line has T P X Y Z A B C U V W D I J Q"
+                    ),
+                    at.clone(),
+                ));
+            };
+            let v = number("tool offset")?;
+            let mut offset = into.edge.offset.to_array();
+            offset[k] = if is_linear(k) { v * scale } else { v };
+            into.edge.offset = Pose::from_array(offset);
+        }
+    }
+    Ok(())
+}
+
+/// Reads a LinuxCNC tool table. `units` is the file's length unit (the LinuxCNC machine's); the
+/// table returned is in mm. `file_name` is only used in the diagnostic's note.
+pub fn parse_tool_table(
+    text: &str,
+    file_name: &str,
+    units: LengthUnits,
+) -> Result<ToolTable, Diagnostic> {
+    let note = format!("in LinuxCNC tool table {file_name}");
+    let fail = |message: String, range: Range<usize>| bad_data(text, &note, &message, Some(range));
+    let scale = units.mm_per_unit();
+    let mut table = ToolTable::default();
+    let mut first_line: BTreeMap<u32, u32> = BTreeMap::new();
+    for (start, line) in lines(text) {
+        if line.trim_start().starts_with(';') || line.trim().is_empty() {
+            continue;
+        }
+        let (body, comment) = match line.find(';') {
+            Some(i) => (&line[..i], line[i + 1..].trim()),
+            None => (line, ""),
+        };
+        let mut parsed = ToolLine {
+            number: None,
+            pocket: 0,
+            edge: ToolEdge::default(),
+        };
+        let mut seen: Vec<char> = Vec::new();
+        for (range, word) in words(body) {
+            let at = start + range.start..start + range.end;
+            let letter = word.chars().next().unwrap_or(' ').to_ascii_uppercase();
+            if seen.contains(&letter) {
+                return Err(fail(
+                    format!("word {letter} is given twice on this line"),
+                    at,
+                ));
+            }
+            seen.push(letter);
+            parse_tool_word(word, &at, scale, &mut parsed).map_err(|(m, r)| fail(m, r))?;
+        }
+        let body_at = start + (body.len() - body.trim_start().len());
+        let Some((number, at)) = parsed.number else {
+            return Err(fail(
+                "a tool table line needs a T word (the tool number)".into(),
+                body_at..start + body.trim_end().len(),
+            ));
+        };
+        let line_no = line_column(text, start).0;
+        if let Some(first) = first_line.insert(number, line_no) {
+            return Err(fail(
+                format!("tool T{number} is defined twice (first on line {first})"),
+                at,
+            ));
+        }
+        table.tools.insert(
+            number,
+            Tool {
+                number,
+                pocket: parsed.pocket,
+                kind: ToolKind::Milling,
+                edges: vec![parsed.edge],
+                comment: comment.to_string(),
+            },
+        );
+    }
+    Ok(table)
+}
+
+/// Writes a tool table the way LinuxCNC does (`T1   P1   D+0.250000 Z-1.500000 ;tool 1`: T and P
+/// always, the other words only when not zero), in file units `units`. Only what a LinuxCNC table
+/// holds is written: edge D1's offset, diameter, angles and orientation, and the comment (line
+/// breaks become blanks). AxiOMA lengths, wear, the kind and edges D2…D4 are left out; a tool
+/// without edges is written as T and P only.
+pub fn write_tool_table(table: &ToolTable, units: LengthUnits) -> String {
+    let scale = units.mm_per_unit();
+    let mut out = String::new();
+    for tool in table.tools.values() {
+        let e = tool.edges.first().copied().unwrap_or_default();
+        let _ = write!(out, "T{:<3} P{:<3}", tool.number, tool.pocket);
+        if e.radius != 0.0 {
+            let d = exact(e.radius * 2.0 / scale, e.radius, |d| d * scale / 2.0, true);
+            let _ = write!(out, " D{d}");
+        }
+        for (k, v) in e.offset.to_array().into_iter().enumerate() {
+            if v != 0.0 {
+                let text = if is_linear(k) {
+                    exact(v / scale, v, |x| x * scale, true)
+                } else {
+                    exact(v, v, |x| x, true)
+                };
+                let _ = write!(out, " {}{text}", AXIS_LETTERS[k]);
+            }
+        }
+        for (letter, v) in [('I', e.front_angle), ('J', e.back_angle)] {
+            if v != 0.0 {
+                let _ = write!(out, " {letter}{}", exact(v, v, |x| x, true));
+            }
+        }
+        if e.orientation != 0 {
+            let _ = write!(out, " Q{}", e.orientation);
+        }
+        let comment: String = tool
+            .comment
+            .chars()
+            .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
+            .collect();
+        let comment = comment.trim();
+        if !comment.is_empty() {
+            let _ = write!(out, " ;{comment}");
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The first parameter of zero-offset system n (1 = G54 … 9 = G59.3): 5201 + 20·n.
+fn system_base(n: usize) -> u32 {
+    5201 + 20 * n as u32
+}
+
+/// Stores parameter `n` = `v` (file units) into `into`; `Err` says why the value is refused.
+fn apply_parameter(n: u32, v: f64, scale: f64, into: &mut StoredOffsets) -> Result<(), String> {
+    let o = &mut into.offsets;
+    let axis = |base: u32| (n - base) as usize;
+    let set = |pose: &mut Pose, k: usize| {
+        let mut a = pose.to_array();
+        a[k] = if is_linear(k) { v * scale } else { v };
+        *pose = Pose::from_array(a);
+    };
+    match n {
+        5161..=5169 => set(&mut o.g28, axis(5161)),
+        5181..=5189 => set(&mut o.g30, axis(5181)),
+        5211..=5219 => set(&mut o.g92, axis(5211)),
+        5210 => {
+            o.g92_applied = match v {
+                0.0 => false,
+                1.0 => true,
+                _ => return Err(format!("5210 (G92 applied) must be 0 or 1, not {v}")),
+            }
+        }
+        5220 => {
+            if v.fract() != 0.0 || !(1.0..=ZERO_OFFSET_SYSTEMS as f64).contains(&v) {
+                return Err(format!(
+                    "5220 (active coordinate system) must be 1…{ZERO_OFFSET_SYSTEMS}, not {v}"
+                ));
+            }
+            o.active_system = v as u8;
+        }
+        _ if is_offset_parameter(n) => {
+            let s = (n - 5221) as usize / 20;
+            let k = (n - 5221) as usize % 20;
+            let z = &mut o.zero[s][0];
+            if k == 9 {
+                z.rotation_xy = v;
+            } else {
+                set(&mut z.offset, k);
+            }
+        }
+        _ => {
+            into.parameters.insert(n, v);
+        }
+    }
+    Ok(())
+}
+
+/// Reads a LinuxCNC parameter file (`.var`). Linear offsets are in `units` (the LinuxCNC machine's)
+/// and come back in mm; parameters that are not offsets are kept as written. `file_name` is only
+/// used in the diagnostic's note.
+pub fn parse_var_file(
+    text: &str,
+    file_name: &str,
+    units: LengthUnits,
+) -> Result<StoredOffsets, Diagnostic> {
+    let note = format!("in LinuxCNC parameter file {file_name}");
+    let fail = |message: String, range: Range<usize>| bad_data(text, &note, &message, Some(range));
+    let scale = units.mm_per_unit();
+    let mut out = StoredOffsets::default();
+    let mut previous: Option<(u32, u32)> = None;
+    for (start, line) in lines(text) {
+        let trimmed = line.trim_start();
+        if trimmed.is_empty() || trimmed.starts_with('#') || trimmed.starts_with(';') {
+            continue;
+        }
+        let fields: Vec<(Range<usize>, &str)> = words(line)
+            .map(|(r, w)| (start + r.start..start + r.end, w))
+            .collect();
+        let [(n_at, n_text), (v_at, v_text)] = fields.as_slice() else {
+            let whole = start..start + line.len();
+            let at = fields.get(2).map_or(whole, |(r, _)| r.clone());
+            return Err(fail(
+                "a parameter line is a number and a value (e.g. \"5221\t100.000000\")".into(),
+                at,
+            ));
+        };
+        let n = n_text
+            .parse::<u32>()
+            .ok()
+            .filter(|n| (1..=MAX_PARAMETER).contains(n))
+            .ok_or_else(|| {
+                fail(
+                    format!("parameter number must be 1…{MAX_PARAMETER}, not \"{n_text}\""),
+                    n_at.clone(),
+                )
+            })?;
+        let line_no = line_column(text, start).0;
+        if let Some((p, p_line)) = previous {
+            if n <= p {
+                return Err(fail(
+                    format!(
+                        "parameter {n} comes after {p} (line {p_line}): LinuxCNC needs increasing numbers"
+                    ),
+                    n_at.clone(),
+                ));
+            }
+        }
+        previous = Some((n, line_no));
+        let v = match v_text.parse::<f64>() {
+            Ok(v) if v.is_finite() => v,
+            _ => {
+                return Err(fail(
+                    format!("parameter {n} needs a finite number, not \"{v_text}\""),
+                    v_at.clone(),
+                ))
+            }
+        };
+        apply_parameter(n, v, scale, &mut out).map_err(|m| fail(m, v_at.clone()))?;
+    }
+    Ok(out)
+}
+
+/// The parameters LinuxCNC keeps in its file (its `_required_parameters`), with their values from
+/// `o` in file units, plus `other` (parameters that are offsets are taken from `o`, not `other`).
+fn var_values(data: &StoredOffsets, scale: f64) -> BTreeMap<u32, (f64, f64, bool)> {
+    // number → (mm or deg value, file value, linear)
+    let mut all = BTreeMap::new();
+    let o: &OffsetTables = &data.offsets;
+    for (n, v) in &data.parameters {
+        if !is_offset_parameter(*n) {
+            all.insert(*n, (*v, *v, false));
+        }
+    }
+    let mut pose = |base: u32, p: &Pose| {
+        for (k, v) in p.to_array().into_iter().enumerate() {
+            let file = if is_linear(k) { v / scale } else { v };
+            all.insert(base + k as u32, (v, file, is_linear(k)));
+        }
+    };
+    pose(5161, &o.g28);
+    pose(5181, &o.g30);
+    pose(5211, &o.g92);
+    for s in 0..ZERO_OFFSET_SYSTEMS {
+        let z = o
+            .zero
+            .get(s)
+            .and_then(|pages| pages.first())
+            .copied()
+            .unwrap_or_default();
+        pose(system_base(s + 1), &z.offset);
+    }
+    for s in 0..ZERO_OFFSET_SYSTEMS {
+        let z = o
+            .zero
+            .get(s)
+            .and_then(|pages| pages.first())
+            .copied()
+            .unwrap_or_default();
+        all.insert(
+            system_base(s + 1) + 9,
+            (z.rotation_xy, z.rotation_xy, false),
+        );
+    }
+    let applied = f64::from(u8::from(o.g92_applied));
+    all.insert(5210, (applied, applied, false));
+    let active = f64::from(o.active_system);
+    all.insert(5220, (active, active, false));
+    all
+}
+
+/// Writes a LinuxCNC parameter file: every parameter LinuxCNC keeps (G28, G30, G92, the active
+/// system, G54…G59.3 page 1 with rotation) and the other parameters, sorted, one `number\tvalue` a
+/// line, values in file units `units` with LinuxCNC's six decimals when they are exact (else the
+/// shortest exact text). Pages 2…32, workpiece frames and home positions have no LinuxCNC
+/// parameters and are not written.
+pub fn write_var_file(data: &StoredOffsets, units: LengthUnits) -> String {
+    let scale = units.mm_per_unit();
+    let mut out = String::new();
+    for (n, (value, file, linear)) in var_values(data, scale) {
+        let text = if linear {
+            exact(file, value, |x| x * scale, false)
+        } else {
+            exact(file, value, |x| x, false)
+        };
+        let _ = writeln!(out, "{n}\t{text}");
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::BAD_DATA;
+
+    const MM: LengthUnits = LengthUnits::Millimetres;
+    const INCH: LengthUnits = LengthUnits::Inches;
+
+    fn close(a: f64, b: f64) -> bool {
+        (a - b).abs() < 1e-9
+    }
+
+    fn tbl_err(text: &str) -> (String, u32, u32) {
+        let d = parse_tool_table(text, "t.tbl", MM).unwrap_err();
+        assert_eq!(d.code.to_string(), BAD_DATA);
+        assert_eq!(d.notes, vec!["in LinuxCNC tool table t.tbl".to_string()]);
+        (d.message, d.span.line, d.span.column)
+    }
+
+    fn var_err(text: &str) -> (String, u32, u32) {
+        let d = parse_var_file(text, "p.var", MM).unwrap_err();
+        assert_eq!(
+            d.notes,
+            vec!["in LinuxCNC parameter file p.var".to_string()]
+        );
+        (d.message, d.span.line, d.span.column)
+    }
+
+    #[test]
+    fn the_corpus_tool_table_is_in_inches() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../../shared/corpus/rs274ngc/tool.tbl"
+        );
+        let text = std::fs::read_to_string(path).unwrap();
+        let t = parse_tool_table(&text, path, INCH).unwrap();
+        assert_eq!(t.tools.keys().copied().collect::<Vec<_>>(), vec![1, 2, 10]);
+        let t1 = t.get(1).unwrap();
+        assert_eq!((t1.pocket, t1.comment.as_str()), (1, "tool 1"));
+        assert_eq!(t1.edges.len(), 1);
+        let e = t1.edges[0];
+        assert!(close(e.offset.z, -38.1), "{}", e.offset.z); // Z-1.5 in
+        assert!(close(e.radius, 3.175), "{}", e.radius); // D0.25 in
+        assert_eq!((e.offset.x, e.length, e.orientation), (0.0, [0.0; 3], 0));
+        let t10 = t.get(10).unwrap();
+        assert!(close(t10.edges[0].offset.z, 2.54));
+        assert!(close(t10.edges[0].radius, 6.35));
+        assert_eq!(t10.comment, "tool 10");
+        // In mm the same file means what it says.
+        let mm = parse_tool_table(&text, path, MM).unwrap();
+        assert_eq!(mm.edge(1, 1).unwrap().offset.z, -1.5);
+        assert_eq!(mm.edge(1, 1).unwrap().radius, 0.125);
+        // Written back in inches, it is LinuxCNC's own text.
+        assert_eq!(
+            write_tool_table(&t, INCH),
+            "T1   P1   D+0.250000 Z-1.500000 ;tool 1\n\
+             T2   P2   D+0.100000 ;tool 2\n\
+             T10  P10  D+0.500000 Z+0.100000 ;tool 10\n"
+        );
+    }
+
+    #[test]
+    fn tool_table_words_in_any_order_and_case() {
+        let text = "; a comment line\n\n  t7 q3 x1 y2 z3 a4 b5 c6 u7 v8 w9 i10 j-20 d4 p12   ;  lathe tool  \r\nT8\n";
+        let t = parse_tool_table(text, "t.tbl", MM).unwrap();
+        let e = t.edge(7, 1).unwrap();
+        assert_eq!(
+            e.offset.to_array(),
+            [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]
+        );
+        assert_eq!(
+            (e.front_angle, e.back_angle, e.orientation, e.radius),
+            (10.0, -20.0, 3, 2.0)
+        );
+        assert_eq!(t.get(7).unwrap().pocket, 12);
+        assert_eq!(t.get(7).unwrap().comment, "lathe tool");
+        assert_eq!(t.get(8).unwrap().edges, vec![ToolEdge::default()]);
+        // Rotary offsets are degrees whatever the unit.
+        let inch = parse_tool_table(text, "t.tbl", INCH).unwrap();
+        assert_eq!(inch.edge(7, 1).unwrap().offset.a, 4.0);
+        assert!(close(inch.edge(7, 1).unwrap().offset.u, 7.0 * 25.4));
+    }
+
+    #[test]
+    fn tool_table_errors_have_line_and_column() {
+        let (m, line, col) = tbl_err("T1 P1\nT2 P2 K5 ;x\n");
+        assert!(m.contains("unknown word \"K5\""), "{m}");
+        assert_eq!((line, col), (2, 7));
+        let (m, line, col) = tbl_err("T1 P1\n  P2 Z1 ;no number\n");
+        assert!(m.contains("needs a T word"), "{m}");
+        assert_eq!((line, col), (2, 3));
+        let (m, line, col) = tbl_err("T1 P1\nT3 P3\nT1 P4\n");
+        assert!(
+            m.contains("tool T1 is defined twice (first on line 1)"),
+            "{m}"
+        );
+        assert_eq!((line, col), (3, 1));
+        let (m, line, col) = tbl_err("T1 Z1.5.3\n");
+        assert!(
+            m.contains("Z (tool offset) needs a number, not \"1.5.3\""),
+            "{m}"
+        );
+        assert_eq!((line, col), (1, 4));
+        let (m, _, _) = tbl_err("T1 Z\n");
+        assert!(m.contains("not \"\""), "{m}");
+        let (m, _, _) = tbl_err("T1 Znan\n");
+        assert!(m.contains("needs a number"), "{m}");
+        let (m, _, _) = tbl_err("T0 P1\n");
+        assert!(m.contains("T (tool number) must be 1…"), "{m}");
+        let (m, _, _) = tbl_err("T1.5\n");
+        assert!(m.contains("whole number"), "{m}");
+        let (m, _, _) = tbl_err("T1 P-1\n");
+        assert!(m.contains("P (pocket)"), "{m}");
+        let (m, _, _) = tbl_err("T1 Q10\n");
+        assert!(m.contains("Q (orientation) must be 0…9, not 10"), "{m}");
+        let (m, _, _) = tbl_err("T1 D-2\n");
+        assert!(m.contains("D (diameter) must not be negative"), "{m}");
+        let (m, line, col) = tbl_err("T1 Z1 z2\n");
+        assert!(m.contains("word Z is given twice"), "{m}");
+        assert_eq!((line, col), (1, 7));
+        let (_, line, col) = tbl_err("T1 ; é\nTé\n");
+        assert_eq!((line, col), (2, 1));
+        assert!(parse_tool_table("", "t.tbl", MM).unwrap().tools.is_empty());
+    }
+
+    #[test]
+    fn var_file_maps_the_offsets() {
+        let text = "31\t2.500000\n5161\t1.000000\n5164\t90.000000\n5183\t-2.000000\n5210\t1.000000\n\
+                    5213\t0.500000\n5220\t2.000000\n5221\t100.000000\n5222\t50.000000\n5230\t90.000000\n\
+                    5231\t7.000000\n5243\t-3.000000\n5389\t4.000000\n5390\t-45.000000\n";
+        let o = parse_var_file(text, "p.var", INCH).unwrap();
+        let t = &o.offsets;
+        assert!(close(t.g28.x, 25.4));
+        assert_eq!(t.g28.a, 90.0); // degrees stay degrees
+        assert!(close(t.g30.z, -50.8));
+        assert!(t.g92_applied);
+        assert!(close(t.g92.z, 12.7));
+        assert_eq!(t.active_system, 2);
+        assert!(close(t.zero_offset(1, 1).unwrap().offset.x, 2540.0));
+        assert!(close(t.zero_offset(1, 1).unwrap().offset.y, 1270.0));
+        assert_eq!(t.zero_offset(1, 1).unwrap().rotation_xy, 90.0);
+        assert!(close(t.zero_offset(2, 1).unwrap().offset.z, -76.2));
+        assert!(close(t.zero_offset(9, 1).unwrap().offset.w, 101.6));
+        assert_eq!(t.zero_offset(9, 1).unwrap().rotation_xy, -45.0);
+        assert_eq!(t.zero_offset(1, 2).unwrap().offset, Pose::ZERO);
+        // Not offsets: kept as written, no unit conversion.
+        assert_eq!(o.parameters, BTreeMap::from([(31, 2.5), (5231, 7.0)]));
+    }
+
+    #[test]
+    fn var_file_errors_have_line_and_column() {
+        let (m, line, col) = var_err("5161\t0.0\n5162 1.0 extra\n");
+        assert!(m.contains("a number and a value"), "{m}");
+        assert_eq!((line, col), (2, 10));
+        let (m, line, col) = var_err("5161\t0.0\n5162\n");
+        assert!(m.contains("a number and a value"), "{m}");
+        assert_eq!((line, col), (2, 1));
+        let (m, line, col) = var_err("5221\t1.0\n5161\t0.0\n");
+        assert!(m.contains("5161 comes after 5221 (line 1)"), "{m}");
+        assert_eq!((line, col), (2, 1));
+        let (m, _, _) = var_err("5221\t1.0\n5221\t2.0\n");
+        assert!(m.contains("comes after"), "{m}");
+        let (m, line, col) = var_err("5221\tabc\n");
+        assert!(
+            m.contains("parameter 5221 needs a finite number, not \"abc\""),
+            "{m}"
+        );
+        assert_eq!((line, col), (1, 6));
+        let (m, _, _) = var_err("5221\tinf\n");
+        assert!(m.contains("finite"), "{m}");
+        let (m, _, _) = var_err("0\t1.0\n");
+        assert!(m.contains("1…5601"), "{m}");
+        let (m, _, _) = var_err("5602\t1.0\n");
+        assert!(m.contains("1…5601"), "{m}");
+        let (m, _, _) = var_err("-5\t1.0\n");
+        assert!(m.contains("\"-5\""), "{m}");
+        let (m, _, _) = var_err("5220\t10.000000\n");
+        assert!(
+            m.contains("5220 (active coordinate system) must be 1…9"),
+            "{m}"
+        );
+        let (m, _, _) = var_err("5220\t1.5\n");
+        assert!(m.contains("not 1.5"), "{m}");
+        let (m, _, _) = var_err("5210\t0.5\n");
+        assert!(m.contains("5210 (G92 applied) must be 0 or 1"), "{m}");
+        // Comments and blank lines are skipped.
+        let ok = parse_var_file("# saved by hand\n\n; also\n5220 3\n", "p.var", MM).unwrap();
+        assert_eq!(ok.offsets.active_system, 3);
+    }
+
+    #[test]
+    fn var_writer_writes_what_linuxcnc_keeps() {
+        let mut data = StoredOffsets::default();
+        data.offsets.zero[0][0].offset.x = 100.0;
+        data.offsets.zero[0][0].rotation_xy = 0.1 + 0.2; // not exact in six decimals
+        data.offsets.zero[0][5].offset.x = 9.0; // page 6: no LinuxCNC parameter
+        data.parameters.insert(31, 2.5);
+        let text = write_var_file(&data, MM);
+        let lines: Vec<&str> = text.lines().collect();
+        // 9 + 9 + 1 + 9 + 1 + 9 × 10 parameters LinuxCNC keeps, and #31.
+        assert_eq!(lines.len(), 9 + 9 + 1 + 9 + 1 + 90 + 1);
+        assert_eq!(lines[0], "31\t2.500000");
+        assert_eq!(lines[1], "5161\t0.000000");
+        assert!(lines.contains(&"5220\t1.000000"));
+        assert!(lines.contains(&"5221\t100.000000"));
+        assert!(lines.contains(&"5230\t0.30000000000000004"));
+        assert_eq!(*lines.last().unwrap(), "5390\t0.000000");
+        let back = parse_var_file(&text, "p.var", MM).unwrap();
+        assert_eq!(back.offsets.zero[0][0], data.offsets.zero[0][0]);
+        assert_eq!(back.offsets.zero[0][5].offset.x, 0.0);
+        assert_eq!(back.parameters, data.parameters);
+    }
+
+    #[test]
+    fn never_panics_on_odd_text() {
+        for text in [
+            "\u{feff}T1",
+            "T",
+            "TT",
+            ";",
+            "T1 ;",
+            "é",
+            "T1\tD1",
+            "\r\n\r",
+            "T99999999999",
+        ] {
+            let _ = parse_tool_table(text, "t.tbl", MM);
+            let _ = parse_var_file(text, "p.var", MM);
+        }
+    }
+}

@@ -607,9 +607,11 @@ mod tests {
     #[test]
     fn word_letters_are_ascii_letters_but_n_and_o() {
         for c in 0..=255u8 {
-            let expected = (c.is_ascii_alphabetic() && !matches!(c, b'n' | b'N' | b'o' | b'O'))
-                .then(|| c.to_ascii_uppercase())
-                .unwrap_or(0);
+            let expected = if c.is_ascii_alphabetic() && !matches!(c, b'n' | b'N' | b'o' | b'O') {
+                c.to_ascii_uppercase()
+            } else {
+                0
+            };
             assert_eq!(WORD_LETTER[c as usize], expected, "{c:#x}");
         }
     }

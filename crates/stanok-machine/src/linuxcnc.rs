@@ -60,6 +60,64 @@ fn is_linear(k: usize) -> bool {
     !(3..=5).contains(&k)
 }
 
+/// The value of a number written in a LinuxCNC file, as f64; None unless finite.
+fn read_number(text: &str) -> Option<f64> {
+    text.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
+/// The digits of a plain decimal number (`-1.5`, `.25`, `3e2`): sign, digits, power of ten.
+fn decimal_parts(text: &str) -> Option<(bool, String, i64)> {
+    let (negative, rest) = match text.as_bytes().first()? {
+        b'-' => (true, &text[1..]),
+        b'+' => (false, &text[1..]),
+        _ => (false, text),
+    };
+    let (mantissa, exponent) = match rest.find(['e', 'E']) {
+        Some(i) => (&rest[..i], rest[i + 1..].parse::<i64>().ok()?),
+        None => (rest, 0),
+    };
+    let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
+    let digits = format!("{int}{frac}");
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    let frac_len = i64::try_from(frac.len()).ok()?;
+    Some((negative, digits, exponent.checked_sub(frac_len)?))
+}
+
+/// A length written in a LinuxCNC file, in mm. An inch value is converted from its decimal text,
+/// rounding once (`1.5` in → the f64 nearest 38.1, where 1.5 × 25.4 in f64 gives
+/// 38.099999999999994). None unless a finite number.
+fn read_length(text: &str, units: LengthUnits) -> Option<f64> {
+    let v = read_number(text)?;
+    if units == LengthUnits::Millimetres {
+        return Some(v);
+    }
+    let Some((negative, digits, exponent)) = decimal_parts(text) else {
+        return Some(v * units.mm_per_unit());
+    };
+    // digits × 254, then × 10^(exponent − 1): 25.4 = 254 / 10, exact in decimal.
+    let mut product: Vec<u8> = Vec::with_capacity(digits.len() + 3);
+    let mut carry = 0u32;
+    for d in digits.bytes().rev() {
+        let x = u32::from(d - b'0') * 254 + carry;
+        product.push(b'0' + (x % 10) as u8);
+        carry = x / 10;
+    }
+    while carry > 0 {
+        product.push(b'0' + (carry % 10) as u8);
+        carry /= 10;
+    }
+    product.reverse();
+    let sign = if negative { "-" } else { "" };
+    let text = format!(
+        "{sign}{}e{}",
+        String::from_utf8(product).ok()?,
+        exponent - 1
+    );
+    text.parse::<f64>().ok().filter(|v| v.is_finite())
+}
+
 /// The lines of `text` without their line ends, with the byte offset each starts at.
 fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> {
     let mut start = 0;
@@ -91,16 +149,17 @@ fn words(s: &str) -> impl Iterator<Item = (Range<usize>, &str)> {
     })
 }
 
-/// Formats `value` (mm or deg) in file units so that reading it back gives `value` again: LinuxCNC's
-/// own six decimals when they suffice, else the shortest exact text. `back` is what the reader does
-/// with the number it reads; `sign` writes a `+` on positive numbers (`%+f`, the tool table's style).
-fn exact(file_value: f64, value: f64, back: impl Fn(f64) -> f64, sign: bool) -> String {
+/// Writes `file_value` (a value in file units) so that reading the text back (`reads_back`) gives
+/// the stored value again: LinuxCNC's own six decimals when they suffice, else the shortest text of
+/// `file_value`, which is exact whenever no unit conversion is involved. `sign` writes a `+` on
+/// positive numbers (`%+f`, the tool table's style).
+fn exact(file_value: f64, reads_back: impl Fn(&str) -> bool, sign: bool) -> String {
     let six = if sign {
         format!("{file_value:+.6}")
     } else {
         format!("{file_value:.6}")
     };
-    if six.parse::<f64>().map(&back) == Ok(value) {
+    if reads_back(&six) {
         return six;
     }
     if sign {
@@ -119,7 +178,7 @@ struct ToolLine {
 fn parse_tool_word(
     word: &str,
     at: &Range<usize>,
-    scale: f64,
+    units: LengthUnits,
     into: &mut ToolLine,
 ) -> Result<(), (String, Range<usize>)> {
     let mut chars = word.chars();
@@ -133,13 +192,14 @@ fn parse_tool_word(
             )
         })
     };
-    let number = |what: &str| match value.parse::<f64>() {
-        Ok(v) if v.is_finite() => Ok(v),
-        _ => Err((
+    let bad = |what: &str| {
+        (
             format!("{letter} ({what}) needs a number, not \"{value}\""),
             at.clone(),
-        )),
+        )
     };
+    let number = |what: &str| read_number(value).ok_or_else(|| bad(what));
+    let length = |what: &str| read_length(value, units).ok_or_else(|| bad(what));
     match letter {
         'T' => {
             let t = whole("tool number")?;
@@ -161,14 +221,14 @@ fn parse_tool_word(
             })?;
         }
         'D' => {
-            let d = number("diameter")?;
+            let d = length("diameter")?;
             if d < 0.0 {
                 return Err((
-                    format!("D (diameter) must not be negative, not {d}"),
+                    format!("D (diameter) must not be negative, not {value}"),
                     at.clone(),
                 ));
             }
-            into.edge.radius = d * scale / 2.0;
+            into.edge.radius = d / 2.0;
         }
         'I' => into.edge.front_angle = number("front angle")?,
         'J' => into.edge.back_angle = number("back angle")?,
@@ -193,9 +253,12 @@ fn parse_tool_word(
                     at.clone(),
                 ));
             };
-            let v = number("tool offset")?;
             let mut offset = into.edge.offset.to_array();
-            offset[k] = if is_linear(k) { v * scale } else { v };
+            offset[k] = if is_linear(k) {
+                length("tool offset")?
+            } else {
+                number("tool offset")?
+            };
             into.edge.offset = Pose::from_array(offset);
         }
     }
@@ -211,7 +274,6 @@ pub fn parse_tool_table(
 ) -> Result<ToolTable, Diagnostic> {
     let note = format!("in LinuxCNC tool table {file_name}");
     let fail = |message: String, range: Range<usize>| bad_data(text, &note, &message, Some(range));
-    let scale = units.mm_per_unit();
     let mut table = ToolTable::default();
     let mut first_line: BTreeMap<u32, u32> = BTreeMap::new();
     for (start, line) in lines(text) {
@@ -238,7 +300,7 @@ pub fn parse_tool_table(
                 ));
             }
             seen.push(letter);
-            parse_tool_word(word, &at, scale, &mut parsed).map_err(|(m, r)| fail(m, r))?;
+            parse_tool_word(word, &at, units, &mut parsed).map_err(|(m, r)| fail(m, r))?;
         }
         let body_at = start + (body.len() - body.trim_start().len());
         let Some((number, at)) = parsed.number else {
@@ -280,22 +342,23 @@ pub fn write_tool_table(table: &ToolTable, units: LengthUnits) -> String {
         let e = tool.edges.first().copied().unwrap_or_default();
         let _ = write!(out, "T{:<3} P{:<3}", tool.number, tool.pocket);
         if e.radius != 0.0 {
-            let d = exact(e.radius * 2.0 / scale, e.radius, |d| d * scale / 2.0, true);
-            let _ = write!(out, " D{d}");
+            let back = |t: &str| read_length(t, units).map(|d| d / 2.0) == Some(e.radius);
+            let _ = write!(out, " D{}", exact(e.radius * 2.0 / scale, back, true));
         }
         for (k, v) in e.offset.to_array().into_iter().enumerate() {
             if v != 0.0 {
                 let text = if is_linear(k) {
-                    exact(v / scale, v, |x| x * scale, true)
+                    exact(v / scale, |t| read_length(t, units) == Some(v), true)
                 } else {
-                    exact(v, v, |x| x, true)
+                    exact(v, |t| read_number(t) == Some(v), true)
                 };
                 let _ = write!(out, " {}{text}", AXIS_LETTERS[k]);
             }
         }
         for (letter, v) in [('I', e.front_angle), ('J', e.back_angle)] {
             if v != 0.0 {
-                let _ = write!(out, " {letter}{}", exact(v, v, |x| x, true));
+                let text = exact(v, |t| read_number(t) == Some(v), true);
+                let _ = write!(out, " {letter}{text}");
             }
         }
         if e.orientation != 0 {
@@ -320,15 +383,27 @@ fn system_base(n: usize) -> u32 {
     5201 + 20 * n as u32
 }
 
-/// Stores parameter `n` = `v` (file units) into `into`; `Err` says why the value is refused.
-fn apply_parameter(n: u32, v: f64, scale: f64, into: &mut StoredOffsets) -> Result<(), String> {
+/// Stores parameter `n`, written as `text`, into `into`; `Err` says why the value is refused.
+fn apply_parameter(
+    n: u32,
+    text: &str,
+    units: LengthUnits,
+    into: &mut StoredOffsets,
+) -> Result<(), String> {
+    let v = read_number(text)
+        .ok_or_else(|| format!("parameter {n} needs a finite number, not \"{text}\""))?;
     let o = &mut into.offsets;
-    let axis = |base: u32| (n - base) as usize;
     let set = |pose: &mut Pose, k: usize| {
         let mut a = pose.to_array();
-        a[k] = if is_linear(k) { v * scale } else { v };
+        // read_length succeeds wherever read_number does.
+        a[k] = if is_linear(k) {
+            read_length(text, units).unwrap_or(v)
+        } else {
+            v
+        };
         *pose = Pose::from_array(a);
     };
+    let axis = |base: u32| (n - base) as usize;
     match n {
         5161..=5169 => set(&mut o.g28, axis(5161)),
         5181..=5189 => set(&mut o.g30, axis(5181)),
@@ -375,7 +450,6 @@ pub fn parse_var_file(
 ) -> Result<StoredOffsets, Diagnostic> {
     let note = format!("in LinuxCNC parameter file {file_name}");
     let fail = |message: String, range: Range<usize>| bad_data(text, &note, &message, Some(range));
-    let scale = units.mm_per_unit();
     let mut out = StoredOffsets::default();
     let mut previous: Option<(u32, u32)> = None;
     for (start, line) in lines(text) {
@@ -416,16 +490,7 @@ pub fn parse_var_file(
             }
         }
         previous = Some((n, line_no));
-        let v = match v_text.parse::<f64>() {
-            Ok(v) if v.is_finite() => v,
-            _ => {
-                return Err(fail(
-                    format!("parameter {n} needs a finite number, not \"{v_text}\""),
-                    v_at.clone(),
-                ))
-            }
-        };
-        apply_parameter(n, v, scale, &mut out).map_err(|m| fail(m, v_at.clone()))?;
+        apply_parameter(n, v_text, units, &mut out).map_err(|m| fail(m, v_at.clone()))?;
     }
     Ok(out)
 }
@@ -488,9 +553,9 @@ pub fn write_var_file(data: &StoredOffsets, units: LengthUnits) -> String {
     let mut out = String::new();
     for (n, (value, file, linear)) in var_values(data, scale) {
         let text = if linear {
-            exact(file, value, |x| x * scale, false)
+            exact(file, |t| read_length(t, units) == Some(value), false)
         } else {
-            exact(file, value, |x| x, false)
+            exact(file, |t| read_number(t) == Some(value), false)
         };
         let _ = writeln!(out, "{n}\t{text}");
     }
@@ -538,8 +603,8 @@ mod tests {
         assert_eq!((t1.pocket, t1.comment.as_str()), (1, "tool 1"));
         assert_eq!(t1.edges.len(), 1);
         let e = t1.edges[0];
-        assert!(close(e.offset.z, -38.1), "{}", e.offset.z); // Z-1.5 in
-        assert!(close(e.radius, 3.175), "{}", e.radius); // D0.25 in
+        // Z-1.5 and D0.25 in inches, converted from their decimal text: the nearest f64.
+        assert_eq!((e.offset.z, e.radius), (-38.1, 3.175));
         assert_eq!((e.offset.x, e.length, e.orientation), (0.0, [0.0; 3], 0));
         let t10 = t.get(10).unwrap();
         assert!(close(t10.edges[0].offset.z, 2.54));
@@ -708,6 +773,33 @@ mod tests {
         assert_eq!(back.offsets.zero[0][0], data.offsets.zero[0][0]);
         assert_eq!(back.offsets.zero[0][5].offset.x, 0.0);
         assert_eq!(back.parameters, data.parameters);
+    }
+
+    #[test]
+    fn inch_lengths_are_converted_from_their_text() {
+        for (text, mm) in [
+            ("1.5", 38.1),
+            ("-1.5", -38.1),
+            (".25", 6.35),
+            ("+2.5E-1", 6.35),
+            ("1e2", 2540.0),
+            ("0.1", 2.54),
+            ("-0", 0.0),
+            ("3.", 76.2),
+            ("0.000001", 0.0000254),
+        ] {
+            assert_eq!(read_length(text, INCH), Some(mm), "{text}");
+        }
+        assert_eq!(read_length("1.5", MM), Some(1.5));
+        for bad in [
+            "", "-", ".", "e5", "1e", "abc", "inf", "nan", "1e400", "1.2.3",
+        ] {
+            assert_eq!(read_length(bad, INCH), None, "{bad}");
+        }
+        // Forms f64 reads but the decimal path does not still convert.
+        assert_eq!(read_length("infinity", INCH), None);
+        let long = format!("0.{}", "3".repeat(400));
+        assert!(close(read_length(&long, INCH).unwrap(), 25.4 / 3.0));
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Command-line syntax (clap derive).
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
 /// Stanok: an open CNC control kernel.
@@ -29,6 +29,44 @@ impl From<DialectArg> for stanok_syntax::Dialect {
     }
 }
 
+/// Length unit of LinuxCNC tool tables and parameter files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum UnitsArg {
+    /// Millimetres.
+    Mm,
+    /// Inches (a LinuxCNC machine with LINEAR_UNITS = inch; lengths are converted to mm).
+    Inch,
+}
+
+impl From<UnitsArg> for stanok_canon::LengthUnits {
+    fn from(u: UnitsArg) -> Self {
+        match u {
+            UnitsArg::Mm => stanok_canon::LengthUnits::Millimetres,
+            UnitsArg::Inch => stanok_canon::LengthUnits::Inches,
+        }
+    }
+}
+
+/// The machine, and the stored data that replaces its own.
+#[derive(Debug, Clone, Args)]
+pub struct MachineArgs {
+    /// Built-in machine name (`mill`) or a machine-data TOML file.
+    #[arg(long, default_value = "mill")]
+    pub machine: String,
+    /// Tool table to use instead of the machine's: a LinuxCNC tool table (.tbl) or Stanok machine
+    /// data (.toml) holding only [[tool]] sections.
+    #[arg(long, value_name = "FILE")]
+    pub tools: Option<PathBuf>,
+    /// Offsets to use instead of the machine's: a LinuxCNC parameter file (.var) or Stanok machine
+    /// data (.toml) holding only offset sections ([[zero_offset]], [[workpiece]], [[home]], [g28],
+    /// [g30], [g92], [parameters], active_system).
+    #[arg(long, value_name = "FILE")]
+    pub offsets: Option<PathBuf>,
+    /// Length unit of LinuxCNC .tbl/.var files (default: the machine's `linuxcnc_units`).
+    #[arg(long, value_enum, value_name = "UNIT")]
+    pub linuxcnc_units: Option<UnitsArg>,
+}
+
 /// Output format of `stanok canon`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum CanonFormat {
@@ -46,6 +84,8 @@ pub enum Command {
         file: PathBuf,
         #[arg(long, value_enum)]
         dialect: Option<DialectArg>,
+        #[command(flatten)]
+        machine: MachineArgs,
     },
     /// Run a program on the simulated machine and print the run report.
     Run {
@@ -53,9 +93,8 @@ pub enum Command {
         file: PathBuf,
         #[arg(long, value_enum)]
         dialect: Option<DialectArg>,
-        /// Built-in machine name (`mill`) or a machine-data TOML file.
-        #[arg(long, default_value = "mill")]
-        machine: String,
+        #[command(flatten)]
+        machine: MachineArgs,
         /// Print the report as one JSON object.
         #[arg(long)]
         json: bool,
@@ -69,9 +108,8 @@ pub enum Command {
         /// Output format.
         #[arg(long, value_enum)]
         format: Option<CanonFormat>,
-        /// Built-in machine name or machine-data TOML file (configured axes, arc tolerance).
-        #[arg(long, default_value = "mill")]
-        machine: String,
+        #[command(flatten)]
+        machine: MachineArgs,
     },
     /// Draw the tool path: XY, XZ, YZ and isometric views on one SVG sheet.
     Plot {
@@ -82,8 +120,28 @@ pub enum Command {
         /// Output SVG file.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
-        /// Built-in machine name or machine-data TOML file.
-        #[arg(long, default_value = "mill")]
-        machine: String,
+        #[command(flatten)]
+        machine: MachineArgs,
+    },
+    /// Machine data: show what a machine is and what its control stores.
+    Machine {
+        #[command(subcommand)]
+        command: MachineCommand,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum MachineCommand {
+    /// Print the effective machine data: axes, rates, offsets, home positions, tools.
+    Show {
+        #[command(flatten)]
+        machine: MachineArgs,
+        /// Print everything as one JSON object.
+        #[arg(long)]
+        json: bool,
+        /// Print everything as Stanok machine-data TOML (e.g. to turn LinuxCNC files into a
+        /// machine file).
+        #[arg(long, conflicts_with = "json")]
+        toml: bool,
     },
 }

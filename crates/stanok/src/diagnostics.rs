@@ -36,10 +36,13 @@ pub fn to_string(file: &Path, d: &Diagnostic, colour: bool) -> String {
         .and_then(|_| std::fs::read(file).ok())
         .map(|b| String::from_utf8_lossy(&b).into_owned());
     let Some(text) = source.filter(|t| d.span.line > 0 && (d.span.end as usize) <= t.len()) else {
-        let mut s = format!(
-            "{name}:{}:{}: {sev}[{}]: {}\n",
-            d.span.line, d.span.column, d.code, d.message
-        );
+        // Line 0: about the file as a whole (cannot read it, wrong kind), no position to give.
+        let at = if d.span.line == 0 {
+            name
+        } else {
+            format!("{name}:{}:{}", d.span.line, d.span.column)
+        };
+        let mut s = format!("{at}: {sev}[{}]: {}\n", d.code, d.message);
         for n in &d.notes {
             s.push_str(&format!("  = note: {n}\n"));
         }

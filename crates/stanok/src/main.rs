@@ -4,15 +4,24 @@
 //! simulated machine, wires the Canon stream between them and prints what comes out. Every
 //! decision about G-code lives in `stanok-interp`, every decision about the machine in
 //! `stanok-machine`.
+//!
+//! Machine data: `--machine` names the machine, `--tools` / `--offsets` replace its tool table /
+//! offsets (LinuxCNC `.tbl` / `.var`, or Stanok `.toml`), `load_machine` reads and checks them
+//! before anything runs, `control_data` is what the interpreter receives, and `stanok machine show`
+//! prints the result (`machine_show.rs`).
 
 mod cli;
 mod diagnostics;
+mod machine_show;
 mod report;
 
 use clap::Parser;
-use cli::{CanonFormat, Cli, Command};
+use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand};
+use machine_show::{DataSource, Sources};
+use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
+use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
 use stanok_machine::{MachineData, SimMachine};
 use stanok_syntax::Dialect;
 use std::fs::File;
@@ -33,7 +42,11 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
-        Command::Check { file, dialect } => check(&file, dialect.map(Into::into)),
+        Command::Check {
+            file,
+            dialect,
+            machine,
+        } => check(&file, dialect.map(Into::into), &machine),
         Command::Run {
             file,
             dialect,
@@ -52,6 +65,14 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output,
             machine,
         } => plot(&file, dialect.map(Into::into), &output, &machine),
+        Command::Machine {
+            command:
+                MachineCommand::Show {
+                    machine,
+                    json,
+                    toml,
+                },
+        } => machine_show(&machine, json, toml),
     }
 }
 
@@ -73,6 +94,12 @@ fn quiet_on_broken_pipe(e: std::io::Error) -> Result<ExitCode, String> {
     }
 }
 
+/// The stored data the interpreter reads (tool table, offset tables, preset parameters): the
+/// machine's own, or what `--tools` / `--offsets` replaced it with.
+fn control_data(machine: &MachineData) -> ControlData {
+    machine.control.clone()
+}
+
 /// Opens a program and builds its interpreter.
 fn interpreter(
     file: &Path,
@@ -86,26 +113,65 @@ fn interpreter(
     opts.axes = machine.axis_mask();
     opts.arc_tolerance_mm = machine.arc_tolerance;
     opts.continue_after_error = check_mode;
+    // Loaded and validated; handed to the interpreter once `InterpOptions` takes it.
+    let _control: ControlData = control_data(machine);
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
-fn load_machine(spec: &str, file_for_errors: &Path) -> Result<MachineData, ExitCode> {
-    if let Some(m) = MachineData::builtin(spec) {
-        return Ok(m);
-    }
-    let path = PathBuf::from(spec);
-    match MachineData::load(&path) {
-        Ok(m) => Ok(m),
-        Err(d) => {
-            let _ = file_for_errors;
-            diagnostics::render(&path, &d);
-            Err(ExitCode::from(1))
+/// The machine named by `--machine`, with its tools and offsets replaced by `--tools` and
+/// `--offsets`, and where each part came from. A bad file is reported (file:line:column) and gives
+/// exit status 1.
+fn load_machine(args: &MachineArgs) -> Result<(MachineData, Sources), ExitCode> {
+    let fail = |path: &Path, d: &Diagnostic| {
+        diagnostics::render(path, d);
+        ExitCode::from(1)
+    };
+    let mut machine = match MachineData::builtin(&args.machine) {
+        Some(m) => m,
+        None => {
+            let path = PathBuf::from(&args.machine);
+            MachineData::load(&path).map_err(|d| fail(&path, &d))?
         }
+    };
+    if let Some(u) = args.linuxcnc_units {
+        machine.linuxcnc_units = u.into();
     }
+    let units = machine.linuxcnc_units;
+    let mut sources = Sources::machine(&machine.name);
+    if let Some(path) = &args.tools {
+        machine.control.tools = load_tool_file(path, units).map_err(|d| fail(path, &d))?;
+        sources.tools = DataSource::file(path, DataFileKind::of(path), units);
+    }
+    if let Some(path) = &args.offsets {
+        let stored = load_offset_file(path, units).map_err(|d| fail(path, &d))?;
+        machine.control.offsets = stored.offsets;
+        machine.control.parameters = stored.parameters;
+        sources.offsets = DataSource::file(path, DataFileKind::of(path), units);
+    }
+    Ok((machine, sources))
 }
 
-fn check(file: &Path, dialect: Option<Dialect>) -> Result<ExitCode, String> {
-    let machine = MachineData::default_mill();
+fn machine_show(args: &MachineArgs, json: bool, toml: bool) -> Result<ExitCode, String> {
+    let (machine, sources) = match load_machine(args) {
+        Ok(m) => m,
+        Err(code) => return Ok(code),
+    };
+    let text = if json {
+        machine_show::json(&machine, &sources) + "\n"
+    } else if toml {
+        machine.to_toml()
+    } else {
+        machine_show::text(&machine, &sources)
+    };
+    write_stdout(&text)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<ExitCode, String> {
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
+        Err(code) => return Ok(code),
+    };
     let (mut interp, _) = interpreter(file, dialect, &machine, true)?;
     let mut errors = Vec::new();
     for item in interp.by_ref() {
@@ -136,11 +202,11 @@ fn check(file: &Path, dialect: Option<Dialect>) -> Result<ExitCode, String> {
 fn run_program(
     file: &Path,
     dialect: Option<Dialect>,
-    machine_spec: &str,
+    args: &MachineArgs,
     json: bool,
 ) -> Result<ExitCode, String> {
-    let machine = match load_machine(machine_spec, file) {
-        Ok(m) => m,
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
     let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
@@ -180,10 +246,10 @@ fn canon(
     file: &Path,
     dialect: Option<Dialect>,
     format: Option<CanonFormat>,
-    machine_spec: &str,
+    args: &MachineArgs,
 ) -> Result<ExitCode, String> {
-    let machine = match load_machine(machine_spec, file) {
-        Ok(m) => m,
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
     let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
@@ -236,10 +302,10 @@ fn plot(
     file: &Path,
     dialect: Option<Dialect>,
     output: &Path,
-    machine_spec: &str,
+    args: &MachineArgs,
 ) -> Result<ExitCode, String> {
-    let machine = match load_machine(machine_spec, file) {
-        Ok(m) => m,
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
     let (mut interp, _) = interpreter(file, dialect, &machine, false)?;

@@ -137,11 +137,17 @@ pub enum MachineCommand {
         #[command(flatten)]
         machine: MachineArgs,
         /// Print everything as one JSON object.
-        #[arg(long)]
+        #[arg(long, conflicts_with_all = ["toml", "tbl", "var"])]
         json: bool,
         /// Print everything as Stanok machine-data TOML (e.g. to turn LinuxCNC files into a
         /// machine file).
-        #[arg(long, conflicts_with = "json")]
+        #[arg(long, conflicts_with_all = ["tbl", "var"])]
         toml: bool,
+        /// Print the tool table as a LinuxCNC tool table (in --linuxcnc-units).
+        #[arg(long, conflicts_with = "var")]
+        tbl: bool,
+        /// Print the offsets and parameters as a LinuxCNC parameter file (in --linuxcnc-units).
+        #[arg(long)]
+        var: bool,
     },
 }

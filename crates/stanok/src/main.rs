@@ -22,7 +22,7 @@ use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
-use stanok_machine::{MachineData, SimMachine};
+use stanok_machine::{linuxcnc, MachineData, SimMachine, StoredOffsets};
 use stanok_syntax::Dialect;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
@@ -71,8 +71,19 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
                     machine,
                     json,
                     toml,
+                    tbl,
+                    var,
                 },
-        } => machine_show(&machine, json, toml),
+        } => {
+            let format = match (json, toml, tbl, var) {
+                (true, ..) => ShowFormat::Json,
+                (_, true, ..) => ShowFormat::Toml,
+                (_, _, true, _) => ShowFormat::Tbl,
+                (.., true) => ShowFormat::Var,
+                _ => ShowFormat::Text,
+            };
+            machine_show(&machine, format)
+        }
     }
 }
 
@@ -151,17 +162,33 @@ fn load_machine(args: &MachineArgs) -> Result<(MachineData, Sources), ExitCode> 
     Ok((machine, sources))
 }
 
-fn machine_show(args: &MachineArgs, json: bool, toml: bool) -> Result<ExitCode, String> {
+/// What `stanok machine show` prints.
+enum ShowFormat {
+    Text,
+    Json,
+    Toml,
+    Tbl,
+    Var,
+}
+
+fn machine_show(args: &MachineArgs, format: ShowFormat) -> Result<ExitCode, String> {
     let (machine, sources) = match load_machine(args) {
         Ok(m) => m,
         Err(code) => return Ok(code),
     };
-    let text = if json {
-        machine_show::json(&machine, &sources) + "\n"
-    } else if toml {
-        machine.to_toml()
-    } else {
-        machine_show::text(&machine, &sources)
+    let units = machine.linuxcnc_units;
+    let text = match format {
+        ShowFormat::Text => machine_show::text(&machine, &sources),
+        ShowFormat::Json => machine_show::json(&machine, &sources) + "\n",
+        ShowFormat::Toml => machine.to_toml(),
+        ShowFormat::Tbl => linuxcnc::write_tool_table(&machine.control.tools, units),
+        ShowFormat::Var => {
+            let stored = StoredOffsets {
+                offsets: machine.control.offsets,
+                parameters: machine.control.parameters,
+            };
+            linuxcnc::write_var_file(&stored, units)
+        }
     };
     write_stdout(&text)?;
     Ok(ExitCode::SUCCESS)

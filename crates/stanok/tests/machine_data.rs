@@ -328,3 +328,58 @@ fn files_of_the_wrong_kind_are_refused() {
         "{err}"
     );
 }
+
+#[test]
+fn show_writes_linuxcnc_files_that_read_back() {
+    let tbl = corpus("rs274ngc/tool.tbl");
+    let inch = ["--linuxcnc-units", "inch"];
+    let mut args = vec!["machine", "show", "--tbl", "--tools", &tbl];
+    args.extend_from_slice(&inch);
+    let (code, out, err) = stanok(&args);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(
+        out,
+        "T1   P1   D+0.250000 Z-1.500000 ;tool 1\n\
+         T2   P2   D+0.100000 ;tool 2\n\
+         T10  P10  D+0.500000 Z+0.100000 ;tool 10\n"
+    );
+    let again = temp("again.tbl", &out);
+    let tools_json = |file: &str| {
+        let mut args = vec!["machine", "show", "--json", "--tools", file];
+        args.extend_from_slice(&inch);
+        json(&stanok(&args).1)["tools"].clone()
+    };
+    assert_eq!(tools_json(&tbl), tools_json(&again));
+
+    let example = repo("machines/example-offsets-tools.toml");
+    let (code, var, err) = stanok(&["machine", "show", "--var", "--machine", &example]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        var.starts_with("31\t2.500000\n100\t12.000000\n5161\t0.000000\n"),
+        "{var}"
+    );
+    assert!(
+        var.contains("\n5221\t100.000000\n5222\t50.000000\n"),
+        "{var}"
+    );
+    assert!(
+        var.contains("\n5381\t10.000000\n") && var.contains("\n5390\t90.000000\n"),
+        "{var}"
+    );
+    let saved = temp("example.var", &var);
+    let (code, out, err) = stanok(&["machine", "show", "--json", "--offsets", &saved]);
+    assert_eq!(code, 0, "{err}");
+    let v = json(&out);
+    // Page 1 of G54…G59.3 and the stored positions survive; G56 page 12, the workpiece frames and
+    // the home positions have no LinuxCNC parameters.
+    let codes: Vec<&str> = v["zero_offsets"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|z| z["code"].as_str().unwrap())
+        .collect();
+    assert_eq!(codes, ["G54", "G59.3"]);
+    assert_eq!(v["g30"]["x"].as_f64(), Some(450.0));
+    assert_eq!(v["parameters"]["100"].as_f64(), Some(12.0));
+    assert_eq!(v["workpiece_frames"].as_array().unwrap().len(), 0);
+}

@@ -277,7 +277,7 @@ fn page_index(page: &Option<Spanned<i64>>, code: &str) -> Result<usize, Invalid>
     }
 }
 
-/// 1 to `max` numbers (the rest 0), each finite.
+/// `min_len` to 3 numbers (the rest 0), each finite; absent = all 0.
 fn triple(
     values: &Option<Spanned<Vec<Spanned<f64>>>>,
     what: &str,

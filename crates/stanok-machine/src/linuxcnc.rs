@@ -495,8 +495,9 @@ pub fn parse_var_file(
     Ok(out)
 }
 
-/// The parameters LinuxCNC keeps in its file (its `_required_parameters`), with their values from
-/// `o` in file units, plus `other` (parameters that are offsets are taken from `o`, not `other`).
+/// The parameters LinuxCNC keeps in its file (its `_required_parameters`), taken from
+/// `data.offsets`, plus `data.parameters` (an entry that is an offset's number is ignored: the
+/// offset wins). Each as number → (stored value in mm/deg, value in file units, is a length).
 fn var_values(data: &StoredOffsets, scale: f64) -> BTreeMap<u32, (f64, f64, bool)> {
     // number → (mm or deg value, file value, linear)
     let mut all = BTreeMap::new();

@@ -136,7 +136,9 @@ impl Ctx<'_> {
         let centre_m = self.st.frame.to_machine(&Pose::from_array(centre)).xyz();
         let mut normal = [0.0; 3];
         normal[n] = if ccw { 1.0 } else { -1.0 };
-        let axis = self.st.frame.rotate_to_machine(normal);
+        // The rotation axis maps with the frame's linear part; a mirror (negative determinant)
+        // reverses the sense of rotation, so the axis flips (spec axioma-1 §11.2).
+        let axis = self.st.frame.arc_axis_to_machine(normal);
         let end_m = self.st.frame.to_machine(&end);
         self.out.push(Canon::ArcFeed(ArcMove {
             start: self.st.position,

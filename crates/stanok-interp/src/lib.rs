@@ -25,8 +25,10 @@
 
 mod arc;
 mod axioma;
+mod axioma_chain;
 mod ctx;
 mod flow;
+mod frame;
 mod params;
 mod rs274;
 mod state;
@@ -166,6 +168,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 Dialect::Axioma => 0,
             },
             frame: WorkFrame::default(),
+            xy_rotation_deg: 0.0,
+            axioma: axioma_chain::AxiomaChain::default(),
             position: opts.initial_position,
         };
         Interpreter {
@@ -217,9 +221,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
             position: self.state.position,
             units: self.state.units,
             g5x_index: self.state.g5x_index,
-            g5x_offset: self.state.frame.g5x,
-            g92_offset: self.state.frame.g92,
-            xy_rotation: self.state.frame.rotation_deg,
+            g5x_offset: *self.state.frame.origin(),
+            g92_offset: *self.state.frame.shift(),
+            xy_rotation: self.state.xy_rotation_deg,
         }
     }
 

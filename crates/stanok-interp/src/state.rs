@@ -2,6 +2,8 @@
 //! the current position, technology values. A block reads it, computes everything it will do, and
 //! only then commits (see `block.rs`), so an erroneous block leaves this untouched.
 
+use crate::axioma_chain::AxiomaChain;
+pub use crate::frame::WorkFrame;
 use stanok_canon::{FeedMode, LengthUnits, Plane, Pose};
 
 /// Group 1 / Interpolate: the motion mode.
@@ -40,110 +42,6 @@ pub enum PathMode {
         /// P, mm (0 = as fast as possible).
         blend_tolerance: f64,
     },
-}
-
-/// The work frame of the RS274/NGC chain (LinuxCNC, spec rs274ngc §3.1), in mm and degrees:
-///
-/// ```text
-/// machine = Rot_R(p + g92) + g5x + tlo          p = Rot_−R(machine − g5x − tlo) − g92
-/// ```
-///
-/// AxiOMA programs use the same structure with all terms zero until the coordinate-chain issue adds
-/// its table offsets and frames.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct WorkFrame {
-    /// Active G54…G59.3 origin.
-    pub g5x: Pose,
-    /// G92/G52 offset (applied before the rotation).
-    pub g92: Pose,
-    /// Rotation about Z of the active coordinate system, degrees CCW.
-    pub rotation_deg: f64,
-    /// Tool length offset.
-    pub tlo: Pose,
-}
-
-impl Default for WorkFrame {
-    fn default() -> Self {
-        WorkFrame {
-            g5x: Pose::ZERO,
-            g92: Pose::ZERO,
-            rotation_deg: 0.0,
-            tlo: Pose::ZERO,
-        }
-    }
-}
-
-impl WorkFrame {
-    /// Program (work) coordinates → machine coordinates, mm.
-    ///
-    /// Written field by field (no `[f64; 9]` round trips: this runs two or three times per move),
-    /// with the same operations in the same order as the formula, so results are bit-identical
-    /// (`-0.0 + 0.0` is `+0.0` here too, which the LinuxCNC traces show).
-    #[inline]
-    pub fn to_machine(&self, p: &Pose) -> Pose {
-        let mut v = add(p, &self.g92);
-        if self.rotation_deg != 0.0 {
-            let (s, c) = self.rotation_deg.to_radians().sin_cos();
-            let (x, y) = (v.x, v.y);
-            v.x = x * c - y * s;
-            v.y = x * s + y * c;
-        }
-        add(&v, &add(&self.g5x, &self.tlo))
-    }
-
-    /// Machine coordinates → program (work) coordinates, mm.
-    #[inline]
-    pub fn to_program(&self, m: &Pose) -> Pose {
-        let mut v = sub(m, &add(&self.g5x, &self.tlo));
-        if self.rotation_deg != 0.0 {
-            let (s, c) = (-self.rotation_deg).to_radians().sin_cos();
-            let (x, y) = (v.x, v.y);
-            v.x = x * c - y * s;
-            v.y = x * s + y * c;
-        }
-        sub(&v, &self.g92)
-    }
-
-    /// Rotates a direction (no translation) from the program frame to the machine frame.
-    pub fn rotate_to_machine(&self, d: [f64; 3]) -> [f64; 3] {
-        if self.rotation_deg == 0.0 {
-            return d;
-        }
-        let (s, c) = self.rotation_deg.to_radians().sin_cos();
-        [d[0] * c - d[1] * s, d[0] * s + d[1] * c, d[2]]
-    }
-}
-
-/// `a + b`, axis by axis.
-#[inline(always)]
-fn add(a: &Pose, b: &Pose) -> Pose {
-    Pose {
-        x: a.x + b.x,
-        y: a.y + b.y,
-        z: a.z + b.z,
-        a: a.a + b.a,
-        b: a.b + b.b,
-        c: a.c + b.c,
-        u: a.u + b.u,
-        v: a.v + b.v,
-        w: a.w + b.w,
-    }
-}
-
-/// `a - b`, axis by axis.
-#[inline(always)]
-fn sub(a: &Pose, b: &Pose) -> Pose {
-    Pose {
-        x: a.x - b.x,
-        y: a.y - b.y,
-        z: a.z - b.z,
-        a: a.a - b.a,
-        b: a.b - b.b,
-        c: a.c - b.c,
-        u: a.u - b.u,
-        v: a.v - b.v,
-        w: a.w - b.w,
-    }
 }
 
 /// Everything that persists from block to block. `Copy`: a block works on a copy (no heap data).
@@ -185,8 +83,12 @@ pub struct ModalState {
     pub flood: bool,
     /// Active work offset number (1 = G54 … 9 = G59.3), 0 = none (AxiOMA G53).
     pub g5x_index: u8,
-    /// The work frame.
+    /// The work frame (program → machine), composed from the pieces below.
     pub frame: WorkFrame,
+    /// RS274/NGC: rotation of the active G54…G59.3 system about Z, degrees (what R of `frame` is).
+    pub xy_rotation_deg: f64,
+    /// AxiOMA: frames, programmed shift, zero-offset and workpiece-system selections.
+    pub axioma: AxiomaChain,
     /// Where the tool is, machine coordinates, mm.
     pub position: Pose,
 }

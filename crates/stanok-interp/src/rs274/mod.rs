@@ -442,7 +442,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 11. Cutter compensation: only G40 reaches here (G41/G42 rejected above).
     // 12. Tool length: only G49 reaches here.
     if let Some((490, _)) = g.get(Group::ToolLength) {
-        cx.st.frame.tlo = Pose::ZERO;
+        cx.st.frame.set_tlo(Pose::ZERO);
         cx.out
             .push(Canon::UseToolLengthOffset { offset: Pose::ZERO });
     }

@@ -45,7 +45,7 @@ pub(super) fn motion_block(
                 }
                 // G53: the words are machine coordinates (tool length offset still applies).
                 let mut m = cx.st.position.to_array();
-                let tlo = cx.st.frame.tlo.to_array();
+                let tlo = cx.st.frame.tlo().to_array();
                 for (k, &letter) in AXIS_WORDS.iter().enumerate() {
                     if let Some(v) = cx.words.take(letter) {
                         let v = if crate::ctx::is_linear(k) {

@@ -8,6 +8,21 @@ use crate::state::{DistanceMode, MotionMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, Plane, Pose};
 use stanok_syntax::ColSpan;
 
+/// Makes `offset` and `rotation` (degrees about Z) the G5x part of the work frame.
+fn set_g5x(cx: &mut Ctx<'_>, offset: Pose, rotation: f64) {
+    cx.st.frame.set_origin(offset);
+    cx.st.frame.set_rotation(rotation_z(rotation));
+    cx.st.xy_rotation_deg = rotation;
+}
+
+fn rotation_z(deg: f64) -> crate::frame::Mat3 {
+    if deg == 0.0 {
+        crate::frame::IDENTITY
+    } else {
+        crate::frame::rotation(2, deg)
+    }
+}
+
 pub(super) fn g5x_from_params(params: &Parameters, index: u8) -> (Pose, f64) {
     let base = 5201 + 20 * index as usize;
     let mut v = [0.0; 9];
@@ -27,12 +42,11 @@ pub(super) fn select_coordinate_system(
 ) {
     let (offset, rotation) = g5x_from_params(params, index);
     cx.st.g5x_index = index;
-    cx.st.frame.g5x = offset;
-    cx.st.frame.rotation_deg = rotation;
+    set_g5x(cx, offset, rotation);
     cx.out.push(Canon::SetG5xOffset { index, offset });
     if announce_g92 {
         cx.out.push(Canon::SetG92Offset {
-            offset: cx.st.frame.g92,
+            offset: *cx.st.frame.shift(),
         });
     }
     cx.out.push(Canon::SetXyRotation { degrees: rotation });
@@ -98,8 +112,8 @@ pub(super) fn g10(
             rotation = r.v;
         }
         let mut frame = cx.st.frame;
-        frame.g5x = offset;
-        frame.rotation_deg = rotation;
+        frame.set_origin(offset);
+        frame.set_rotation(rotation_z(rotation));
         let mut want = frame.to_program(&cx.st.position).to_array();
         let mut given = [false; 9];
         for (k, &letter) in AXIS_WORDS.iter().enumerate() {
@@ -112,7 +126,7 @@ pub(super) fn g10(
                 given[k] = true;
             }
         }
-        frame.g5x = Pose::ZERO;
+        frame.set_origin(Pose::ZERO);
         let zero_origin = frame.to_machine(&Pose::from_array(want)).to_array();
         let m = cx.st.position.to_array();
         for k in 0..9 {
@@ -128,8 +142,7 @@ pub(super) fn g10(
     }
     params.set(base + 9, rotation);
     if index == cx.st.g5x_index {
-        cx.st.frame.g5x = offset;
-        cx.st.frame.rotation_deg = rotation;
+        set_g5x(cx, offset, rotation);
         cx.out.push(Canon::SetG5xOffset { index, offset });
         cx.out.push(Canon::SetXyRotation { degrees: rotation });
     } else {

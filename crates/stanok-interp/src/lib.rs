@@ -40,6 +40,7 @@ pub use state::{DistanceMode, ModalState, MotionMode, PathMode, WorkFrame};
 use ctx::Ctx;
 use flow::{Flow, FlowAction};
 use rs274::Outcome;
+use stanok_canon::setup::ControlData;
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
 use stanok_syntax::{Block, BlockReader, CommentKind, Dialect};
 use std::collections::VecDeque;
@@ -71,6 +72,10 @@ pub struct InterpOptions {
     pub continue_after_error: bool,
     /// With `continue_after_error`: stop after this many errors.
     pub max_errors: usize,
+    /// Stored control data: tool table, offset tables, home positions, preset parameters.
+    pub control: ControlData,
+    /// Axes that may be programmed as diameters (AxiOMA G10; the transverse axis of a lathe).
+    pub diameter_axes: [bool; 9],
 }
 
 impl InterpOptions {
@@ -88,6 +93,8 @@ impl InterpOptions {
             max_blocks: 200_000_000,
             continue_after_error: false,
             max_errors: 100,
+            control: ControlData::default(),
+            diameter_axes: [true, false, false, false, false, false, false, false, false],
         }
     }
 }
@@ -172,12 +179,28 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma: axioma_chain::AxiomaChain::default(),
             position: opts.initial_position,
         };
+        let mut state = state;
+        let mut params = Parameters::default();
+        if opts.dialect == Dialect::Rs274ngc {
+            params.preset_from(&opts.control);
+            let system = opts.control.offsets.active_system.clamp(1, 9);
+            let (offset, rotation) = rs274::g5x_from_params(&params, system);
+            state.g5x_index = system;
+            state.frame.set_origin(offset);
+            if rotation != 0.0 {
+                state.frame.set_rotation(frame::rotation(2, rotation));
+            }
+            state.xy_rotation_deg = rotation;
+            if opts.control.offsets.g92_applied {
+                state.frame.set_shift(opts.control.offsets.g92);
+            }
+        }
         Interpreter {
             reader: BlockReader::new(source, opts.dialect),
             block: Block::default(),
             words: Words::default(),
             state,
-            params: Parameters::default(),
+            params,
             flow: Flow::default(),
             queue: VecDeque::new(),
             warnings: Vec::new(),

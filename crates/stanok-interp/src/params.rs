@@ -67,6 +67,36 @@ pub fn normalise_name(raw: &str) -> String {
 }
 
 impl Parameters {
+    /// Loads the stored control data into the numbered parameters, as LinuxCNC reads its `.var`
+    /// file: G28 5161…, G30 5181…, G92 5210…5219, active system 5220, G54…G59.3 5221…5390 (page 1,
+    /// with the rotation in the tenth slot), then the preset parameters.
+    pub fn preset_from(&mut self, c: &stanok_canon::setup::ControlData) {
+        let o = &c.offsets;
+        for (k, v) in o.g28.to_array().into_iter().enumerate() {
+            self.set(5161 + k, v);
+        }
+        for (k, v) in o.g30.to_array().into_iter().enumerate() {
+            self.set(5181 + k, v);
+        }
+        self.set(5210, if o.g92_applied { 1.0 } else { 0.0 });
+        for (k, v) in o.g92.to_array().into_iter().enumerate() {
+            self.set(5211 + k, v);
+        }
+        self.set(5220, o.active_system.clamp(1, 9) as f64);
+        for system in 1..=9u8 {
+            if let Some(z) = o.zero_offset(system, 1) {
+                let base = 5201 + 20 * system as usize;
+                for (k, v) in z.offset.to_array().into_iter().enumerate() {
+                    self.set(base + k, v);
+                }
+                self.set(base + 9, z.rotation_xy);
+            }
+        }
+        for (&n, &v) in &c.parameters {
+            self.set(n as usize, v);
+        }
+    }
+
     /// Raw numbered value (no live binding).
     pub fn get(&self, n: usize) -> f64 {
         self.numbered.get(n).copied().unwrap_or(0.0)

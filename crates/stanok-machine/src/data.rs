@@ -104,6 +104,8 @@ pub struct AxisData {
     pub max_acceleration: f64,
     /// Maximum jerk, unit/s³ (used by the planner in SOFT mode).
     pub max_jerk: f64,
+    /// A lathe's transverse (cross) axis: it may be programmed as a diameter (AxiOMA G10).
+    pub transverse: bool,
 }
 
 impl AxisData {
@@ -157,6 +159,8 @@ struct RawAxis {
     max_velocity: Spanned<f64>,
     max_acceleration: Spanned<f64>,
     max_jerk: Spanned<f64>,
+    #[serde(default)]
+    transverse: Option<Spanned<bool>>,
 }
 
 /// A validation failure: message and the byte range to blame.
@@ -219,6 +223,16 @@ impl RawAxis {
                 self.max.span(),
             ));
         }
+        let transverse = match &self.transverse {
+            Some(t) if *t.get_ref() && kind != AxisKind::Linear => return Err((
+                format!(
+                    "axis {letter}: only a linear axis can be transverse (diameter programming)"
+                ),
+                t.span(),
+            )),
+            Some(t) => *t.get_ref(),
+            None => false,
+        };
         Ok(AxisData {
             name: letter,
             kind,
@@ -227,6 +241,7 @@ impl RawAxis {
             max_velocity: positive(&self.max_velocity, "max_velocity", per_min)?,
             max_acceleration: positive(&self.max_acceleration, "max_acceleration", per_s2)?,
             max_jerk: positive(&self.max_jerk, "max_jerk", per_s3)?,
+            transverse,
         })
     }
 }
@@ -502,6 +517,7 @@ impl MachineData {
     pub fn builtin(name: &str) -> Option<MachineData> {
         match name {
             "mill" => Some(Self::default_mill()),
+            "lathe" => Some(Self::default_lathe()),
             _ => None,
         }
     }
@@ -517,6 +533,7 @@ impl MachineData {
             max_velocity: 10_000.0,
             max_acceleration: 1_000.0,
             max_jerk: 20_000.0,
+            transverse: false,
         };
         MachineData {
             name: "mill".into(),
@@ -527,6 +544,35 @@ impl MachineData {
             max_feed: 5_000.0,
             arc_tolerance: 0.01,
             axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
+            linuxcnc_units: LengthUnits::Millimetres,
+            control: ControlData::default(),
+        }
+    }
+
+    /// The built-in 2-axis lathe: X (transverse, radius values in machine data; may be programmed
+    /// as a diameter) −300…300 mm and Z −1000…500 mm, 8 000 mm/min per axis and rapid, 3 000 mm/min
+    /// feed, 800 mm/s², 16 000 mm/s³; no stored data. Equal to `machines/lathe.toml`.
+    pub fn default_lathe() -> MachineData {
+        let axis = |name: char, min: f64, max: f64, transverse: bool| AxisData {
+            name,
+            kind: AxisKind::Linear,
+            min,
+            max,
+            max_velocity: 8_000.0,
+            max_acceleration: 800.0,
+            max_jerk: 16_000.0,
+            transverse,
+        };
+        MachineData {
+            name: "lathe".into(),
+            description: "Built-in 2-axis lathe (X transverse, Z along the spindle)".into(),
+            rapid_rate: 8_000.0,
+            max_feed: 3_000.0,
+            arc_tolerance: 0.01,
+            axes: vec![
+                axis('X', -300.0, 300.0, true),
+                axis('Z', -1000.0, 500.0, false),
+            ],
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
         }
@@ -582,12 +628,27 @@ impl MachineData {
                 toml_float(a.max_acceleration),
                 toml_float(a.max_jerk)
             );
+            if a.transverse {
+                out.push_str("transverse = true\n");
+            }
         }
         if !control_tables.is_empty() {
             out.push('\n');
             out.push_str(&control_tables);
         }
         out
+    }
+
+    /// Which of X Y Z A B C U V W may be programmed as diameters (AxiOMA G10): the axes marked
+    /// `transverse = true`.
+    pub fn diameter_axes(&self) -> [bool; 9] {
+        let mut mask = [false; 9];
+        for a in &self.axes {
+            if a.transverse {
+                mask[a.pose_index()] = true;
+            }
+        }
+        mask
     }
 
     /// Which of the nine axes (X Y Z A B C U V W, `Pose::to_array` order) the machine has.
@@ -659,7 +720,11 @@ max_jerk = 3600.0
             MachineData::builtin("mill"),
             Some(MachineData::default_mill())
         );
-        assert_eq!(MachineData::builtin("lathe"), None);
+        assert_eq!(MachineData::builtin("drill"), None);
+        let lathe = concat!(env!("CARGO_MANIFEST_DIR"), "/../../machines/lathe.toml");
+        assert_eq!(MachineData::load(lathe), Ok(MachineData::default_lathe()));
+        assert!(MachineData::default_lathe().diameter_axes()[0]);
+        assert_eq!(MachineData::default_mill().diameter_axes(), [false; 9]);
     }
 
     #[test]

@@ -124,8 +124,8 @@ fn interpreter(
     opts.axes = machine.axis_mask();
     opts.arc_tolerance_mm = machine.arc_tolerance;
     opts.continue_after_error = check_mode;
-    // Loaded and validated; handed to the interpreter once `InterpOptions` takes it.
-    let _control: ControlData = control_data(machine);
+    opts.control = control_data(machine);
+    opts.diameter_axes = machine.diameter_axes();
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

@@ -30,6 +30,7 @@ mod offsets;
 
 pub use motion::helix_length;
 use motion::motion_block;
+pub use offsets::g5x_from_params;
 use offsets::{g10, program_end, select_coordinate_system};
 use stanok_syntax::ColSpan;
 

@@ -23,7 +23,7 @@ fn rotation_z(deg: f64) -> crate::frame::Mat3 {
     }
 }
 
-pub(super) fn g5x_from_params(params: &Parameters, index: u8) -> (Pose, f64) {
+pub fn g5x_from_params(params: &Parameters, index: u8) -> (Pose, f64) {
     let base = 5201 + 20 * index as usize;
     let mut v = [0.0; 9];
     for (k, x) in v.iter_mut().enumerate() {

@@ -1,0 +1,383 @@
+//! AxiOMA Control block semantics (spec axioma-1 §2, §5, §6, §13, §15, §16 and axioma-2 §2, §3.3, §4).
+//!
+//! Order of execution inside one block (the manual's prefix/postfix model, spec axioma-2 §4.1):
+//!
+//! ```text
+//!  1. MSG("…")                         5. prefix M functions, by group order:
+//!  2. modal G codes (plane, units,        spindle (1) with its S, coolant (2), tool (3) with its T,
+//!     G90/G91, G190/G191, feed type,      then the other prefix groups in table order
+//!     G60/G64, BRISK/SOFT …)           6. G04 dwell or the block's motion
+//!  3. F                                7. postfix M functions by group order; program control
+//!  4. S and T without an M function       (M00/M01/M02/M30/M99) always last
+//! ```
+//!
+//! Conflicting words: the manual says only the last word of a group takes effect; Stanok does that
+//! and warns. Functions of later capabilities (frames, compensation, cycles, splines, 5-axis …) are
+//! recognised and rejected with `interp::unsupported` naming the issue that adds them.
+
+use crate::ctx::Ctx;
+use crate::rs274::Outcome;
+use crate::state::{DistanceMode, MotionMode, PathMode};
+use crate::words::Val;
+use stanok_canon::{AuxTiming, Canon, Diagnostic, FeedMode, LengthUnits, Plane};
+use stanok_syntax::{ColSpan, Keyword};
+
+fn g_name(code: u32) -> String {
+    format!("G{:02}", code / 10)
+}
+
+/// What a G code does, by the modal group of table 2.1.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum GAction {
+    Motion(MotionMode),
+    Dwell,
+    Plane(Plane),
+    Units(LengthUnits),
+    Distance(DistanceMode),
+    ArcCentre(DistanceMode),
+    FeedMode(FeedMode),
+    PathMode(bool),
+    Retract(bool),
+    /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
+    Default(&'static str),
+    /// Known, not yet implemented: the issue that adds it.
+    Later(&'static str),
+}
+
+fn g_action(code: u32) -> Option<GAction> {
+    use GAction::*;
+    Some(match code {
+        0 => Motion(MotionMode::Rapid),
+        10 => Motion(MotionMode::Linear),
+        20 => Motion(MotionMode::ArcCw),
+        30 => Motion(MotionMode::ArcCcw),
+        40 => Dwell,
+        170 => Plane(stanok_canon::Plane::XY),
+        180 => Plane(stanok_canon::Plane::ZX),
+        190 => Plane(stanok_canon::Plane::YZ),
+        200 | 700 => Units(LengthUnits::Inches),
+        210 | 710 => Units(LengthUnits::Millimetres),
+        900 => Distance(DistanceMode::Absolute),
+        910 => Distance(DistanceMode::Incremental),
+        1900 => ArcCentre(DistanceMode::Absolute),
+        1910 => ArcCentre(DistanceMode::Incremental),
+        930 => FeedMode(stanok_canon::FeedMode::InverseTime),
+        940 => FeedMode(stanok_canon::FeedMode::UnitsPerMinute),
+        950 => FeedMode(stanok_canon::FeedMode::UnitsPerRevolution),
+        600 => PathMode(true),
+        640 => PathMode(false),
+        980 => Retract(true),
+        990 => Retract(false),
+        150 => Default("Plane2_polar"),
+        400 => Default("EqCorrect"),
+        490 => Default("ToolLengthCorrect"),
+        530 => Default("ZeroShift"),
+        720 => Default("Frame_Mirror"),
+        1720 => Default("Frame_Scale"),
+        2720 => Default("Frame_Rot"),
+        800 => Default("CannedCycle"),
+        970 => Default("Dimension2"),
+        1530 => Default("WCSTable"),
+        1930 => Default("ProgCoordShift"),
+        160 | 100 | 540..=590 | 730 | 1730 | 2730 | 1540..=1590 | 1940 | 1950 | 430 | 440 | 450 => {
+            Later("coordinate systems, frames, offsets and tool data")
+        }
+        410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
+        | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
+        750 | 280 | 290 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
+        _ => return None,
+    })
+}
+
+/// Modal group of a G action (for "last one wins").
+fn group_key(a: GAction, code: u32) -> u32 {
+    match a {
+        GAction::Motion(_) => 1,
+        GAction::Dwell => 2,
+        GAction::Plane(_) => 3,
+        GAction::Units(_) => 4,
+        GAction::Distance(_) => 5,
+        GAction::ArcCentre(_) => 6,
+        GAction::FeedMode(_) => 7,
+        GAction::PathMode(_) => 8,
+        GAction::Retract(_) => 9,
+        GAction::Default(_) | GAction::Later(_) => 1000 + code,
+    }
+}
+
+mod mfunc;
+mod motion;
+
+use mfunc::{m_function, run_m, set_speed, MAction, MFunction};
+use motion::{dwell_block, motion};
+
+fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
+    cx.err(
+        "interp::unsupported",
+        format!("{what} is not supported yet"),
+        at,
+    )
+    .with_note(format!("planned in the issue on {issue}"))
+}
+
+/// Executes one AxiOMA block.
+pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
+    // Keywords.
+    let mut cr: Option<Val> = None;
+    for i in 0..cx.words.keywords.len() {
+        let (kw, _index, val, span) = cx.words.keywords[i];
+        match kw {
+            Keyword::Brisk => cx.st.soft_acceleration = false,
+            Keyword::Soft => cx.st.soft_acceleration = true,
+            Keyword::TrafOff
+            | Keyword::OriEuler
+            | Keyword::OriRpy
+            | Keyword::OriAxes
+            | Keyword::OriVect
+            | Keyword::OriWks
+            | Keyword::OriMks
+            | Keyword::Cut2df => {}
+            Keyword::Cr => {
+                cr = val;
+                if cr.is_none() {
+                    return Err(cx.err("interp::missing-value", "CR= has no value", span));
+                }
+            }
+            Keyword::Traori
+            | Keyword::Cut3dc
+            | Keyword::Cut3dcc
+            | Keyword::Cut3dccd
+            | Keyword::Cut3df
+            | Keyword::Cut3dfs
+            | Keyword::Cut3dff
+            | Keyword::Lead
+            | Keyword::Tilt => {
+                return Err(unsupported(
+                    cx,
+                    cx.block.slice(span),
+                    "5-axis kinematics and 3D compensation",
+                    span,
+                ))
+            }
+            _ => {
+                return Err(unsupported(
+                    cx,
+                    cx.block.slice(span),
+                    "AxiOMA splines, technology, probing and home positions",
+                    span,
+                ))
+            }
+        }
+    }
+    // Extended addresses: S2=… (speed of spindle 2); the others come with later issues.
+    let mut indexed_speeds: Vec<(u8, f64)> = Vec::new();
+    for &(letter, index, val) in &cx.words.indexed {
+        match letter {
+            b'S' if (1..=4).contains(&index) => indexed_speeds.push((index - 1, val.v)),
+            _ => {
+                return Err(unsupported(
+                    cx,
+                    &format!("{}{}=", letter as char, index),
+                    "coordinate systems, frames, offsets and tool data",
+                    val.span,
+                ))
+            }
+        }
+    }
+
+    // G codes: last of a group wins (with a warning), per the manual.
+    let mut actions: Vec<(GAction, u32, ColSpan)> = Vec::with_capacity(cx.words.g.len());
+    for &(code, span) in &cx.words.g {
+        let Some(a) = g_action(code) else {
+            return Err(cx.err(
+                "axioma::unknown-g-code",
+                format!("unknown G function G{}", code as f64 / 10.0),
+                span,
+            ));
+        };
+        if let GAction::Later(issue) = a {
+            return Err(unsupported(cx, &g_name(code), issue, span));
+        }
+        let key = group_key(a, code);
+        if let Some(pos) = actions
+            .iter()
+            .position(|(b, c, _)| group_key(*b, *c) == key)
+        {
+            let prev = actions.remove(pos);
+            cx.warnings.push(Diagnostic::warning(
+                "axioma::conflicting-words",
+                format!(
+                    "{} and {} exclude each other: only the last one takes effect",
+                    g_name(prev.1),
+                    g_name(code)
+                ),
+                cx.block.span_of(span),
+            ));
+        }
+        actions.push((a, code, span));
+    }
+
+    // 1. Message.
+    if let Some(text) = cx.block.message {
+        let text = cx.block.slice(text).to_string();
+        cx.out.push(Canon::Message { text });
+    }
+    // 2. Modal G codes.
+    let mut motion_code: Option<(MotionMode, ColSpan)> = None;
+    let mut dwell: Option<ColSpan> = None;
+    for &(a, _code, span) in &actions {
+        match a {
+            GAction::Motion(m) => motion_code = Some((m, span)),
+            GAction::Dwell => dwell = Some(span),
+            GAction::Plane(p) => {
+                if cx.st.plane != p {
+                    cx.out.push(Canon::SelectPlane { plane: p });
+                }
+                cx.st.plane = p;
+            }
+            GAction::Units(u) => {
+                if cx.st.units != u {
+                    cx.out.push(Canon::UseLengthUnits { units: u });
+                }
+                cx.st.units = u;
+            }
+            GAction::Distance(d) => cx.st.distance = d,
+            GAction::ArcCentre(d) => cx.st.arc_distance = d,
+            GAction::FeedMode(f) => {
+                if cx.st.feed_mode != f {
+                    // Spec axioma-2 §3.3 / A22: a real change of feed type resets F.
+                    cx.st.feed = 0.0;
+                    cx.st.feed_mode = f;
+                    cx.out.push(Canon::SetFeedMode { mode: f });
+                }
+                if f == FeedMode::UnitsPerRevolution && cx.st.spindle_speed[0] <= 0.0 {
+                    return Err(cx.manual(
+                        615,
+                        "G95 activated while the main spindle speed S is 0",
+                        span,
+                    ));
+                }
+            }
+            GAction::PathMode(exact) => {
+                cx.st.path_mode = if exact {
+                    PathMode::ExactStop
+                } else {
+                    PathMode::Continuous {
+                        blend_tolerance: 0.0,
+                    }
+                }
+            }
+            GAction::Retract(initial) => cx.st.retract_to_initial = initial,
+            GAction::Default(_) | GAction::Later(_) => {}
+        }
+    }
+    // 3. F.
+    if let Some(f) = cx.words.take(b'F') {
+        if f.v < 0.0 {
+            return Err(cx.err("axioma::negative-feed", "negative feed F", f.span));
+        }
+        cx.st.feed = match cx.st.feed_mode {
+            FeedMode::InverseTime => f.v,
+            _ => cx.mm(f.v),
+        };
+        cx.out.push(Canon::SetFeedRate { feed: cx.st.feed });
+    }
+
+    // 4./5. S, T and prefix M functions.
+    let mut ms: Vec<(MFunction, ColSpan)> = Vec::with_capacity(cx.words.m.len());
+    for &(number, span) in &cx.words.m {
+        let Some(f) = m_function(number) else {
+            return Err(cx.err(
+                "axioma::unknown-m-function",
+                format!("M{number} is not in the M-function table of this machine"),
+                span,
+            ));
+        };
+        ms.push((f, span));
+    }
+    // Stable sort: same order number keeps written order.
+    ms.sort_by_key(|(f, _)| f.order);
+    let s_word = cx.words.take(b'S');
+    let t_word = cx.words.take(b'T');
+    let tool = match t_word {
+        Some(t) => Some(cx.non_negative_integer(t, "tool number T")?),
+        None => None,
+    };
+    let has_spindle_m = ms
+        .iter()
+        .any(|(f, _)| matches!(f.action, MAction::Spindle { spindle: 0, .. }));
+    let has_tool_m = ms.iter().any(|(f, _)| f.action == MAction::ToolChange);
+    let mut s_done = false;
+    let mut t_done = false;
+    if let Some(s) = s_word {
+        if !has_spindle_m {
+            set_speed(cx, 0, s.v)?;
+            s_done = true;
+        }
+    }
+    for &(spindle, v) in &indexed_speeds {
+        cx.st.spindle_speed[spindle as usize] = v;
+        cx.out.push(Canon::SetSpindleSpeed { spindle, rpm: v });
+    }
+    if let (Some(t), false) = (tool, has_tool_m) {
+        cx.st.selected_tool = Some(t);
+        cx.out.push(Canon::SelectTool { tool: t });
+        t_done = true;
+    }
+    for (f, _span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Prefix) {
+        run_m(cx, f, &mut s_done, s_word, &mut t_done, tool)?;
+    }
+
+    // 6. Dwell or motion.
+    if let Some(span) = dwell {
+        dwell_block(cx, span)?;
+    } else {
+        if let Some((m, _)) = motion_code {
+            cx.st.motion = m;
+        }
+        motion(
+            cx,
+            motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole()),
+            cr,
+        )?;
+    }
+    cx.check_all_used()?;
+
+    // 7. Postfix M functions; program control last.
+    let mut outcome = Outcome::Continue;
+    for (f, span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Postfix) {
+        match f.action {
+            MAction::End | MAction::EndToWaitingPosition => {
+                if f.action == MAction::EndToWaitingPosition {
+                    cx.warnings.push(Diagnostic::warning(
+                        "axioma::m99-waiting-position",
+                        "M99: the move to the waiting position needs home positions (not supported yet); the program ends where it is",
+                        cx.block.span_of(*span),
+                    ));
+                }
+                for spindle in 0..4u8 {
+                    if cx.st.spindle_on[spindle as usize] {
+                        cx.st.spindle_on[spindle as usize] = false;
+                        cx.out.push(Canon::StopSpindle { spindle });
+                    }
+                }
+                if cx.st.mist {
+                    cx.st.mist = false;
+                    cx.out.push(Canon::Mist { on: false });
+                }
+                if cx.st.flood {
+                    cx.st.flood = false;
+                    cx.out.push(Canon::Flood { on: false });
+                }
+                cx.out.push(Canon::ProgramEnd);
+                outcome = Outcome::End;
+            }
+            MAction::Stop { optional } => cx.out.push(Canon::ProgramStop { optional }),
+            _ => run_m(cx, f, &mut s_done, s_word, &mut t_done, tool)?,
+        }
+    }
+    if let (Some(s), false) = (s_word, s_done) {
+        set_speed(cx, 0, s.v)?;
+    }
+    Ok(outcome)
+}

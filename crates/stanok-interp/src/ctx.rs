@@ -96,7 +96,11 @@ impl Ctx<'_> {
                     val.span,
                 ));
             }
-            let v = if is_linear(i) { self.mm(val.v) } else { val.v };
+            let mut v = if is_linear(i) { self.mm(val.v) } else { val.v };
+            // AxiOMA G10 diameter programming: positions and increments are diameters (§14).
+            if self.st.axioma_diameter[i] {
+                v /= 2.0;
+            }
             p[i] = match self.st.distance {
                 DistanceMode::Absolute => v,
                 DistanceMode::Incremental => p[i] + v,

@@ -177,6 +177,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             frame: WorkFrame::default(),
             xy_rotation_deg: 0.0,
             axioma: axioma_chain::AxiomaChain::default(),
+            axioma_diameter: [false; 9],
             position: opts.initial_position,
         };
         let mut state = state;

@@ -89,6 +89,8 @@ pub struct ModalState {
     pub xy_rotation_deg: f64,
     /// AxiOMA: frames, programmed shift, zero-offset and workpiece-system selections.
     pub axioma: AxiomaChain,
+    /// AxiOMA G10: axes programmed as diameters (their words are halved).
+    pub axioma_diameter: [bool; 9],
     /// Where the tool is, machine coordinates, mm.
     pub position: Pose,
 }

@@ -224,12 +224,14 @@ impl RawAxis {
             ));
         }
         let transverse = match &self.transverse {
-            Some(t) if *t.get_ref() && kind != AxisKind::Linear => return Err((
-                format!(
+            Some(t) if *t.get_ref() && kind != AxisKind::Linear => {
+                return Err((
+                    format!(
                     "axis {letter}: only a linear axis can be transverse (diameter programming)"
                 ),
-                t.span(),
-            )),
+                    t.span(),
+                ))
+            }
             Some(t) => *t.get_ref(),
             None => false,
         };

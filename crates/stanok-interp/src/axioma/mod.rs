@@ -38,6 +38,20 @@ enum GAction {
     FeedMode(FeedMode),
     PathMode(bool),
     Retract(bool),
+    /// G72 (false) / G73 (true).
+    Mirror(bool),
+    /// G172 / G173.
+    Scale(bool),
+    /// G272 / G273.
+    Rotate(bool),
+    /// G193 / G194 / G195 (the code ×10).
+    Shift(u32),
+    /// G53 (None) / G54…G59 (1…6).
+    ZeroOffset(Option<u8>),
+    /// G153 (None) / G154…G159 (1…6).
+    Workpiece(Option<u8>),
+    /// G10: radius/diameter programming per axis.
+    Diameter,
     /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
     Default(&'static str),
     /// Known, not yet implemented: the issue that adds it.
@@ -71,17 +85,21 @@ fn g_action(code: u32) -> Option<GAction> {
         150 => Default("Plane2_polar"),
         400 => Default("EqCorrect"),
         490 => Default("ToolLengthCorrect"),
-        530 => Default("ZeroShift"),
-        720 => Default("Frame_Mirror"),
-        1720 => Default("Frame_Scale"),
-        2720 => Default("Frame_Rot"),
+        530 => ZeroOffset(None),
+        540..=590 if code.is_multiple_of(10) => ZeroOffset(Some((code / 10 - 53) as u8)),
+        720 => Mirror(false),
+        730 => Mirror(true),
+        1720 => Scale(false),
+        1730 => Scale(true),
+        2720 => Rotate(false),
+        2730 => Rotate(true),
         800 => Default("CannedCycle"),
         970 => Default("Dimension2"),
-        1530 => Default("WCSTable"),
-        1930 => Default("ProgCoordShift"),
-        160 | 100 | 540..=590 | 730 | 1730 | 2730 | 1540..=1590 | 1940 | 1950 | 430 | 440 | 450 => {
-            Later("coordinate systems, frames, offsets and tool data")
-        }
+        1530 => Workpiece(None),
+        1540..=1590 if code.is_multiple_of(10) => Workpiece(Some((code / 10 - 153) as u8)),
+        1930 | 1940 | 1950 => Shift(code),
+        100 => Diameter,
+        160 | 430 | 440 | 450 => Later("coordinate systems, frames, offsets and tool data"),
         410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
         | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
         750 | 280 | 290 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
@@ -101,10 +119,18 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::FeedMode(_) => 7,
         GAction::PathMode(_) => 8,
         GAction::Retract(_) => 9,
+        GAction::Mirror(_) => 10,
+        GAction::Scale(_) => 11,
+        GAction::Rotate(_) => 12,
+        GAction::Shift(_) => 13,
+        GAction::ZeroOffset(_) => 14,
+        GAction::Workpiece(_) => 15,
+        GAction::Diameter => 16,
         GAction::Default(_) | GAction::Later(_) => 1000 + code,
     }
 }
 
+mod frames;
 mod mfunc;
 mod motion;
 
@@ -268,8 +294,54 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 }
             }
             GAction::Retract(initial) => cx.st.retract_to_initial = initial,
-            GAction::Default(_) | GAction::Later(_) => {}
+            _ => {}
         }
+    }
+    // 2b. Frames and offsets, in the manual's fixed order whatever the order of the words. A block
+    // that programs mirror, scale, rotation, a shift or G10 takes its X/Y/Z as parameters: no motion.
+    let mut parameter_block = false;
+    let mut frame_changed = false;
+    let frame_functions = actions
+        .iter()
+        .filter(|(a, _, _)| {
+            matches!(
+                a,
+                GAction::Mirror(true) | GAction::Scale(true) | GAction::Rotate(true)
+            )
+        })
+        .count();
+    if frame_functions > 1 {
+        let (_, _, span) = actions[actions.len() - 1];
+        return Err(cx.err(
+            "axioma::frames-in-one-block",
+            "G73, G173 and G273 must each be programmed in a block of its own",
+            span,
+        ));
+    }
+    for &(a, code, span) in &actions {
+        match a {
+            GAction::ZeroOffset(s) => frames::zero_offset(cx, s)?,
+            GAction::Workpiece(s) => frames::workpiece(cx, s)?,
+            GAction::Mirror(on) => frames::mirror(cx, on)?,
+            GAction::Scale(on) => frames::scale(cx, on)?,
+            GAction::Rotate(on) => frames::rotate(cx, on)?,
+            GAction::Shift(code) => frames::shift(cx, code)?,
+            GAction::Diameter => {
+                frames::diameter_mode(cx, span)?;
+                parameter_block = true;
+                continue;
+            }
+            _ => continue,
+        }
+        frame_changed = true;
+        parameter_block |= matches!(
+            a,
+            GAction::Mirror(true) | GAction::Scale(true) | GAction::Rotate(true)
+        ) || matches!(a, GAction::Shift(c) if c != 1930);
+        let _ = code;
+    }
+    if frame_changed {
+        frames::apply(cx);
     }
     // 3. F.
     if let Some(f) = cx.words.take(b'F') {
@@ -331,6 +403,10 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // 6. Dwell or motion.
     if let Some(span) = dwell {
         dwell_block(cx, span)?;
+    } else if parameter_block {
+        if let Some((m, _)) = motion_code {
+            cx.st.motion = m;
+        }
     } else {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;

@@ -35,7 +35,7 @@ mod state;
 mod words;
 
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
-pub use state::{DistanceMode, ModalState, MotionMode, PathMode, WorkFrame};
+pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
 use ctx::Ctx;
 use flow::{Flow, FlowAction};
@@ -178,6 +178,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             xy_rotation_deg: 0.0,
             axioma: axioma_chain::AxiomaChain::default(),
             axioma_diameter: [false; 9],
+            polar: state::Polar::default(),
             position: opts.initial_position,
         };
         let mut state = state;

@@ -44,6 +44,33 @@ pub enum PathMode {
     },
 }
 
+/// AxiOMA polar programming (G15/G16, spec axioma-1 §17).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Polar {
+    /// G16 active.
+    pub on: bool,
+    /// Pole (abscissa, ordinate) of `plane`, program coordinates, mm.
+    pub pole: [f64; 2],
+    /// The plane the pole belongs to.
+    pub plane: Plane,
+    /// Modal polar radius ρ, mm.
+    pub rho: f64,
+    /// Modal polar angle θ, degrees.
+    pub theta: f64,
+}
+
+impl Default for Polar {
+    fn default() -> Self {
+        Polar {
+            on: false,
+            pole: [0.0; 2],
+            plane: Plane::XY,
+            rho: 0.0,
+            theta: 0.0,
+        }
+    }
+}
+
 /// Everything that persists from block to block. `Copy`: a block works on a copy (no heap data).
 #[derive(Debug, Clone, Copy)]
 pub struct ModalState {
@@ -89,6 +116,8 @@ pub struct ModalState {
     pub xy_rotation_deg: f64,
     /// AxiOMA: frames, programmed shift, zero-offset and workpiece-system selections.
     pub axioma: AxiomaChain,
+    /// AxiOMA polar programming.
+    pub polar: Polar,
     /// AxiOMA G10: axes programmed as diameters (their words are halved).
     pub axioma_diameter: [bool; 9],
     /// Where the tool is, machine coordinates, mm.

@@ -417,3 +417,149 @@ fn frame_errors() {
         assert_eq!(err.span.line, 2);
     }
 }
+
+// ------------------------------------------------------------------------------------- §4.9 polar
+
+fn path(name: &str) -> Vec<Move> {
+    moves(&run_with(&fixture(name), ControlData::default()))
+}
+
+#[track_caller]
+fn assert_points(mvs: &[Move], want: &[[f64; 2]]) {
+    assert_eq!(mvs.len(), want.len(), "{mvs:?}");
+    for (i, (m, w)) in mvs.iter().zip(want).enumerate() {
+        assert!(
+            (m.1[0] - w[0]).abs() < TOL && (m.1[1] - w[1]).abs() < TOL,
+            "move {i}: got {:?}, want {w:?}",
+            m.1
+        );
+    }
+}
+
+#[test]
+fn s4_9_2_polar_lines() {
+    assert_points(
+        &path("s4_9_2-polar-example-4_21.nc"),
+        &[
+            [0.0, 0.0],
+            [50.0, 30.0],
+            [30.0, 50.0],
+            [10.0, 30.0],
+            [0.0, 0.0],
+        ],
+    );
+    let p = path("s4_9_2-polar-pentagon-example-4_22.nc");
+    assert_points(
+        &p[1..],
+        &[
+            [6.1803, 19.0211],
+            [-16.1803, 11.7557],
+            [-16.1803, -11.7557],
+            [6.1803, -19.0211],
+            [20.0, 0.0],
+        ],
+    );
+    let h = path("s4_9_2-polar-hexagon-example-4_23.nc");
+    let xy: Vec<[f64; 2]> = h.iter().map(|m| [m.1[0], m.1[1]]).collect();
+    for w in [
+        [5.0, -34.0192],
+        [-25.0, -34.0192],
+        [-40.0, -60.0],
+        [-25.0, -85.9808],
+        [5.0, -85.9808],
+        [20.0, -60.0],
+    ] {
+        assert!(
+            xy.iter()
+                .any(|p| (p[0] - w[0]).abs() < TOL && (p[1] - w[1]).abs() < TOL),
+            "{w:?} in {xy:?}"
+        );
+    }
+    assert!((h.last().unwrap().1[0]).abs() < TOL && (h.last().unwrap().1[1]).abs() < TOL);
+}
+
+#[test]
+fn s4_9_3_polar_arcs() {
+    let p = path("s4_9_3-polar-arc-example-4_24.nc");
+    assert_points(&p, &[[60.0, 30.0], [35.0, 55.0], [0.0, 0.0]]);
+    let (c, ccw) = p[1].2.unwrap();
+    assert!((c[0] - 35.0).abs() < TOL && (c[1] - 30.0).abs() < TOL && ccw);
+    // YZ plane: CW half circle about (Y50, Z30) from (Y20, Z30) to (Y80, Z30).
+    let yz = moves(&run_with(
+        &fixture("s4_9_3-polar-arc-yz-example-4_25.nc"),
+        ControlData::default(),
+    ));
+    let arc = yz.iter().find(|m| m.2.is_some()).unwrap();
+    assert!(
+        (arc.1[1] - 80.0).abs() < TOL && (arc.1[2] - 30.0).abs() < TOL,
+        "{:?}",
+        arc.1
+    );
+    let (c, _) = arc.2.unwrap();
+    assert!(
+        (c[1] - 50.0).abs() < TOL && (c[2] - 30.0).abs() < TOL,
+        "{c:?}"
+    );
+    let centre = path("s4_9_3-polar-arc-centre-example-4_26.nc");
+    assert_points(
+        &centre[1..],
+        &[[38.1596, 18.7939], [51.8404, 18.7939], [38.1596, 18.7939]],
+    );
+    let (c, ccw) = centre[2].2.unwrap();
+    assert!((c[0] - 45.0).abs() < TOL && c[1].abs() < TOL && !ccw);
+    let (c, ccw) = centre[3].2.unwrap();
+    assert!(
+        (c[0] - 45.0).abs() < TOL && (c[1] - 37.5877).abs() < TOL && ccw,
+        "{c:?}"
+    );
+}
+
+#[test]
+fn s4_9_4_absolute_and_incremental_polar_programs_agree() {
+    let fan = [
+        [100.0, 0.0],
+        [86.6025, 50.0],
+        [43.3013, 25.0],
+        [25.0, 43.3013],
+        [50.0, 86.6025],
+        [0.0, 100.0],
+        [0.0, 0.0],
+    ];
+    let a = path("s4_9_4-polar-absolute-fan-example-4_27.nc");
+    let i = path("s4_9_4-polar-incremental-fan-example-4_28.nc");
+    assert_points(&a[1..], &fan);
+    assert_points(&i[1..], &fan);
+    let keyhole = [
+        [19.4404, 41.6902],
+        [5.3831, 30.5290],
+        [2.7784, 15.7569],
+        [6.7619, 14.5009],
+        [4.2262, 9.0631],
+        [-4.2262, 9.0631],
+        [-2.7784, 15.7569],
+        [-5.3831, 30.5290],
+        [-13.1012, 28.0955],
+        [-19.4404, 41.6902],
+        [19.4404, 41.6902],
+    ];
+    let ka = path("s4_9_4-polar-absolute-keyhole-example-4_29.nc");
+    let ki = path("s4_9_4-polar-incremental-keyhole-example-4_30.nc");
+    assert_points(&ka, &keyhole);
+    assert_points(&ki, &keyhole);
+    // P5 → P6 is the 310° clockwise arc through (0, −10): its sweep, not the short way round.
+    let arc = ka[5];
+    let (c, ccw) = arc.2.unwrap();
+    assert!(!ccw && c[0].abs() < TOL && c[1].abs() < TOL);
+    let h = stanok_geom::Helix {
+        start: [4.2262, 9.0631, 0.0],
+        end: arc.1,
+        centre: c,
+        axis: [0.0, 0.0, -1.0],
+        turns: 1,
+    };
+    assert!(
+        (h.sweep().to_degrees() - 310.0).abs() < 0.01,
+        "{}",
+        h.sweep().to_degrees()
+    );
+}

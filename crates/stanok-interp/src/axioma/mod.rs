@@ -52,6 +52,8 @@ enum GAction {
     Workpiece(Option<u8>),
     /// G10: radius/diameter programming per axis.
     Diameter,
+    /// G15 (false) / G16 (true).
+    Polar(bool),
     /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
     Default(&'static str),
     /// Known, not yet implemented: the issue that adds it.
@@ -82,7 +84,8 @@ fn g_action(code: u32) -> Option<GAction> {
         640 => PathMode(false),
         980 => Retract(true),
         990 => Retract(false),
-        150 => Default("Plane2_polar"),
+        150 => Polar(false),
+        160 => Polar(true),
         400 => Default("EqCorrect"),
         490 => Default("ToolLengthCorrect"),
         530 => ZeroOffset(None),
@@ -99,7 +102,7 @@ fn g_action(code: u32) -> Option<GAction> {
         1540..=1590 if code.is_multiple_of(10) => Workpiece(Some((code / 10 - 153) as u8)),
         1930 | 1940 | 1950 => Shift(code),
         100 => Diameter,
-        160 | 430 | 440 | 450 => Later("coordinate systems, frames, offsets and tool data"),
+        430 | 440 | 450 => Later("coordinate systems, frames, offsets and tool data"),
         410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
         | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
         750 | 280 | 290 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
@@ -126,6 +129,7 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::ZeroOffset(_) => 14,
         GAction::Workpiece(_) => 15,
         GAction::Diameter => 16,
+        GAction::Polar(_) => 17,
         GAction::Default(_) | GAction::Later(_) => 1000 + code,
     }
 }
@@ -133,6 +137,7 @@ fn group_key(a: GAction, code: u32) -> u32 {
 mod frames;
 mod mfunc;
 mod motion;
+mod polar;
 
 use mfunc::{m_function, run_m, set_speed, MAction, MFunction};
 use motion::{dwell_block, motion};
@@ -258,8 +263,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             GAction::Plane(p) => {
                 if cx.st.plane != p {
                     cx.out.push(Canon::SelectPlane { plane: p });
+                    cx.st.plane = p;
+                    polar::on_plane_change(cx);
                 }
-                cx.st.plane = p;
             }
             GAction::Units(u) => {
                 if cx.st.units != u {
@@ -329,6 +335,15 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             GAction::Diameter => {
                 frames::diameter_mode(cx, span)?;
                 parameter_block = true;
+                continue;
+            }
+            GAction::Polar(on) => {
+                if on {
+                    polar::g16(cx)?;
+                    parameter_block = true;
+                } else {
+                    cx.st.polar.on = false;
+                }
                 continue;
             }
             _ => continue,

@@ -64,6 +64,9 @@ pub(super) fn dwell_block(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnos
 
 pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), Diagnostic> {
     let mode = cx.st.motion;
+    if cx.st.polar.on {
+        return polar_motion(cx, span, cr);
+    }
     let centre_letters = [b'I', b'J', b'K'];
     let is_arc = matches!(mode, MotionMode::ArcCw | MotionMode::ArcCcw);
     let has_centre = is_arc && cx.words.any(&centre_letters);
@@ -105,6 +108,50 @@ pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result
             arc_move(cx, mode == MotionMode::ArcCcw, span, cr)
         }
     }
+}
+
+/// A motion block under G16: the plane point from R and Q (spec axioma-1 §17.4, §17.5).
+fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), Diagnostic> {
+    if let Some(v) = cr {
+        return Err(cx.err(
+            "axioma::polar-cr",
+            "CR= has no meaning in polar mode: a polar arc runs about the pole or its I/J/K centre",
+            v.span,
+        ));
+    }
+    let start = cx.st.program_position();
+    let Some((end, full_turn)) = super::polar::end_point(cx)? else {
+        return Ok(());
+    };
+    let length = {
+        let a = start.to_array();
+        let b = end.to_array();
+        (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt()
+    };
+    match cx.st.motion {
+        MotionMode::Rapid => cx.straight(true, end, 0.0),
+        MotionMode::Linear | MotionMode::None => {
+            let feed = feed_check(cx, span, length)?;
+            cx.straight(false, end, feed);
+        }
+        MotionMode::ArcCw | MotionMode::ArcCcw => {
+            let ccw = cx.st.motion == MotionMode::ArcCcw;
+            let plane = cx.st.plane;
+            let (a, b, _) = plane.axes();
+            let (s, e) = (start.to_array(), end.to_array());
+            let (s2, e2) = ([s[a], s[b]], [e[a], e[b]]);
+            if !full_turn && (s2[0] - e2[0]).hypot(s2[1] - e2[1]) < 1e-9 {
+                // G90 to the angle it is at: nothing to do in the plane (spec A18).
+                return Ok(());
+            }
+            let planar = super::polar::arc_geometry(cx, s2, e2, span)?;
+            let len =
+                crate::rs274::helix_length(start, end, plane, planar.centre, ccw, planar.turns);
+            let feed = feed_check(cx, span, len)?;
+            cx.arc(plane, ccw, end, planar, feed);
+        }
+    }
+    Ok(())
 }
 
 fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64, Diagnostic> {

@@ -117,6 +117,7 @@ impl Ctx<'_> {
 
     /// Emits a straight move to `end` (program coordinates) and moves the state there.
     pub fn straight(&mut self, rapid: bool, end: Pose, feed: f64) {
+        self.apply_pending_tlo();
         let end_m = self.st.frame.to_machine(&end);
         let m = LineMove {
             start: self.st.position,
@@ -133,6 +134,7 @@ impl Ctx<'_> {
 
     /// Emits an arc to `end` (program coordinates) about the planar centre, and moves there.
     pub fn arc(&mut self, plane: Plane, ccw: bool, end: Pose, arc: PlanarArc, feed: f64) {
+        self.apply_pending_tlo();
         let (a, b, n) = plane.axes();
         let mut centre = self.st.program_position().to_array();
         centre[a] = arc.centre[0];
@@ -163,6 +165,14 @@ impl Ctx<'_> {
             FeedMode::UnitsPerMinute => self.st.feed,
             FeedMode::UnitsPerRevolution => self.st.feed * self.st.spindle_speed[0],
             FeedMode::InverseTime => self.st.feed * length_mm,
+        }
+    }
+
+    /// A tool length offset waiting for motion (AxiOMA) goes into the frame now: the end point of
+    /// this move is computed with it, on every axis.
+    fn apply_pending_tlo(&mut self) {
+        if let Some(t) = self.st.pending_tlo.take() {
+            self.st.frame.set_tlo(t);
         }
     }
 

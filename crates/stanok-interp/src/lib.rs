@@ -179,6 +179,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma: axioma_chain::AxiomaChain::default(),
             axioma_diameter: [false; 9],
             polar: state::Polar::default(),
+            length_comp: state::LengthComp::Off,
+            edge: 0,
+            pending_tlo: None,
             position: opts.initial_position,
         };
         let mut state = state;

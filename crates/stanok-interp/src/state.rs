@@ -44,6 +44,24 @@ pub enum PathMode {
     },
 }
 
+/// AxiOMA tool length compensation group (G43/G44/G45/G49, spec axioma-3 §3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LengthComp {
+    /// G49.
+    Off,
+    /// G43: lengths on the axes of the active plane's row, positive.
+    Plus,
+    /// G44: the same, negative.
+    Minus,
+    /// G45 L±17/18/19: a fixed row, independent of G17–G19.
+    Fixed {
+        /// The row's plane.
+        plane: Plane,
+        /// +1 or −1.
+        sign: f64,
+    },
+}
+
 /// AxiOMA polar programming (G15/G16, spec axioma-1 §17).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Polar {
@@ -118,6 +136,12 @@ pub struct ModalState {
     pub axioma: AxiomaChain,
     /// AxiOMA polar programming.
     pub polar: Polar,
+    /// AxiOMA tool length compensation mode.
+    pub length_comp: LengthComp,
+    /// AxiOMA active cutting edge D0…D4.
+    pub edge: u8,
+    /// AxiOMA: a tool length offset that the next motion block applies (spec axioma-3 §3.4).
+    pub pending_tlo: Option<Pose>,
     /// AxiOMA G10: axes programmed as diameters (their words are halved).
     pub axioma_diameter: [bool; 9],
     /// Where the tool is, machine coordinates, mm.

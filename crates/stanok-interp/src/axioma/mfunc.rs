@@ -128,6 +128,7 @@ pub(super) fn run_m(
     s_word: Option<Val>,
     t_done: &mut bool,
     tool: Option<u32>,
+    d: Option<Val>,
 ) -> Result<(), Diagnostic> {
     match f.action {
         MAction::Spindle {
@@ -165,9 +166,17 @@ pub(super) fn run_m(
                 }
                 *t_done = true;
             }
-            let t = cx.st.selected_tool.unwrap_or(cx.st.current_tool);
-            cx.out.push(Canon::ChangeTool { tool: t });
-            cx.st.current_tool = t;
+            // Rules of spec axioma-2 §3.10: D alone (or T = the tool already in the spindle)
+            // changes only the edge, without a tool-change cycle.
+            let t = tool.unwrap_or(cx.st.current_tool);
+            let change = tool.is_some() && t != cx.st.current_tool || tool.is_none() && d.is_none();
+            if change {
+                let t = cx.st.selected_tool.unwrap_or(t);
+                cx.out.push(Canon::ChangeTool { tool: t });
+                super::tools::tool_change(cx, Some(t), d)?;
+            } else {
+                super::tools::tool_change(cx, tool, d)?;
+            }
         }
         MAction::Aux => cx.out.push(Canon::AuxiliaryFunction {
             number: f.number,

@@ -54,6 +54,8 @@ enum GAction {
     Diameter,
     /// G15 (false) / G16 (true).
     Polar(bool),
+    /// G43 / G44 / G45 / G49 (the code ×10).
+    LengthComp(u32),
     /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
     Default(&'static str),
     /// Known, not yet implemented: the issue that adds it.
@@ -87,7 +89,7 @@ fn g_action(code: u32) -> Option<GAction> {
         150 => Polar(false),
         160 => Polar(true),
         400 => Default("EqCorrect"),
-        490 => Default("ToolLengthCorrect"),
+        430 | 440 | 450 | 490 => LengthComp(code),
         530 => ZeroOffset(None),
         540..=590 if code.is_multiple_of(10) => ZeroOffset(Some((code / 10 - 53) as u8)),
         720 => Mirror(false),
@@ -102,7 +104,6 @@ fn g_action(code: u32) -> Option<GAction> {
         1540..=1590 if code.is_multiple_of(10) => Workpiece(Some((code / 10 - 153) as u8)),
         1930 | 1940 | 1950 => Shift(code),
         100 => Diameter,
-        430 | 440 | 450 => Later("coordinate systems, frames, offsets and tool data"),
         410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
         | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
         750 | 280 | 290 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
@@ -130,6 +131,7 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::Workpiece(_) => 15,
         GAction::Diameter => 16,
         GAction::Polar(_) => 17,
+        GAction::LengthComp(_) => 18,
         GAction::Default(_) | GAction::Later(_) => 1000 + code,
     }
 }
@@ -138,6 +140,7 @@ mod frames;
 mod mfunc;
 mod motion;
 mod polar;
+mod tools;
 
 use mfunc::{m_function, run_m, set_speed, MAction, MFunction};
 use motion::{dwell_block, motion};
@@ -260,12 +263,10 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         match a {
             GAction::Motion(m) => motion_code = Some((m, span)),
             GAction::Dwell => dwell = Some(span),
-            GAction::Plane(p) => {
-                if cx.st.plane != p {
-                    cx.out.push(Canon::SelectPlane { plane: p });
-                    cx.st.plane = p;
-                    polar::on_plane_change(cx);
-                }
+            GAction::Plane(p) if cx.st.plane != p => {
+                cx.out.push(Canon::SelectPlane { plane: p });
+                cx.st.plane = p;
+                polar::on_plane_change(cx);
             }
             GAction::Units(u) => {
                 if cx.st.units != u {
@@ -337,6 +338,10 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 parameter_block = true;
                 continue;
             }
+            GAction::LengthComp(code) => {
+                tools::length_comp(cx, code)?;
+                continue;
+            }
             GAction::Polar(on) => {
                 if on {
                     polar::g16(cx)?;
@@ -394,6 +399,10 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         .iter()
         .any(|(f, _)| matches!(f.action, MAction::Spindle { spindle: 0, .. }));
     let has_tool_m = ms.iter().any(|(f, _)| f.action == MAction::ToolChange);
+    let d_word = cx.words.take(b'D');
+    if let (Some(d), false) = (d_word, has_tool_m) {
+        return Err(tools::stray_d(cx, d));
+    }
     let mut s_done = false;
     let mut t_done = false;
     if let Some(s) = s_word {
@@ -412,9 +421,11 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         t_done = true;
     }
     for (f, _span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Prefix) {
-        run_m(cx, f, &mut s_done, s_word, &mut t_done, tool)?;
+        run_m(cx, f, &mut s_done, s_word, &mut t_done, tool, d_word)?;
     }
 
+    // Tool length: a changed σ·V is applied by this block's motion, or the next one's.
+    tools::update(cx);
     // 6. Dwell or motion.
     if let Some(span) = dwell {
         dwell_block(cx, span)?;
@@ -464,7 +475,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 outcome = Outcome::End;
             }
             MAction::Stop { optional } => cx.out.push(Canon::ProgramStop { optional }),
-            _ => run_m(cx, f, &mut s_done, s_word, &mut t_done, tool)?,
+            _ => run_m(cx, f, &mut s_done, s_word, &mut t_done, tool, d_word)?,
         }
     }
     if let (Some(s), false) = (s_word, s_done) {

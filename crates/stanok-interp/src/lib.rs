@@ -182,6 +182,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             length_comp: state::LengthComp::Off,
             edge: 0,
             pending_tlo: None,
+            home_return: state::HomeReturn::None,
             position: opts.initial_position,
         };
         let mut state = state;

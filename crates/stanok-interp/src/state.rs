@@ -62,6 +62,18 @@ pub enum LengthComp {
     },
 }
 
+/// AxiOMA G28/G29: how the last G28 reached its home position (spec axioma-2 §3.8).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HomeReturn {
+    /// No G28 to return from.
+    None,
+    /// At a home position, reached via this intermediate point (machine coordinates) or directly.
+    From {
+        /// The intermediate point.
+        via: Option<Pose>,
+    },
+}
+
 /// AxiOMA polar programming (G15/G16, spec axioma-1 §17).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Polar {
@@ -142,6 +154,8 @@ pub struct ModalState {
     pub edge: u8,
     /// AxiOMA: a tool length offset that the next motion block applies (spec axioma-3 §3.4).
     pub pending_tlo: Option<Pose>,
+    /// AxiOMA: the G28 that G29 returns from.
+    pub home_return: HomeReturn,
     /// AxiOMA G10: axes programmed as diameters (their words are halved).
     pub axioma_diameter: [bool; 9],
     /// Where the tool is, machine coordinates, mm.

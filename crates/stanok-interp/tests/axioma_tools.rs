@@ -178,3 +178,122 @@ fn tool_errors() {
         .iter()
         .any(|w| w.code == DiagCode::Stanok("axioma::tool-not-in-table")));
 }
+
+// ------------------------------------------------------------------ G28 / G29 home positions
+
+fn homes() -> ControlData {
+    let mut c = tools();
+    c.offsets.home[0] = Some(stanok_canon::Pose {
+        x: 100.0,
+        y: 200.0,
+        z: 300.0,
+        ..Default::default()
+    });
+    c.offsets.home[1] = Some(stanok_canon::Pose {
+        x: -50.0,
+        y: -60.0,
+        z: 250.0,
+        ..Default::default()
+    });
+    c
+}
+
+fn run_homes(text: &str) -> (Vec<Spanned<Canon>>, Option<stanok_canon::Diagnostic>, usize) {
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    opts.control = homes();
+    let mut it = Interpreter::from_text(text, opts);
+    let mut out = Vec::new();
+    for item in it.by_ref() {
+        match item {
+            Ok(c) => out.push(c),
+            Err(d) => return (out, Some(d), 0),
+        }
+    }
+    let warnings = it.warnings().len();
+    (out, None, warnings)
+}
+
+#[test]
+fn s6_9_home_position_via_intermediate_point_and_back() {
+    let (cmds, err, warnings) = run_homes(&fixture("s6_9-home-position-g28-g29-example-6_5.nc"));
+    assert!(err.is_none(), "{err:?}");
+    // `G28 N1 Z77`: N1 read as H1, with a warning.
+    assert!(warnings >= 1);
+    let path: Vec<[f64; 3]> = cmds
+        .iter()
+        .filter_map(|c| c.value.motion().map(|m| m.end().xyz()))
+        .collect();
+    let home = [100.0, 200.0, 300.0];
+    assert_eq!(
+        path,
+        [
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 77.0],
+            home,
+            [0.0, 0.0, 77.0],
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 77.0],
+            home,
+            [0.0, 0.0, 77.0],
+            [0.0, 0.0, 0.0],
+        ]
+    );
+    assert!(cmds
+        .iter()
+        .filter(|c| c.value.motion().is_some())
+        .all(|c| matches!(c.value, Canon::StraightTraverse(_))));
+}
+
+#[test]
+fn s6_9_block_forms_and_return_via_b() {
+    let (cmds, err, _) = run_homes(&fixture("s6_9_1-g28-block-forms-fragment.nc"));
+    assert!(err.is_none(), "{err:?}");
+    let path: Vec<[f64; 3]> = cmds
+        .iter()
+        .filter_map(|c| c.value.motion().map(|m| m.end().xyz()))
+        .collect();
+    // Lines 1 and 2 are the same (order of H and axes does not matter); line 3 uses H1.
+    assert_eq!(
+        path,
+        [
+            [50.0, 40.0, 0.0],
+            [-50.0, -60.0, 250.0],
+            [50.0, 40.0, 250.0],
+            [-50.0, -60.0, 250.0],
+            [20.0, 30.0, 250.0],
+            [100.0, 200.0, 300.0],
+        ]
+    );
+    let (cmds, err, _) = run_homes(&fixture("s6_9_2-g28-tool-change-g29-fragment.nc"));
+    assert!(err.is_none(), "{err:?}");
+    let path: Vec<[f64; 3]> = cmds
+        .iter()
+        .filter_map(|c| c.value.motion().map(|m| m.end().xyz()))
+        .collect();
+    // To H1 via B (1000, 500), tool change, back via B to C (1300, 200).
+    assert_eq!(
+        path,
+        [
+            [1000.0, 500.0, 0.0],
+            [100.0, 200.0, 300.0],
+            [1000.0, 500.0, 0.0],
+            [1300.0, 200.0, 0.0]
+        ]
+    );
+    assert!(cmds
+        .iter()
+        .any(|c| matches!(c.value, Canon::ChangeTool { tool: 1 })));
+}
+
+#[test]
+fn home_errors() {
+    for (block, code) in [
+        ("G28 H3\n", "axioma::home-undefined"),
+        ("G28 H9\n", "axioma::home-range"),
+        ("G29 X0\n", "axioma::g29-without-g28"),
+    ] {
+        let (_, err, _) = run_homes(&format!("G17 G90\n{block}M30\n"));
+        let err = err.unwrap_or_else(|| panic!("{block}: no error"));
+        assert_eq!(err.code, DiagCode::Stanok(code), "{block}: {err}");
+    }
+}

@@ -56,6 +56,8 @@ enum GAction {
     Polar(bool),
     /// G43 / G44 / G45 / G49 (the code ×10).
     LengthComp(u32),
+    /// G28 (true) / G29 (false).
+    Home(bool),
     /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
     Default(&'static str),
     /// Known, not yet implemented: the issue that adds it.
@@ -106,7 +108,9 @@ fn g_action(code: u32) -> Option<GAction> {
         100 => Diameter,
         410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
         | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
-        750 | 280 | 290 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
+        280 => Home(true),
+        290 => Home(false),
+        750 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
         _ => return None,
     })
 }
@@ -132,11 +136,13 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::Diameter => 16,
         GAction::Polar(_) => 17,
         GAction::LengthComp(_) => 18,
+        GAction::Home(_) => 1,
         GAction::Default(_) | GAction::Later(_) => 1000 + code,
     }
 }
 
 mod frames;
+mod home;
 mod mfunc;
 mod motion;
 mod polar;
@@ -427,8 +433,18 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // Tool length: a changed σ·V is applied by this block's motion, or the next one's.
     tools::update(cx);
     // 6. Dwell or motion.
+    let home = actions.iter().find_map(|&(a, _, span)| match a {
+        GAction::Home(to) => Some((to, span)),
+        _ => None,
+    });
     if let Some(span) = dwell {
         dwell_block(cx, span)?;
+    } else if let Some((to_home, span)) = home {
+        if to_home {
+            home::g28(cx, span)?;
+        } else {
+            home::g29(cx, span)?;
+        }
     } else if parameter_block {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;

@@ -306,6 +306,27 @@ pub enum Canon {
         /// X Y Z A B C U V W offset, mm/deg.
         offset: Pose,
     },
+    /// A tool-table entry was written (LinuxCNC `G10 L1/L10/L11`, its SET_TOOL_TABLE_ENTRY). Data
+    /// only: the offset in force changes with the next G43.
+    SetToolTableEntry {
+        /// LinuxCNC's tool-table slot: n ≥ 1 = the n-th tool of the table (by number), 0 = the
+        /// spindle's copy of the loaded tool (written too when the loaded tool changes).
+        slot: u32,
+        /// Tool number.
+        tool: u32,
+        /// Tool offset X Y Z A B C U V W, mm/deg (the table's values: machine frame, not program units).
+        offset: Pose,
+        /// Cutter diameter, mm.
+        diameter: f64,
+        /// Lathe front angle, degrees.
+        front_angle: f64,
+        /// Lathe back angle, degrees.
+        back_angle: f64,
+        /// Lathe cutting-edge orientation 0…9 (0 = none).
+        orientation: u8,
+    },
+    /// The tool table is read again from where it is kept (LinuxCNC `G10 L0`, RELOAD_TOOLDATA).
+    ReloadToolTable,
     /// A tool change begins (LinuxCNC's START_CHANGE: move to the change position, orient…).
     StartToolChange,
     /// A T word: the tool is prepared (not yet in the spindle).

@@ -18,6 +18,10 @@ use crate::canon::{ArcMove, Canon, FeedMode, LengthUnits, Plane, Pose, SpindleDi
 use crate::span::Spanned;
 use std::fmt::Write as _;
 
+/// mm per machine length unit of `rs274`'s simulated machine, which works in inches (its tool
+/// table and parameters `#5161…` are in inches whatever the program's units).
+pub const RS274_MACHINE_MM: f64 = 25.4;
+
 /// Turns `Canon` commands into `rs274 -g` lines.
 #[derive(Debug)]
 pub struct LinuxCncPrinter {
@@ -158,6 +162,31 @@ impl LinuxCncPrinter {
                 self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())
             }
             Canon::SelectTool { tool } => self.line(n, format!("SELECT_TOOL({tool})")),
+            Canon::SetToolTableEntry {
+                slot,
+                tool,
+                offset,
+                front_angle,
+                back_angle,
+                orientation,
+                ..
+            } => {
+                // rs274 prints the table's own values, which LinuxCNC keeps in the machine's units:
+                // inches in the standalone interpreter, whatever the program's G20/G21. It does
+                // not print the diameter.
+                let mut v = offset.to_array();
+                for i in [0, 1, 2, 6, 7, 8] {
+                    v[i] /= RS274_MACHINE_MM;
+                }
+                self.line(
+                    n,
+                    format!(
+                        "SET_TOOL_TABLE_ENTRY({slot}, {tool}, {:.4} {:.4} {:.4} {:.4} {:.4} {:.4} {:.4} {:.4} {:.4}, {front_angle:.4}, {back_angle:.4}, {orientation})",
+                        v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]
+                    ),
+                );
+            }
+            Canon::ReloadToolTable => self.line(n, "RELOAD_TOOLDATA()".into()),
             Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
             Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),
             Canon::UseToolLengthOffset { offset } => {

@@ -270,6 +270,8 @@ impl SimMachine {
             | Canon::SelectTool { .. }
             | Canon::UseToolLengthOffset { .. }
             | Canon::StartToolChange
+            | Canon::SetToolTableEntry { .. }
+            | Canon::ReloadToolTable
             | Canon::Comment { .. } => {}
         }
         Ok(())

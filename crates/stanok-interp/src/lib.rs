@@ -76,6 +76,13 @@ pub struct InterpOptions {
     pub control: ControlData,
     /// Axes that may be programmed as diameters (AxiOMA G10; the transverse axis of a lathe).
     pub diameter_axes: [bool; 9],
+    /// RS274/NGC: the machine's length unit (LinuxCNC `[TRAJ]LINEAR_UNITS`), in which numbered
+    /// parameters hold lengths (`#5161…`, `#5211…`, `#5221…`, `#5401…`). LinuxCNC's standalone
+    /// `rs274` works in inches.
+    pub rs274_machine_units: LengthUnits,
+    /// RS274/NGC: G92 offsets survive M2/M30 and the run (LinuxCNC's default); false is
+    /// LinuxCNC's `DISABLE_G92_PERSISTENCE`: program end cancels them as G92.1 does.
+    pub g92_persistence: bool,
 }
 
 impl InterpOptions {
@@ -95,6 +102,8 @@ impl InterpOptions {
             max_errors: 100,
             control: ControlData::default(),
             diameter_axes: [true, false, false, false, false, false, false, false, false],
+            rs274_machine_units: LengthUnits::Millimetres,
+            g92_persistence: true,
         }
     }
 }
@@ -188,6 +197,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let mut state = state;
         let mut params = Parameters::default();
         if opts.dialect == Dialect::Rs274ngc {
+            params.set_machine_units(opts.rs274_machine_units);
             params.preset_from(&opts.control);
             let system = opts.control.offsets.active_system.clamp(1, 9);
             let (offset, rotation) = rs274::g5x_from_params(&params, system);
@@ -238,6 +248,18 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// Parameter storage (RS274/NGC), e.g. to preset work offsets before a run.
     pub fn parameters_mut(&mut self) -> &mut Parameters {
         &mut self.params
+    }
+
+    /// Parameters and tool table as the blocks run so far left them (RS274/NGC).
+    pub fn parameters(&self) -> &Parameters {
+        &self.params
+    }
+
+    /// The stored control data as the run left it (RS274/NGC): what LinuxCNC writes back to its
+    /// `.var` file and tool table when it exits — the options' data with the offsets, G28/G30
+    /// positions, G92, active system, tool table and preset parameters updated.
+    pub fn control_data(&self) -> ControlData {
+        self.params.to_control(&self.opts.control)
     }
 
     /// Counters.
@@ -416,7 +438,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             // Assignments are evaluated with the old values and applied after the line.
             for a in &self.block.assignments {
                 let v = eval.eval(a.value)?;
-                let slot = eval.slot(&a.target, a.value)?;
+                let slot = eval.assignment_slot(&a.target, a.value)?;
                 pending_params.push((slot, v));
             }
             if dialect == Dialect::Rs274ngc {
@@ -442,6 +464,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 }
             }
         }
+        // Parameter and tool-table writes of the block are journalled, undone if it fails.
+        self.params.begin_block();
         let result = {
             let mut cx = Ctx {
                 block: &self.block,
@@ -462,10 +486,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 // Nothing of a failing block leaves the interpreter.
                 self.queue.truncate(mark);
                 self.state = backup;
+                self.params.rollback();
                 return Err(d);
             }
         };
         // Commit.
+        self.params.commit();
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }

@@ -1,11 +1,20 @@
 //! RS274/NGC parameters and expression evaluation.
 //!
-//! Storage follows LinuxCNC: numbered parameters `#1…#5601` live in one array (the work-offset
-//! tables `#5221…#5390` and the G92 offsets `#5211…#5219` are *stored* there, in mm, and are the
-//! source of truth the interpreter reads when it selects a coordinate system); a few numbers are
-//! computed on read from the live state (`#5220` active system, `#5400` tool in spindle,
-//! `#5420…#5428` current position in program units). Named parameters are local to the subroutine
-//! call level that created them (`#<name>`) or global (`#<_name>`); names ignore case and spaces.
+//! Storage follows LinuxCNC: numbered parameters `#1…#5601` live in one array, and the numbers
+//! LinuxCNC gives a meaning (spec rs274ngc §3.2) are *stored* there exactly as LinuxCNC stores them,
+//! lengths in the machine's length unit (LinuxCNC's "user units", [`Parameters::set_machine_units`]):
+//! G28/G30 positions `#5161…#5189`, the G92 flag and offsets `#5210…#5219`, the active system
+//! `#5220`, the G54…G59.3 table `#5221…#5390`, the loaded tool `#5400…#5413`. The interpreter writes
+//! them when the event happens (G28.1, G92, G5x selection, M6, G10 …) and reads them when it needs
+//! them (a G5x selection loads the table *then*, so a program's `#5221 = …` takes effect at the next
+//! selection, as in LinuxCNC). `#5400…#5413` and `#5420…#5428` are read-only to programs, and
+//! `#5420…#5428` (current position, program units) are computed on read from the live state.
+//! Named parameters are local to the subroutine call level that created them (`#<name>`) or global
+//! (`#<_name>`); names ignore case and spaces.
+//!
+//! The tool table lives here too: LinuxCNC's interpreter keeps it as data beside its parameters
+//! (G10 L1 writes it, G43 and M6 read it). Both change only when a block commits: a block's writes
+//! go through an undo journal ([`Parameters::begin_block`], `rollback`, `commit`).
 //!
 //! Evaluation is a recursive walk of the block's expression arena. Its depth is bounded by the
 //! parser's bracket-nesting limit, so it cannot overflow the stack. Every domain error (division by
@@ -13,7 +22,8 @@
 //! offending sub-expression, with LinuxCNC's wording.
 
 use crate::state::ModalState;
-use stanok_canon::{Diagnostic, Span};
+use stanok_canon::setup::{ControlData, Tool, ToolTable};
+use stanok_canon::{Diagnostic, LengthUnits, Pose, Span};
 use stanok_syntax::{BinOp, Block, ExprId, ExprNode, ParamRef, UnaryFn};
 use std::collections::HashMap;
 
@@ -23,13 +33,21 @@ pub const MAX_PARAMETERS: usize = 5602;
 /// LinuxCNC's tolerance for `EQ`/`NE`.
 const TOLERANCE_EQUAL: f64 = 0.0001;
 
-/// Parameter storage.
+/// Parameter storage and the tool table.
 #[derive(Debug, Clone)]
 pub struct Parameters {
     numbered: Vec<f64>,
     globals: HashMap<String, f64>,
     /// One map per subroutine call level; index 0 is the main program.
     locals: Vec<HashMap<String, f64>>,
+    /// mm per machine length unit: the unit length parameters are stored in.
+    unit_mm: f64,
+    /// Inside a block: numbered writes are journalled (number, old value) for `rollback`.
+    in_block: bool,
+    journal: Vec<(usize, f64)>,
+    tools: ToolTable,
+    /// Old entries of the tools the block changed.
+    tool_journal: Vec<(u32, Option<Tool>)>,
 }
 
 impl Default for Parameters {
@@ -40,8 +58,40 @@ impl Default for Parameters {
             numbered,
             globals: HashMap::new(),
             locals: vec![HashMap::new()],
+            unit_mm: 1.0,
+            in_block: false,
+            journal: Vec::new(),
+            tools: ToolTable::default(),
+            tool_journal: Vec::new(),
         }
     }
+}
+
+/// Parameters read-only to programs (LinuxCNC: "Parameter is readonly"): the loaded tool
+/// `#5400…#5413` and the current position `#5420…#5428`.
+pub fn is_read_only(n: usize) -> bool {
+    matches!(n, 5400..=5413 | 5420..=5428)
+}
+
+/// The axis index (X = 0 … W = 8) of a numbered parameter that holds a length or angle of an axis
+/// in LinuxCNC's tables, if it is one: G28 `#5161…`, G30 `#5181…`, G92 `#5211…`, the G54…G59.3
+/// systems, the loaded tool's offsets `#5401…`. (The probe result `#5061…` is in program units:
+/// the probing issue writes it.)
+fn axis_of(n: usize) -> Option<usize> {
+    match n {
+        5161..=5169 => Some(n - 5161),
+        5181..=5189 => Some(n - 5181),
+        5211..=5219 => Some(n - 5211),
+        5221..=5390 => Some((n - 5221) % 20).filter(|&k| k < 9),
+        5401..=5409 => Some(n - 5401),
+        _ => None,
+    }
+}
+
+/// True if parameter `n` holds a length (stored in machine units): the linear axes of the tables
+/// above and the tool diameter `#5410`.
+fn is_length(n: usize) -> bool {
+    n == 5410 || axis_of(n).is_some_and(crate::ctx::is_linear)
 }
 
 /// A parameter resolved to its storage slot, ready to be written.
@@ -70,30 +120,143 @@ impl Parameters {
     /// Loads the stored control data into the numbered parameters, as LinuxCNC reads its `.var`
     /// file: G28 5161…, G30 5181…, G92 5210…5219, active system 5220, G54…G59.3 5221…5390 (page 1,
     /// with the rotation in the tenth slot), then the preset parameters.
-    pub fn preset_from(&mut self, c: &stanok_canon::setup::ControlData) {
+    /// Also copies the tool table.
+    pub fn preset_from(&mut self, c: &ControlData) {
         let o = &c.offsets;
-        for (k, v) in o.g28.to_array().into_iter().enumerate() {
-            self.set(5161 + k, v);
-        }
-        for (k, v) in o.g30.to_array().into_iter().enumerate() {
-            self.set(5181 + k, v);
-        }
+        self.set_pose_mm(5161, &o.g28);
+        self.set_pose_mm(5181, &o.g30);
         self.set(5210, if o.g92_applied { 1.0 } else { 0.0 });
-        for (k, v) in o.g92.to_array().into_iter().enumerate() {
-            self.set(5211 + k, v);
-        }
+        self.set_pose_mm(5211, &o.g92);
         self.set(5220, o.active_system.clamp(1, 9) as f64);
         for system in 1..=9u8 {
             if let Some(z) = o.zero_offset(system, 1) {
                 let base = 5201 + 20 * system as usize;
-                for (k, v) in z.offset.to_array().into_iter().enumerate() {
-                    self.set(base + k, v);
-                }
+                self.set_pose_mm(base, &z.offset);
                 self.set(base + 9, z.rotation_xy);
             }
         }
         for (&n, &v) in &c.parameters {
             self.set(n as usize, v);
+        }
+        self.tools = c.tools.clone();
+    }
+
+    /// The stored control data as the run left it — what LinuxCNC writes back to its `.var` file
+    /// and tool table: `template` (the data the run started from) with the G28/G30 positions, the
+    /// G92 offsets and flag, the active system, page 1 of the G54…G59.3 table and the tool table
+    /// replaced by their current values, and each of `template.parameters` by its current value.
+    pub fn to_control(&self, template: &ControlData) -> ControlData {
+        let mut c = template.clone();
+        let o = &mut c.offsets;
+        o.g28 = self.pose_mm(5161);
+        o.g30 = self.pose_mm(5181);
+        o.g92_applied = self.get(5210) != 0.0;
+        o.g92 = self.pose_mm(5211);
+        o.active_system = (self.get(5220).round() as u8).clamp(1, 9);
+        for (s, pages) in o.zero.iter_mut().enumerate() {
+            if let Some(z) = pages.first_mut() {
+                let base = 5221 + 20 * s;
+                z.offset = self.pose_mm(base);
+                z.rotation_xy = self.get(base + 9);
+            }
+        }
+        for (&n, v) in c.parameters.iter_mut() {
+            *v = self.get(n as usize);
+        }
+        c.tools = self.tools.clone();
+        c
+    }
+
+    /// The machine's length unit, in which length parameters are stored (LinuxCNC's user units,
+    /// `[TRAJ]LINEAR_UNITS`). Set it before [`Parameters::preset_from`].
+    pub fn set_machine_units(&mut self, units: LengthUnits) {
+        self.unit_mm = units.mm_per_unit();
+    }
+
+    /// mm per machine length unit.
+    pub fn machine_unit_mm(&self) -> f64 {
+        self.unit_mm
+    }
+
+    /// Parameter `n` in mm (lengths) or degrees/as stored (everything else).
+    pub fn get_mm(&self, n: usize) -> f64 {
+        let v = self.get(n);
+        if is_length(n) {
+            v * self.unit_mm
+        } else {
+            v
+        }
+    }
+
+    /// Stores `v` (mm for a length parameter) in parameter `n`.
+    pub fn set_mm(&mut self, n: usize, v: f64) {
+        let v = if is_length(n) { v / self.unit_mm } else { v };
+        self.set(n, v);
+    }
+
+    /// Nine consecutive axis parameters from `base` (X at `base`) as a pose in mm/deg.
+    pub fn pose_mm(&self, base: usize) -> Pose {
+        let mut v = [0.0; 9];
+        for (k, x) in v.iter_mut().enumerate() {
+            *x = self.get_mm(base + k);
+        }
+        Pose::from_array(v)
+    }
+
+    /// Stores a pose (mm/deg) in the nine axis parameters from `base`.
+    pub fn set_pose_mm(&mut self, base: usize, p: &Pose) {
+        for (k, v) in p.to_array().into_iter().enumerate() {
+            self.set_mm(base + k, v);
+        }
+    }
+
+    /// The tool table.
+    pub fn tools(&self) -> &ToolTable {
+        &self.tools
+    }
+
+    /// Replaces (or adds) a tool's entry; undone by `rollback` inside a block.
+    pub fn set_tool(&mut self, tool: Tool) {
+        let old = self.tools.tools.insert(tool.number, tool.clone());
+        if self.in_block {
+            self.tool_journal.push((tool.number, old));
+        }
+    }
+
+    /// LinuxCNC's slot of a tool: its 1-based position in the table (ordered by tool number).
+    pub fn tool_slot(&self, number: u32) -> Option<u32> {
+        self.tools
+            .tools
+            .keys()
+            .position(|&t| t == number)
+            .map(|i| i as u32 + 1)
+    }
+
+    /// Starts a block: from here numbered and tool-table writes can be undone.
+    pub fn begin_block(&mut self) {
+        self.in_block = true;
+        self.journal.clear();
+        self.tool_journal.clear();
+    }
+
+    /// The block succeeded: keep its writes.
+    pub fn commit(&mut self) {
+        self.in_block = false;
+        self.journal.clear();
+        self.tool_journal.clear();
+    }
+
+    /// The block failed: undo its writes.
+    pub fn rollback(&mut self) {
+        self.in_block = false;
+        while let Some((n, v)) = self.journal.pop() {
+            self.numbered[n] = v;
+        }
+        while let Some((number, old)) = self.tool_journal.pop() {
+            match old {
+                Some(t) => self.tools.tools.insert(number, t),
+                None => self.tools.tools.remove(&number),
+            };
         }
     }
 
@@ -105,6 +268,9 @@ impl Parameters {
     /// Sets a numbered value.
     pub fn set(&mut self, n: usize, v: f64) {
         if let Some(slot) = self.numbered.get_mut(n) {
+            if self.in_block {
+                self.journal.push((n, *slot));
+            }
             *slot = v;
         }
     }
@@ -189,6 +355,30 @@ impl Evaluator<'_> {
         }
     }
 
+    /// Resolves the target of an assignment `#n = …`: like [`Evaluator::slot`], and refuses the
+    /// parameters LinuxCNC keeps read-only.
+    pub fn assignment_slot(&self, p: &ParamRef, at: ExprId) -> Result<Slot, Diagnostic> {
+        let slot = self.slot(p, at)?;
+        if let Slot::Numbered(n) = slot {
+            if is_read_only(n) {
+                return Err(Diagnostic::error(
+                    "rs274::parameter-read-only",
+                    "Parameter is readonly",
+                    self.span(at),
+                )
+                .with_note(format!(
+                    "#{n} reflects the interpreter's state: {}",
+                    if n < 5420 {
+                        "the loaded tool (M6, G10 L1 change it)"
+                    } else {
+                        "the current position"
+                    }
+                )));
+            }
+        }
+        Ok(slot)
+    }
+
     /// Reads a parameter (with live bindings).
     pub fn read(&self, p: &ParamRef, at: ExprId) -> Result<f64, Diagnostic> {
         match self.slot(p, at)? {
@@ -220,8 +410,6 @@ impl Evaluator<'_> {
         let st = self.state;
         let units = st.units.mm_per_unit();
         match n {
-            5220 => st.g5x_index.max(1) as f64,
-            5400 => st.current_tool as f64,
             5420..=5428 => {
                 let p = st.program_position().to_array();
                 let i = n - 5420;

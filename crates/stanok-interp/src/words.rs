@@ -197,6 +197,14 @@ impl Words {
         Some(self.letter[i])
     }
 
+    /// Multiplies a written letter's value by `k` (RS274/NGC G7: X words are diameters, halved
+    /// before any code reads them). Does not mark it used.
+    pub fn scale(&mut self, letter: u8, k: f64) {
+        if self.has(letter) {
+            self.letter[idx(letter)].v *= k;
+        }
+    }
+
     /// True if the letter was written (does not mark it used).
     pub fn has(&self, letter: u8) -> bool {
         self.present & (1 << idx(letter)) != 0

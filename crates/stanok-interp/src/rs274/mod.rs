@@ -7,31 +7,37 @@
 //! ```text
 //!  1 comment / message (done by the driver)   9 G17–G19            17 G90.1/G91.1
 //!  2 G93/G94/G95                              10 G20/G21            18 G98/G99
-//!  3 F                                        11 G40–G42            19 G10 (L2, L20)
-//!  4 S                                        12 G43/G49            20 motion (G0–G3, G80), G53
-//!  5 T                                        13 G54–G59.3          21 M0/M1/M2/M30
-//!  6 M6                                       14 G61/G61.1/G64
-//!  7 M3/M4/M5, M7/M8/M9, M100–M199           15 G90/G91
-//!  8 G4                                       16 (reserved)
+//!  3 F                                        10a G7/G8             19 G10, G28, G30, G52, G92 …
+//!  4 S                                        11 G40–G42            20 motion (G0–G3, G80), G53
+//!  5 T                                        12 G43/G43.1/G43.2/G49 21 M0/M1/M2/M30
+//!  6 M6                                       13 G54–G59.3
+//!  7 M3/M4/M5, M7/M8/M9, M100–M199           14 G61/G61.1/G64
+//!  8 G4                                       15 G90/G91
 //! ```
 //!
-//! Codes that belong to later capabilities (canned cycles, cutter compensation, G92, G28, probing,
+//! Files: `motion.rs` G0–G3/G80/G53; `offsets.rs` the G54…G59.3 table, G10 L2/L20, G92/G52 and
+//! program end; `tools.rs` T, M6, tool length offsets and the tool table (G10 L0/L1/L10/L11);
+//! `home.rs` G28/G30 and their stored positions.
+//!
+//! Codes that belong to later capabilities (canned cycles, cutter compensation, probing,
 //! splines …) are recognised and rejected with `interp::unsupported`, never silently ignored.
 //! The `COMMENT("interpreter: …")` calls LinuxCNC emits on mode changes are reproduced, so that
 //! `stanok canon` diffs cleanly against LinuxCNC's own traces.
 
-use crate::ctx::Ctx;
+use crate::ctx::{is_linear, Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use crate::state::{DistanceMode, MotionMode, PathMode};
-use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, SpindleDirection};
+use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection};
 
+mod home;
 mod motion;
 mod offsets;
+mod tools;
 
 pub use motion::helix_length;
 use motion::motion_block;
 pub use offsets::g5x_from_params;
-use offsets::{g10, program_end, select_coordinate_system};
+use offsets::{g10_origin, g92_family, program_end, select_coordinate_system};
 use stanok_syntax::ColSpan;
 
 /// What the driver does after the block.
@@ -162,11 +168,18 @@ fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
                 span,
             ));
         };
-        if code == 530 {
+        // G53 is group 0 too: it travels with the motion, but shares the group with G4, G10 ….
+        let prev = if code == 530 {
+            g.code[Group::NonModal as usize]
+        } else if group == Group::NonModal && g.g53.is_some() {
+            530
+        } else {
+            g.code[group as usize]
+        };
+        if code == 530 && prev == NO_CODE {
             g.g53 = Some(span);
             continue;
         }
-        let prev = g.code[group as usize];
         if prev != NO_CODE {
             return Err(cx
                 .err(
@@ -281,12 +294,9 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // Codes recognised but belonging to later capabilities. (Straight off the code array: building
     // seven `Option`s and flattening them cost ~50 instructions per block.)
     for group in [
-        Group::NonModal,
         Group::Motion,
         Group::CutterComp,
-        Group::ToolLength,
         Group::SpindleMode,
-        Group::LatheDiameter,
         Group::Plane,
     ] {
         let code = g.code[group as usize];
@@ -295,15 +305,11 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
         let span = g.span[group as usize];
         let issue = match code {
-            280 | 281 | 300 | 301 | 520 | 920..=923 => Some("coordinate systems and offsets"),
-            100 => None, // G10: L2/L20 here, the rest below
-            430..=432 => Some("coordinate systems and offsets (tool length)"),
             410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
             50 | 51 | 52 | 330 | 331 | 382..=385 | 700..=760 | 810..=890 => {
                 Some("RS274/NGC cycles, splines and probing")
             }
             960 => Some("feed and spindle technology"),
-            70 => Some("coordinate systems and offsets (lathe diameter mode)"),
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,
         };
@@ -358,18 +364,11 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 5. T.
     if let Some(t) = cx.words.take(b'T') {
-        let tool = cx.non_negative_integer(t, "T word")?;
-        cx.st.selected_tool = Some(tool);
-        cx.out.push(Canon::SelectTool { tool });
+        tools::select_tool(cx, params, t)?;
     }
     // 6. M6.
     if m.tool_change {
-        let tool = cx.st.selected_tool.unwrap_or(cx.st.current_tool);
-        cx.out.push(Canon::StartToolChange);
-        cx.out.push(Canon::StopSpindle { spindle: 0 });
-        cx.st.spindle_on[0] = false;
-        cx.out.push(Canon::ChangeTool { tool });
-        cx.st.current_tool = tool;
+        tools::change_tool(cx, params);
     }
     // 7. Spindle, coolant, user M codes.
     if m.spindle != NO_CODE {
@@ -440,12 +439,45 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.st.units = units;
         cx.out.push(Canon::UseLengthUnits { units });
     }
+    // 10a. Lathe diameter mode: from here on every X word of the block is a diameter (LinuxCNC
+    // halves X words as it reads them — positions, G92, G10 and G43.1 values alike; arc centres
+    // I/K and radii stay radii).
+    if let Some((code, _)) = g.get(Group::LatheDiameter) {
+        let diameter = code == 70;
+        if diameter != cx.st.diameter_mode {
+            cx.out.push(Canon::Comment {
+                text: format!(
+                    "interpreter: Lathe diameter mode changed to {}",
+                    if diameter { "diameter" } else { "radius" }
+                ),
+            });
+            cx.st.diameter_mode = diameter;
+        }
+    }
+    if cx.st.diameter_mode {
+        cx.words.scale(b'X', 0.5);
+    }
     // 11. Cutter compensation: only G40 reaches here (G41/G42 rejected above).
-    // 12. Tool length: only G49 reaches here.
-    if let Some((490, _)) = g.get(Group::ToolLength) {
-        cx.st.frame.set_tlo(Pose::ZERO);
-        cx.out
-            .push(Canon::UseToolLengthOffset { offset: Pose::ZERO });
+    // 12. Tool length.
+    let mut axis_words_used_by_g43 = false;
+    if let Some((code, span)) = g.get(Group::ToolLength) {
+        axis_words_used_by_g43 = tools::tool_length_offset(cx, params, code, span)?;
+        if axis_words_used_by_g43 {
+            if let Some((_, motion_span)) = g.get(Group::Motion) {
+                // The document: G43.1 (and G43.2 with axes) and a motion on one line are an error.
+                // LinuxCNC 2.9 applies the words to both.
+                return Err(cx
+                    .err(
+                        "rs274::two-axis-g-codes",
+                        "Cannot use two g codes that both use axis values",
+                        motion_span,
+                    )
+                    .with_note(format!(
+                        "{} takes the axis words as tool offsets: put the motion on its own line",
+                        g_name(code)
+                    )));
+            }
+        }
     }
     // 13. Coordinate system.
     if let Some((code, _)) = g.get(Group::CoordSystem) {
@@ -527,18 +559,27 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             ),
         });
     }
-    // 19. G10.
-    let mut axis_words_used_by_modal_0 = false;
-    if let Some((100, span)) = g.get(Group::NonModal) {
-        if g.get(Group::Motion).is_some() {
-            return Err(cx.err(
-                "rs274::two-axis-g-codes",
-                "Cannot use two g codes that both use axis values",
-                span,
-            ));
+    // 19. Group 0 (G4 ran at 8). G10, G28, G30, G52 and G92 take the axis words for themselves:
+    // with them an explicit motion code is an error and the modal motion is suspended.
+    let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
+    if let Some((code, span)) = g.get(Group::NonModal) {
+        if matches!(code, 100 | 280 | 300 | 520 | 920) {
+            if g.get(Group::Motion).is_some() {
+                return Err(cx.err(
+                    "rs274::two-axis-g-codes",
+                    "Cannot use two g codes that both use axis values",
+                    span,
+                ));
+            }
+            axis_words_used_by_modal_0 = true;
         }
-        g10(cx, params, span)?;
-        axis_words_used_by_modal_0 = true;
+        match code {
+            100 => g10(cx, params, span)?,
+            280 | 300 => home::go_home(cx, params, code == 280)?,
+            281 | 301 => home::store_home(cx, params, code == 281),
+            520 | 920..=923 => g92_family(cx, params, code, span)?,
+            _ => {}
+        }
     }
     // 20. Motion.
     let motion = match g.get(Group::Motion) {
@@ -565,6 +606,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         ));
     }
     // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
+    if cx.words.has(b'H') && !cx.words.is_used(b'H') {
+        let at = cx.words.take(b'H').map(|v| v.span).unwrap_or_default();
+        return Err(cx.err(
+            "interp::unused-word",
+            "H word with no G43 or G76 to use it",
+            at,
+        ));
+    }
     cx.check_all_used()?;
     // 21. Stops.
     if m.stop != NO_CODE {
@@ -580,4 +629,42 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
     }
     Ok(Outcome::Continue)
+}
+
+/// The block's axis words as values (mm for linear axes, degrees for A B C), marked used; absolute,
+/// whatever G90/G91 (the codes that call this take them as values, not as motion).
+fn axis_values(cx: &mut Ctx<'_>) -> Result<[Option<f64>; 9], Diagnostic> {
+    let mut v = [None; 9];
+    for (k, &letter) in AXIS_WORDS.iter().enumerate() {
+        if let Some(w) = cx.words.take(letter) {
+            if !cx.opts.axes[k] {
+                return Err(cx.err(
+                    "interp::axis-not-configured",
+                    format!("{} axis is not configured on this machine", letter as char),
+                    w.span,
+                ));
+            }
+            v[k] = Some(if is_linear(k) { cx.mm(w.v) } else { w.v });
+        }
+    }
+    Ok(v)
+}
+
+/// G10: dispatch on L (L0/L1/L10/L11 the tool table, L2/L20 the coordinate systems).
+fn g10(cx: &mut Ctx<'_>, params: &mut Parameters, span: ColSpan) -> Result<(), Diagnostic> {
+    let l = cx.words.take(b'L');
+    let l_num = l
+        .map(|l| l.v)
+        .filter(|v| v.fract() == 0.0)
+        .map(|v| v as i64);
+    match l_num {
+        Some(0) => tools::reload_tool_table(cx),
+        Some(l @ (1 | 10 | 11)) => tools::set_tool_entry(cx, params, l as u32, span),
+        Some(l @ (2 | 20)) => g10_origin(cx, params, l as u32, span),
+        _ => Err(cx.err(
+            "rs274::g10-l-invalid",
+            "Line with G10 does not have L0, L1, L10, L11, L2, or L20",
+            l.map_or(span, |l| l.span),
+        )),
+    }
 }

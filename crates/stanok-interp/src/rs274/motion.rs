@@ -25,11 +25,21 @@ pub(super) fn motion_block(
                 });
             }
             if cx.has_axis_words() {
-                return Err(cx.err(
-                    "rs274::axis-words-with-g80",
-                    "Cannot use axis values with g80",
-                    span,
-                ));
+                // LinuxCNC words it differently when G80 is written on the line and when it is
+                // only the modal state (its power-on motion mode).
+                return Err(if explicit {
+                    cx.err(
+                        "rs274::axis-words-with-g80",
+                        "Cannot use axis values with g80",
+                        span,
+                    )
+                } else {
+                    cx.err(
+                        "rs274::axis-words-without-g-code",
+                        "Cannot use axis values without a g code that uses them",
+                        span,
+                    )
+                });
             }
             Ok(())
         }

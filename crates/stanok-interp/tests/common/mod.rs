@@ -2,7 +2,8 @@
 //! error, printing it in LinuxCNC's format, and comparing traces numerically.
 #![allow(dead_code)]
 
-use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
+use stanok_canon::setup::{Tool, ToolEdge, ToolTable};
+use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, LengthUnits, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
 use std::path::PathBuf;
@@ -16,9 +17,53 @@ pub fn corpus(sub: &str) -> PathBuf {
     .join(sub)
 }
 
+/// The corpus tool table `rs274ngc/tool.tbl` (inches), read by a parser just big enough for its
+/// `T… P… Z… D…` lines: stanok-interp must not depend on stanok-machine, whose `.tbl` reader is
+/// the real one (and is tested there).
+pub fn corpus_tool_table() -> ToolTable {
+    let text = std::fs::read_to_string(corpus("rs274ngc").join("tool.tbl")).unwrap();
+    let mut table = ToolTable::default();
+    for line in text.lines() {
+        let words = line.split(';').next().unwrap_or("");
+        let mut tool = Tool::default();
+        let mut e = ToolEdge::default();
+        for w in words.split_whitespace() {
+            let (letter, value) = w.split_at(1);
+            let v: f64 = value.parse().unwrap_or_else(|_| panic!("tool.tbl: {w}"));
+            match letter {
+                "T" => tool.number = v as u32,
+                "P" => tool.pocket = v as u32,
+                "Z" => e.offset.z = v * 25.4,
+                "D" => e.radius = v * 25.4 / 2.0,
+                _ => panic!("tool.tbl: unexpected word {w}"),
+            }
+        }
+        if tool.number > 0 {
+            tool.edges.push(e);
+            table.tools.insert(tool.number, tool);
+        }
+    }
+    table
+}
+
+/// Options that reproduce LinuxCNC's standalone `rs274 -t tool.tbl` for RS274/NGC: the corpus
+/// tool table, and parameters in inches (its simulated machine's units).
+pub fn options(dialect: Dialect) -> InterpOptions {
+    let mut opts = InterpOptions::new(dialect);
+    if dialect == Dialect::Rs274ngc {
+        opts.control.tools = corpus_tool_table();
+        opts.rs274_machine_units = LengthUnits::Inches;
+    }
+    opts
+}
+
 /// Runs a program; returns the commands before the first error and that error.
 pub fn run(text: &str, dialect: Dialect) -> (Vec<Spanned<Canon>>, Option<Diagnostic>) {
-    let opts = InterpOptions::new(dialect);
+    run_with(text, options(dialect))
+}
+
+/// Runs a program with the given options.
+pub fn run_with(text: &str, opts: InterpOptions) -> (Vec<Spanned<Canon>>, Option<Diagnostic>) {
     let mut cmds = Vec::new();
     for item in Interpreter::from_text(text, opts) {
         match item {
@@ -105,7 +150,8 @@ pub fn read_trace(text: &str) -> Trace {
         }
     }
     let msg = rest.next().map(str::to_string);
-    let block = rest.next().map(str::to_string);
+    // Some messages end in a newline of their own ("G10 L0 not allowed with loaded tool <1>\n").
+    let block = rest.find(|l| !l.is_empty()).map(str::to_string);
     Trace {
         lines,
         error: msg.map(|m| (m, block.unwrap_or_default())),

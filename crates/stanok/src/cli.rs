@@ -67,6 +67,17 @@ pub struct MachineArgs {
     pub linuxcnc_units: Option<UnitsArg>,
 }
 
+/// A LinuxCNC parameter file kept from run to run.
+#[derive(Debug, Clone, Args)]
+pub struct VarArgs {
+    /// RS274/NGC: a LinuxCNC parameter file (.var) kept between runs, as LinuxCNC keeps its
+    /// PARAMETER_FILE: read before the run in place of the machine's offsets (if it exists), written
+    /// back after it with the offsets, G28/G30 positions, G92 and active system the program left
+    /// (in --linuxcnc-units).
+    #[arg(long, value_name = "FILE", conflicts_with = "offsets")]
+    pub var: Option<PathBuf>,
+}
+
 /// Output format of `stanok canon`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum CanonFormat {
@@ -98,6 +109,8 @@ pub enum Command {
         /// Print the report as one JSON object.
         #[arg(long)]
         json: bool,
+        #[command(flatten)]
+        var: VarArgs,
     },
     /// Print the canonical command stream.
     Canon {
@@ -110,6 +123,8 @@ pub enum Command {
         format: Option<CanonFormat>,
         #[command(flatten)]
         machine: MachineArgs,
+        #[command(flatten)]
+        var: VarArgs,
     },
     /// Draw the tool path: XY, XZ, YZ and isometric views on one SVG sheet.
     Plot {

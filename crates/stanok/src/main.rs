@@ -16,7 +16,7 @@ mod machine_show;
 mod report;
 
 use clap::Parser;
-use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand};
+use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand, VarArgs};
 use machine_show::{DataSource, Sources};
 use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
@@ -52,13 +52,15 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             dialect,
             machine,
             json,
-        } => run_program(&file, dialect.map(Into::into), &machine, json),
+            var,
+        } => run_program(&file, dialect.map(Into::into), &machine, json, &var),
         Command::Canon {
             file,
             dialect,
             format,
             machine,
-        } => canon(&file, dialect.map(Into::into), format, &machine),
+            var,
+        } => canon(&file, dialect.map(Into::into), format, &machine, &var),
         Command::Plot {
             file,
             dialect,
@@ -226,16 +228,73 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
     }
 }
 
+/// `--var FILE`: the machine with its offsets replaced by the parameter file's, if the file exists
+/// (a missing file is created after the run, from the machine's offsets). Only for RS274/NGC.
+fn load_var(
+    file: &Path,
+    dialect: Option<Dialect>,
+    var: &VarArgs,
+    machine: &mut MachineData,
+) -> Result<(), ExitCode> {
+    let Some(path) = &var.var else {
+        return Ok(());
+    };
+    let refuse = |why: &str| {
+        eprintln!("error: --var {}: {why}", path.display());
+        ExitCode::from(2)
+    };
+    if dialect.unwrap_or_else(|| Dialect::from_path(file)) != Dialect::Rs274ngc {
+        return Err(refuse(
+            "a LinuxCNC parameter file is for RS274/NGC programs",
+        ));
+    }
+    if DataFileKind::of(path) != Some(DataFileKind::LinuxCncParameters) {
+        return Err(refuse("the file must be a LinuxCNC parameter file (.var)"));
+    }
+    if path.exists() {
+        let stored = load_offset_file(path, machine.linuxcnc_units).map_err(|d| {
+            diagnostics::render(path, &d);
+            ExitCode::from(1)
+        })?;
+        machine.control.offsets = stored.offsets;
+        machine.control.parameters = stored.parameters;
+    }
+    Ok(())
+}
+
+/// `--var FILE` after the run: writes back what the program left, as LinuxCNC does on exit.
+fn save_var<R: std::io::BufRead + std::io::Seek>(
+    var: &VarArgs,
+    interp: &Interpreter<R>,
+    units: stanok_canon::LengthUnits,
+) -> Result<(), String> {
+    let Some(path) = &var.var else {
+        return Ok(());
+    };
+    let c = interp.control_data();
+    let stored = StoredOffsets {
+        offsets: c.offsets,
+        parameters: c.parameters,
+    };
+    std::fs::write(path, linuxcnc::write_var_file(&stored, units))
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
 fn run_program(
     file: &Path,
     dialect: Option<Dialect>,
     args: &MachineArgs,
     json: bool,
+    var: &VarArgs,
 ) -> Result<ExitCode, String> {
-    let machine = match load_machine(args) {
+    let mut machine = match load_machine(args) {
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
+    if let Err(code) = load_var(file, dialect, var, &mut machine) {
+        return Ok(code);
+    }
+    let units = machine.linuxcnc_units;
     let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
     let mut sim = SimMachine::new(machine);
     let mut failure: Option<Diagnostic> = None;
@@ -246,6 +305,7 @@ fn run_program(
             break;
         }
     }
+    save_var(var, &interp, units)?;
     let warnings = interp.take_warnings();
     let mut rep = sim.report();
     rep.blocks = interp.stats().blocks_executed;
@@ -274,11 +334,15 @@ fn canon(
     dialect: Option<Dialect>,
     format: Option<CanonFormat>,
     args: &MachineArgs,
+    var: &VarArgs,
 ) -> Result<ExitCode, String> {
-    let machine = match load_machine(args) {
+    let mut machine = match load_machine(args) {
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
+    if let Err(code) = load_var(file, dialect, var, &mut machine) {
+        return Ok(code);
+    }
     let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
@@ -315,6 +379,7 @@ fn canon(
         return quiet_on_broken_pipe(e);
     }
     drop(out);
+    save_var(var, &interp, machine.linuxcnc_units)?;
     for w in interp.take_warnings() {
         diagnostics::render(file, &w);
     }

@@ -47,7 +47,8 @@ fn edge() -> impl Strategy<Value = ToolEdge> {
     (
         proptest::array::uniform3(sparse()),
         proptest::array::uniform3(sparse()),
-        sparse().prop_map(f64::abs),
+        // A LinuxCNC table stores the diameter 2·r: keep r where 2·r is finite.
+        sparse().prop_map(|r| r.abs().min(1e300)),
         sparse(),
         pose(),
         0u8..=9,

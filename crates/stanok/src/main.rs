@@ -128,6 +128,7 @@ fn interpreter(
     opts.continue_after_error = check_mode;
     opts.control = control_data(machine);
     opts.diameter_axes = machine.diameter_axes();
+    opts.rs274_machine_units = machine.linuxcnc_units;
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

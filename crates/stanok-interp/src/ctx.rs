@@ -83,6 +83,18 @@ impl Ctx<'_> {
     /// Reads the axis words (marking them used) and returns the end point in program coordinates
     /// (mm/deg), honouring G90/G91, and which axes were written.
     pub fn end_point(&mut self) -> Result<(Pose, [bool; 9]), Diagnostic> {
+        if let Some((a, b)) = self.opts.coupled_coordinates {
+            let has = |set: [bool; 9]| (0..9).any(|i| set[i] && self.words.has(AXIS_WORDS[i]));
+            if has(a) && has(b) {
+                return Err(self
+                    .manual(
+                        653,
+                        "coordinates that depend on each other through the kinematic transformation are mixed in one block",
+                        self.whole(),
+                    )
+                    .with_note("program either the Cartesian coordinates or the directly mapped ones"));
+            }
+        }
         let mut p = self.st.program_position().to_array();
         let mut given = [false; 9];
         for (i, &l) in AXIS_WORDS.iter().enumerate() {

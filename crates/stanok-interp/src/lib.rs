@@ -76,6 +76,10 @@ pub struct InterpOptions {
     pub control: ControlData,
     /// Axes that may be programmed as diameters (AxiOMA G10; the transverse axis of a lathe).
     pub diameter_axes: [bool; 9],
+    /// Two sets of coordinates that a kinematic transformation makes interdependent (the AxiOMA
+    /// manual's "biped": X/Y produced by V/W): a block may program one set or the other, never
+    /// both (AxiOMA error 653, spec axioma-1 §7.1). None on the built-in machines.
+    pub coupled_coordinates: Option<([bool; 9], [bool; 9])>,
     /// RS274/NGC: the machine's length unit (LinuxCNC `[TRAJ]LINEAR_UNITS`), in which numbered
     /// parameters hold lengths (`#5161…`, `#5211…`, `#5221…`, `#5401…`). LinuxCNC's standalone
     /// `rs274` works in inches.
@@ -102,6 +106,7 @@ impl InterpOptions {
             max_errors: 100,
             control: ControlData::default(),
             diameter_axes: [true, false, false, false, false, false, false, false, false],
+            coupled_coordinates: None,
             rs274_machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
         }

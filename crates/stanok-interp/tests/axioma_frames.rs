@@ -563,3 +563,39 @@ fn s4_9_4_absolute_and_incremental_polar_programs_agree() {
         h.sweep().to_degrees()
     );
 }
+
+#[test]
+fn s3_1_mixed_interdependent_coordinates_is_error_653() {
+    // The "biped" configuration: X/Y are produced by V/W. Its kinematics is not supported (spec
+    // §7.1); the error the manual states for mixing them is.
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    let mut xy = [false; 9];
+    (xy[0], xy[1]) = (true, true);
+    let mut vw = [false; 9];
+    (vw[7], vw[8]) = (true, true);
+    opts.coupled_coordinates = Some((xy, vw));
+    let mut cmds = Vec::new();
+    let mut error = None;
+    for item in Interpreter::from_text(
+        &fixture("s3_1-mixed-kinematic-coordinates-error-653.nc"),
+        opts,
+    ) {
+        match item {
+            Ok(c) => cmds.push(c),
+            Err(d) => error = Some(d),
+        }
+    }
+    let d = error.expect("N30 mixes X and V");
+    assert_eq!(d.code, DiagCode::Manual(653));
+    let n30 = fixture("s3_1-mixed-kinematic-coordinates-error-653.nc")
+        .lines()
+        .position(|l| l.starts_with("N30"))
+        .unwrap() as u32
+        + 1;
+    assert_eq!(d.span.line, n30);
+    // N10 and N20 ran.
+    assert_eq!(
+        cmds.iter().filter(|c| c.value.motion().is_some()).count(),
+        2
+    );
+}

@@ -170,6 +170,35 @@ impl Ctx<'_> {
         self.st.position = end_m;
     }
 
+    /// An arc whose machine-frame centre is already known (AxiOMA arcs under unequal in-plane scale
+    /// factors, where the frame does not map circles to circles).
+    pub fn arc_with_centre(
+        &mut self,
+        plane: Plane,
+        ccw: bool,
+        end: Pose,
+        centre_m: [f64; 3],
+        turns: u32,
+        feed: f64,
+    ) {
+        self.apply_pending_tlo();
+        let (_, _, n) = plane.axes();
+        let mut normal = [0.0; 3];
+        normal[n] = if ccw { 1.0 } else { -1.0 };
+        let axis = self.st.frame.arc_axis_to_machine(normal);
+        let end_m = self.st.frame.to_machine(&end);
+        self.out.push(Canon::ArcFeed(ArcMove {
+            start: self.st.position,
+            end: end_m,
+            centre: centre_m,
+            axis,
+            turns,
+            plane,
+            feed,
+        }));
+        self.st.position = end_m;
+    }
+
     /// The path feed in mm/min for a feed move of `length_mm`, from the feed mode:
     /// G94 the F value, G95 F × the main spindle's commanded speed, G93 length × F.
     pub fn path_feed(&self, length_mm: f64) -> f64 {
@@ -182,7 +211,7 @@ impl Ctx<'_> {
 
     /// A tool length offset waiting for motion (AxiOMA) goes into the frame now: the end point of
     /// this move is computed with it, on every axis.
-    fn apply_pending_tlo(&mut self) {
+    pub fn apply_pending_tlo(&mut self) {
         if let Some(t) = self.st.pending_tlo.take() {
             self.st.frame.set_tlo(t);
         }

@@ -599,3 +599,41 @@ fn s3_1_mixed_interdependent_coordinates_is_error_653() {
         2
     );
 }
+
+#[test]
+fn unequal_scale_factors_use_the_larger_one_for_arcs() {
+    // Spec §11.3: X×2, Y×1 about (0,0). A CCW quarter arc (0,0) → (10,10) about (10,0), r = 10:
+    // the end is scaled per axis to (20,10); the radius becomes 2·10 = 20; the centre is 20 from
+    // both ends, on the side of the per-axis scaled centre (20,0).
+    let text =
+        "G17 G90 G191 F100\nG173 X2 Y1 I0 J0\nN10 G03 X10 Y10 I10 J0\nN20 G02 X20 Y10 I5 J0\nM30\n";
+    let cmds = run_with(text, ControlData::default());
+    let arcs: Vec<stanok_canon::ArcMove> = cmds
+        .iter()
+        .filter_map(|c| match &c.value {
+            Canon::ArcFeed(a) => Some(*a),
+            _ => None,
+        })
+        .collect();
+    let a = arcs[0];
+    assert!((a.end.x - 20.0).abs() < TOL && (a.end.y - 10.0).abs() < TOL);
+    let rs = (a.start.x - a.centre[0]).hypot(a.start.y - a.centre[1]);
+    let re = (a.end.x - a.centre[0]).hypot(a.end.y - a.centre[1]);
+    assert!(
+        (rs - 20.0).abs() < 1e-9 && (re - 20.0).abs() < 1e-9,
+        "{rs} {re}"
+    );
+    assert!(
+        a.centre[1] < 0.0,
+        "same side as the scaled centre (20,0): {:?}",
+        a.centre
+    );
+    // Second arc: (10,10) → (20,10) programmed about (15,10), r = 5 → scaled ends (20,10) → (40,10),
+    // radius 10: a half circle about (30,10).
+    let b = arcs[1];
+    assert!(
+        (b.centre[0] - 30.0).abs() < 1e-9 && (b.centre[1] - 10.0).abs() < 1e-9,
+        "{:?}",
+        b.centre
+    );
+}

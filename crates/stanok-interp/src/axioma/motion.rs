@@ -148,7 +148,7 @@ fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), 
             let len =
                 crate::rs274::helix_length(start, end, plane, planar.centre, ccw, planar.turns);
             let feed = feed_check(cx, span, len)?;
-            cx.arc(plane, ccw, end, planar, feed);
+            emit_arc(cx, plane, ccw, start, end, planar, feed, span)?;
         }
     }
     Ok(())
@@ -270,6 +270,75 @@ fn arc_move(cx: &mut Ctx<'_>, ccw: bool, span: ColSpan, cr: Option<Val>) -> Resu
     })?;
     let length = crate::rs274::helix_length(start, end, plane, planar.centre, ccw, planar.turns);
     let feed = feed_check(cx, span, length)?;
-    cx.arc(plane, ccw, end, planar, feed);
+    emit_arc(cx, plane, ccw, start, end, planar, feed, span)?;
+    Ok(())
+}
+
+/// Emits an arc; under unequal in-plane scale factors applies spec axioma-1 §11.3's rule: the end
+/// point is scaled per axis like any point, the radius becomes `k_max·r`, and the centre is the
+/// point at that distance from the actual start and the scaled end, on the side of the per-axis
+/// scaled programmed centre (623 if no such point exists).
+#[allow(clippy::too_many_arguments)]
+fn emit_arc(
+    cx: &mut Ctx<'_>,
+    plane: stanok_canon::Plane,
+    ccw: bool,
+    start: stanok_canon::Pose,
+    end: stanok_canon::Pose,
+    planar: crate::arc::PlanarArc,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let Some(k_max) = cx.st.axioma.non_uniform_in(plane) else {
+        cx.arc(plane, ccw, end, planar, feed);
+        return Ok(());
+    };
+    let (a, b, _) = plane.axes();
+    cx.apply_pending_tlo();
+    let s_prog = start.to_array();
+    let r = (s_prog[a] - planar.centre[0]).hypot(s_prog[b] - planar.centre[1]);
+    let mut c_prog = s_prog;
+    c_prog[a] = planar.centre[0];
+    c_prog[b] = planar.centre[1];
+    let c0 = cx
+        .st
+        .frame
+        .to_machine(&stanok_canon::Pose::from_array(c_prog))
+        .xyz();
+    let s_m = cx.st.position.xyz();
+    let e_m = cx.st.frame.to_machine(&end).xyz();
+    let r2 = k_max * r;
+    let (s2, e2, c2) = ([s_m[a], s_m[b]], [e_m[a], e_m[b]], [c0[a], c0[b]]);
+    let chord = [e2[0] - s2[0], e2[1] - s2[1]];
+    let d = chord[0].hypot(chord[1]);
+    let centre2 = if d < 1e-9 {
+        // Full circle: keep the direction of the scaled centre, at the new radius.
+        let v = [c2[0] - s2[0], c2[1] - s2[1]];
+        let len = v[0].hypot(v[1]).max(1e-12);
+        [s2[0] + v[0] / len * r2, s2[1] + v[1] / len * r2]
+    } else {
+        if d / 2.0 > r2 + cx.opts.arc_tolerance_mm {
+            return Err(cx
+                .manual(
+                    623,
+                    "invalid value of the circle radius under unequal scale factors",
+                    span,
+                )
+                .with_note(format!(
+                    "radius k_max·r = {r2:.4} mm, half chord {:.4} mm",
+                    d / 2.0
+                )));
+        }
+        let h = (r2 * r2 - d * d / 4.0).max(0.0).sqrt();
+        let mid = [(s2[0] + e2[0]) / 2.0, (s2[1] + e2[1]) / 2.0];
+        let n = [-chord[1] / d, chord[0] / d];
+        let side = ((c2[0] - mid[0]) * n[0] + (c2[1] - mid[1]) * n[1]).signum();
+        let side = if side == 0.0 { 1.0 } else { side };
+        [mid[0] + side * h * n[0], mid[1] + side * h * n[1]]
+    };
+    let mut centre_m = s_m;
+    centre_m[a] = centre2[0];
+    centre_m[b] = centre2[1];
+    cx.arc_with_centre(plane, ccw, end, centre_m, planar.turns, feed);
     Ok(())
 }

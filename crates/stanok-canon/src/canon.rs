@@ -339,6 +339,13 @@ pub enum Canon {
         /// Tool number.
         tool: u32,
     },
+    /// A tool change in another spindle than the main one (AxiOMA `T2=… M06`).
+    ChangeSpindleTool {
+        /// Spindle number, 1 = the second spindle.
+        spindle: u8,
+        /// Tool number (0 = the tool goes back to the magazine).
+        tool: u32,
+    },
     /// An M function with no canonical meaning of its own (machine-specific, PLC).
     AuxiliaryFunction {
         /// The M number.

@@ -187,6 +187,10 @@ impl LinuxCncPrinter {
                 );
             }
             Canon::ReloadToolTable => self.line(n, "RELOAD_TOOLDATA()".into()),
+            // LinuxCNC has one spindle tool; this never comes from an RS274/NGC program.
+            Canon::ChangeSpindleTool { spindle, tool } => {
+                self.line(n, format!("CHANGE_SPINDLE_TOOL({spindle}, {tool})"))
+            }
             Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
             Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),
             Canon::UseToolLengthOffset { offset } => {

@@ -197,6 +197,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             edge: 0,
             pending_tlo: None,
             home_return: state::HomeReturn::None,
+            spindle_tools: [0; 4],
+            spindle_edges: [0; 4],
             position: opts.initial_position,
         };
         let mut state = state;

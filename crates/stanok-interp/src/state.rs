@@ -156,6 +156,10 @@ pub struct ModalState {
     pub pending_tlo: Option<Pose>,
     /// AxiOMA: the G28 that G29 returns from.
     pub home_return: HomeReturn,
+    /// AxiOMA: tools in spindles 2…4 (index 1…3; index 0 unused: the main spindle is `current_tool`).
+    pub spindle_tools: [u32; 4],
+    /// AxiOMA: active edges of spindles 2…4.
+    pub spindle_edges: [u8; 4],
     /// AxiOMA G10: axes programmed as diameters (their words are halved).
     pub axioma_diameter: [bool; 9],
     /// Where the tool is, machine coordinates, mm.

@@ -297,3 +297,51 @@ fn home_errors() {
         assert_eq!(err.code, DiagCode::Stanok(code), "{block}: {err}");
     }
 }
+
+#[test]
+fn s6_9_s6_10_s6_11_syntax_fragments_and_two_spindles() {
+    // G28 H2 directly; G29 without G28 (the fragment alone) is an error.
+    let (cmds, err, _) = run_homes(&fixture("s6_9_1-g28-syntax-example.nc"));
+    assert!(err.is_none(), "{err:?}");
+    let ends: Vec<[f64; 3]> = cmds
+        .iter()
+        .filter_map(|c| c.value.motion().map(|m| m.end().xyz()))
+        .collect();
+    assert_eq!(ends, [[-50.0, -60.0, 250.0]]);
+    let (_, err, _) = run_homes(&fixture("s6_9_2-g29-block-fragment.nc"));
+    assert_eq!(
+        err.map(|d| d.code),
+        Some(DiagCode::Stanok("axioma::g29-without-g28"))
+    );
+    // Tool selections: T10 M66, T2=10 M06 (spindle 2); T1, T3, then T2 and T2=3.
+    let changes = |text: &str| -> Vec<String> {
+        let (cmds, err) = run_tools(text);
+        assert!(err.is_none(), "{err:?}");
+        cmds.iter()
+            .filter_map(|c| match c.value {
+                Canon::ChangeTool { tool } => Some(format!("T{tool}")),
+                Canon::ChangeSpindleTool { spindle, tool } => {
+                    Some(format!("S{}:T{tool}", spindle + 1))
+                }
+                _ => None,
+            })
+            .collect()
+    };
+    assert_eq!(
+        changes(&fixture("s6_10-tool-number-syntax-examples.nc")),
+        ["T10", "S2:T10"]
+    );
+    assert_eq!(
+        changes(&fixture("s6_10-tool-select-fragments.nc")),
+        ["T1", "T3", "T2", "S2:T3"]
+    );
+    // D alone changes no tool.
+    assert_eq!(
+        changes(&fixture("s6_11-cutting-edge-syntax-examples.nc")),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        changes(&fixture("s6_11-two-spindle-tool-edge-example-6_9.nc")),
+        ["T1", "S2:T2", "T2", "S2:T3", "T0", "S2:T0"]
+    );
+}

@@ -227,6 +227,13 @@ impl SimMachine {
                 self.report.tool_changes += 1;
                 self.log(line, format!("M6 tool change to T{tool}"));
             }
+            Canon::ChangeSpindleTool { spindle, tool } => {
+                self.report.tool_changes += 1;
+                self.log(
+                    line,
+                    format!("M6 spindle {} tool change to T{tool}", spindle + 1),
+                );
+            }
             Canon::AuxiliaryFunction { number, timing } => {
                 let when = match timing {
                     AuxTiming::Prefix => "before",

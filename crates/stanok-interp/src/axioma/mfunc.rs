@@ -169,12 +169,21 @@ pub(super) fn run_m(
             // Rules of spec axioma-2 §3.10: D alone (or T = the tool already in the spindle)
             // changes only the edge, without a tool-change cycle.
             let t = tool.unwrap_or(cx.st.current_tool);
-            let change = tool.is_some() && t != cx.st.current_tool || tool.is_none() && d.is_none();
+            // M06 that only addresses other spindles (`T2=10 M06`) leaves the main spindle alone.
+            let other_spindles_only = tool.is_none()
+                && d.is_none()
+                && cx
+                    .words
+                    .indexed
+                    .iter()
+                    .any(|&(l, i, _)| (l == b'T' || l == b'D') && i >= 2);
+            let change = tool.is_some() && t != cx.st.current_tool
+                || tool.is_none() && d.is_none() && !other_spindles_only;
             if change {
                 let t = cx.st.selected_tool.unwrap_or(t);
                 cx.out.push(Canon::ChangeTool { tool: t });
                 super::tools::tool_change(cx, Some(t), d)?;
-            } else {
+            } else if !other_spindles_only {
                 super::tools::tool_change(cx, tool, d)?;
             }
         }

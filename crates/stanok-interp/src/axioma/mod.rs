@@ -211,9 +211,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
     // Extended addresses: S2=… (speed of spindle 2); the others come with later issues.
     let mut indexed_speeds: Vec<(u8, f64)> = Vec::new();
+    let mut spindle_tools: Vec<(u8, Val)> = Vec::new();
+    let mut spindle_edges: Vec<(u8, Val)> = Vec::new();
     for &(letter, index, val) in &cx.words.indexed {
         match letter {
             b'S' if (1..=4).contains(&index) => indexed_speeds.push((index - 1, val.v)),
+            // `T2=10`, `D3=2`: tool and edge of spindle 2…4 (spec axioma-2 §3.9–§3.10).
+            b'T' if (2..=4).contains(&index) => spindle_tools.push((index - 1, val)),
+            b'D' if (2..=4).contains(&index) => spindle_edges.push((index - 1, val)),
             _ => {
                 return Err(unsupported(
                     cx,
@@ -409,6 +414,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     if let (Some(d), false) = (d_word, has_tool_m) {
         return Err(tools::stray_d(cx, d));
     }
+    if let (Some(&(_, v)), false) = (spindle_tools.first().or(spindle_edges.first()), has_tool_m) {
+        return Err(cx.err(
+            "axioma::spindle-tool-without-change",
+            "T<spindle>= and D<spindle>= act only together with M06 or M66",
+            v.span,
+        ));
+    }
+
     let mut s_done = false;
     let mut t_done = false;
     if let Some(s) = s_word {
@@ -428,6 +441,11 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
     for (f, _span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Prefix) {
         run_m(cx, f, &mut s_done, s_word, &mut t_done, tool, d_word)?;
+    }
+    // Tools of spindles 2…4 after the main spindle's change (manual §6.10: "T2 in the first spindle
+    // and T3 in the second").
+    if has_tool_m {
+        tools::other_spindles(cx, &spindle_tools, &spindle_edges)?;
     }
 
     // Tool length: a changed σ·V is applied by this block's motion, or the next one's.

@@ -142,3 +142,32 @@ pub(super) fn update(cx: &mut Ctx<'_>) {
         None
     };
 }
+
+/// `T2=…`, `D2=…` (spindles 2…4) in an M06/M66 block: the tool and edge of those spindles.
+pub(super) fn other_spindles(
+    cx: &mut Ctx<'_>,
+    tools: &[(u8, Val)],
+    edges: &[(u8, Val)],
+) -> Result<(), Diagnostic> {
+    for &(spindle, t) in tools {
+        let tool = cx.non_negative_integer(t, "tool number T")?;
+        let i = spindle as usize;
+        if cx.st.spindle_tools[i] != tool {
+            cx.out
+                .push(stanok_canon::Canon::ChangeSpindleTool { spindle, tool });
+        }
+        cx.st.spindle_tools[i] = tool;
+        cx.st.spindle_edges[i] = if tool == 0 { 0 } else { 1 };
+    }
+    for &(spindle, d) in edges {
+        if d.v.fract() != 0.0 || !(0.0..=4.0).contains(&d.v) {
+            return Err(cx.err(
+                "axioma::edge-range",
+                format!("D{}: cutting edges are D0 to D4", d.v),
+                d.span,
+            ));
+        }
+        cx.st.spindle_edges[spindle as usize] = d.v as u8;
+    }
+    Ok(())
+}

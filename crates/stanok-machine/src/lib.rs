@@ -5,7 +5,8 @@
 //!   positions, preset parameters), read from TOML with diagnostics that point at the offending
 //!   line, plus the built-in machines ([`MachineData::builtin`]: `mill`). [`MachineData::to_toml`]
 //!   writes it back.
-//! * [`control`]: the TOML sections of the stored data, their validation and the sparse writer.
+//! * [`control`]: the TOML sections of the stored data and their validation; the sparse writer
+//!   is `control_write.rs`.
 //! * [`linuxcnc`]: LinuxCNC tool tables (`.tbl`) and parameter files (`.var`), read and written.
 //! * [`files`]: the `--tools` / `--offsets` files, read by extension.
 //! * [`SimMachine`]: executes a Canon stream on a simulated machine, refusing what the machine cannot
@@ -20,6 +21,7 @@
 #![deny(missing_docs)]
 
 pub mod control;
+mod control_write;
 mod data;
 pub mod files;
 pub mod linuxcnc;

@@ -2,48 +2,11 @@
 //! program command, with LinuxCNC files and TOML fragments; bad files give file:line:column and
 //! exit status 1.
 
-use std::path::PathBuf;
-use std::process::Command;
-
-fn stanok(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stanok"))
-        .args(args)
-        .output()
-        .expect("run stanok");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn corpus(path: &str) -> String {
-    PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/corpus"
-    ))
-    .join(path)
-    .display()
-    .to_string()
-}
-
-fn repo(path: &str) -> String {
-    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
-        .join(path)
-        .display()
-        .to_string()
-}
+mod common;
+use common::*;
 
 fn temp(name: &str, text: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("stanok-machine-data-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.display().to_string()
-}
-
-fn json(text: &str) -> serde_json::Value {
-    serde_json::from_str(text).unwrap_or_else(|e| panic!("{e}: {text}"))
+    temp_in("machine-data", name, text)
 }
 
 #[test]

@@ -3,19 +3,8 @@
 //! over from one run to the next.
 
 use std::path::PathBuf;
-use std::process::Command;
-
-fn stanok(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_stanok"))
-        .args(args)
-        .output()
-        .expect("run stanok");
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+mod common;
+use common::stanok;
 
 fn dir() -> PathBuf {
     let d = std::env::temp_dir().join(format!("stanok-var-{}", std::process::id()));

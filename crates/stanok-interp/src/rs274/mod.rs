@@ -286,6 +286,27 @@ fn arc_tolerance(cx: &Ctx<'_>) -> f64 {
     }
 }
 
+fn distance_mode(absolute: bool) -> DistanceMode {
+    if absolute {
+        DistanceMode::Absolute
+    } else {
+        DistanceMode::Incremental
+    }
+}
+
+/// LinuxCNC's `COMMENT("interpreter: … mode changed to …")` on a change of G90/G91 or G90.1/G91.1.
+fn announce_distance(cx: &mut Ctx<'_>, what: &str, old: DistanceMode, new: DistanceMode) {
+    if old != new {
+        let to = match new {
+            DistanceMode::Absolute => "absolute",
+            DistanceMode::Incremental => "incremental",
+        };
+        cx.out.push(Canon::Comment {
+            text: format!("interpreter: {what} mode changed to {to}"),
+        });
+    }
+}
+
 /// Executes one RS274/NGC block (comments already emitted by the driver).
 pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Diagnostic> {
     let g = classify(cx)?;
@@ -507,47 +528,16 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             }
         };
     }
-    // 15. Distance mode.
+    // 15. Distance mode; 17. arc (IJK) distance mode. LinuxCNC comments only a real change.
     if let Some((code, _)) = g.get(Group::Distance) {
-        let mode = if code == 900 {
-            DistanceMode::Absolute
-        } else {
-            DistanceMode::Incremental
-        };
-        if mode != cx.st.distance {
-            cx.out.push(Canon::Comment {
-                text: format!(
-                    "interpreter: distance mode changed to {}",
-                    if code == 900 {
-                        "absolute"
-                    } else {
-                        "incremental"
-                    }
-                ),
-            });
-            cx.st.distance = mode;
-        }
+        let new = distance_mode(code == 900);
+        let old = std::mem::replace(&mut cx.st.distance, new);
+        announce_distance(cx, "distance", old, new);
     }
-    // 17. Arc distance mode.
     if let Some((code, _)) = g.get(Group::ArcDistance) {
-        let mode = if code == 901 {
-            DistanceMode::Absolute
-        } else {
-            DistanceMode::Incremental
-        };
-        if mode != cx.st.arc_distance {
-            cx.out.push(Canon::Comment {
-                text: format!(
-                    "interpreter: IJK distance mode changed to {}",
-                    if code == 901 {
-                        "absolute"
-                    } else {
-                        "incremental"
-                    }
-                ),
-            });
-            cx.st.arc_distance = mode;
-        }
+        let new = distance_mode(code == 901);
+        let old = std::mem::replace(&mut cx.st.arc_distance, new);
+        announce_distance(cx, "IJK distance", old, new);
     }
     // 18. Retract mode.
     if let Some((code, _)) = g.get(Group::Retract) {

@@ -198,6 +198,71 @@ pub struct ArcMove {
     pub feed: f64,
 }
 
+/// A rational B-spline (NURBS) curve in machine X Y Z: the one exact form every spline of both
+/// controls is handed over in (LinuxCNC G5 cubic and G5.1 quadratic Béziers, G5.2 NURBS; AxiOMA
+/// ASPLINE/CSPLINE pieces as Béziers and BSPLINE as NURBS).
+///
+/// Curve: C(u) = Σ N_{i,p}(u)·w_i·P_i / Σ N_{i,p}(u)·w_i for u in [knots[p], knots[n]] where n =
+/// `control_points.len()`, p = `degree` and `knots.len() == n + p + 1` (clamped: the first and last
+/// p + 1 knots are equal, so C starts at the first control point and ends at the last). The axes
+/// other than X Y Z move linearly from `start` to `end` with the curve's arc length.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SplineMove {
+    /// Start pose (= first control point in X Y Z).
+    pub start: Pose,
+    /// End pose (= last control point in X Y Z).
+    pub end: Pose,
+    /// Degree p ≥ 1 (order p + 1).
+    pub degree: u8,
+    /// Control points, machine X Y Z, mm.
+    pub control_points: Vec<[f64; 3]>,
+    /// One positive weight per control point.
+    pub weights: Vec<f64>,
+    /// Non-decreasing knot vector, `control_points.len() + degree + 1` values.
+    pub knots: Vec<f64>,
+    /// The programming plane it was written in (printers).
+    pub plane: Plane,
+    /// Path feed, mm/min.
+    pub feed: f64,
+}
+
+/// What a probe move does on contact (LinuxCNC G38.2–G38.5, AxiOMA G75).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum ProbeKind {
+    /// G38.2: stop on contact; error if the target is reached without contact.
+    TowardErrorIfNone,
+    /// G38.3: stop on contact; no error without one.
+    Toward,
+    /// G38.4: stop on loss of contact; error if none.
+    AwayErrorIfNone,
+    /// G38.5: stop on loss of contact; no error without one.
+    Away,
+}
+
+/// How consecutive moves are joined (LinuxCNC G61/G61.1/G64, AxiOMA G60/G64).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum PathMode {
+    /// G61 / AxiOMA G60: stop exactly at every block end.
+    ExactStop,
+    /// G61.1: follow the path exactly (no blending) but without stopping where the path is smooth.
+    ExactPath,
+    /// G64: blend corners, staying within `tolerance` mm of the path (0 = as fast as possible, no
+    /// tolerance given).
+    Continuous {
+        /// Path tolerance P, mm; 0 = none given.
+        tolerance: f64,
+    },
+}
+
+/// The shape of the speed profile (AxiOMA BRISK/SOFT).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum AccelerationProfile {
+    /// BRISK: acceleration-limited, trapezoidal velocity.
+    Brisk,
+    /// SOFT: jerk-limited, S-curve velocity.
+    Soft,
+}
+
 /// One canonical machining command. Exhaustive on purpose: a new variant makes every consumer decide.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -223,6 +288,82 @@ pub enum Canon {
     StraightFeed(LineMove),
     /// G2/G3: arc or helix at the feed.
     ArcFeed(ArcMove),
+    /// G5/G5.1/G5.2 (LinuxCNC), ASPLINE/CSPLINE/BSPLINE (AxiOMA): a spline at the feed.
+    SplineFeed(SplineMove),
+    /// A probe move (G38.n, G75): straight towards `end` until the probe trips (or stops tripping).
+    /// The machine answers with the trip point; the interpreter's later blocks read it.
+    StraightProbe {
+        /// The move as programmed (to the target).
+        motion: LineMove,
+        /// Stop condition and error rule.
+        probe: ProbeKind,
+    },
+    /// G33.1 (and G84/G74 in rigid mode): spindle-synchronised feed to `end`, spindle reversal,
+    /// synchronised return to `start`. The pitch is the one of the `StartSpindleSync` before it.
+    RigidTap {
+        /// Where the tap starts and returns to.
+        start: Pose,
+        /// The bottom of the hole.
+        end: Pose,
+        /// LinuxCNC's scale factor of the return (1 = same pitch).
+        scale: f64,
+    },
+    /// G33/G76/G33.1 and AxiOMA G276: the following feed moves advance `pitch` per spindle revolution.
+    StartSpindleSync {
+        /// mm per revolution along the path.
+        pitch: f64,
+        /// LinuxCNC's `wait_for_index` = false form (G33 velocity mode); false = wait for the index.
+        velocity_mode: bool,
+    },
+    /// End of spindle-synchronised motion.
+    StopSpindleSync,
+    /// G61/G61.1/G64 (LinuxCNC), G60/G64 (AxiOMA).
+    SetPathMode {
+        /// The new mode.
+        mode: PathMode,
+        /// LinuxCNC's naive-CAM detector tolerance Q, mm (None = not programmed).
+        naive_cam_tolerance: Option<f64>,
+    },
+    /// AxiOMA BRISK/SOFT.
+    SetAccelerationProfile {
+        /// The new profile.
+        profile: AccelerationProfile,
+    },
+    /// Feed (and spindle) override enabled or disabled (LinuxCNC M48/M49/M50, G76 threads).
+    SetFeedOverrideEnabled {
+        /// True = the operator's override applies.
+        enabled: bool,
+    },
+    /// M19: orient the spindle.
+    OrientSpindle {
+        /// Spindle number.
+        spindle: u8,
+        /// Angle, degrees.
+        degrees: f64,
+        /// LinuxCNC's Q direction: 0 = shortest, 1 = CW, 2 = CCW.
+        direction: u8,
+    },
+    /// A digital output (LinuxCNC M62–M65, AxiOMA G110/G111 PLC outputs).
+    DigitalOutput {
+        /// Output number.
+        index: u32,
+        /// New state.
+        on: bool,
+        /// True = changes with the start of the next motion (M62/M63, G110/G111 without a stop);
+        /// false = now (M64/M65).
+        synchronised: bool,
+    },
+    /// M66: wait for an input (a timeout of 0 with mode 0 just reads it).
+    WaitInput {
+        /// Input number.
+        index: u32,
+        /// True for an analogue input (E word), false for digital (P word).
+        analog: bool,
+        /// 0 immediate, 1 rise, 2 fall, 3 high, 4 low.
+        mode: u8,
+        /// Seconds.
+        timeout: f64,
+    },
     /// G4: all axes stand still.
     Dwell {
         /// Seconds.
@@ -288,8 +429,11 @@ pub enum Canon {
     SetSpindleMode {
         /// Spindle number.
         spindle: u8,
-        /// Constant surface speed in m/min (or ft/min in inch programs); 0 = G97, constant rpm.
-        css_speed: f64,
+        /// True = G96: S is a surface speed (m/min; the printer shows program units per minute)
+        /// and the speed follows the transverse position; false = G97, S in rev/min.
+        constant_surface_speed: bool,
+        /// G96's speed limit D, rev/min (0 = none given).
+        max_rpm: f64,
     },
     /// M7 (mist, AxiOMA coolant mode 1) on or off.
     Mist {
@@ -381,6 +525,12 @@ impl Canon {
             Canon::StraightTraverse(m) => Some(Motion::Rapid(m)),
             Canon::StraightFeed(m) => Some(Motion::Line(m)),
             Canon::ArcFeed(a) => Some(Motion::Arc(a)),
+            Canon::SplineFeed(s) => Some(Motion::Spline(s)),
+            Canon::StraightProbe { motion, .. } => Some(Motion::Probe(motion)),
+            Canon::RigidTap { start, end, .. } => Some(Motion::RigidTap {
+                start: *start,
+                bottom: *end,
+            }),
             _ => None,
         }
     }
@@ -395,22 +545,38 @@ pub enum Motion<'a> {
     Line(&'a LineMove),
     /// G2/G3.
     Arc(&'a ArcMove),
+    /// A spline.
+    Spline(&'a SplineMove),
+    /// A probe move (as programmed; the machine may stop it early).
+    Probe(&'a LineMove),
+    /// A rigid tap: down to `bottom` and back to `start`.
+    RigidTap {
+        /// Start and end of the cycle.
+        start: Pose,
+        /// The bottom of the hole.
+        bottom: Pose,
+    },
 }
 
 impl Motion<'_> {
     /// Start pose.
     pub fn start(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) => m.start,
+            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.start,
             Motion::Arc(a) => a.start,
+            Motion::Spline(s) => s.start,
+            Motion::RigidTap { start, .. } => *start,
         }
     }
 
     /// End pose.
     pub fn end(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) => m.end,
+            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.end,
             Motion::Arc(a) => a.end,
+            Motion::Spline(s) => s.end,
+            // The tap comes back to where it started.
+            Motion::RigidTap { start, .. } => *start,
         }
     }
 }

@@ -14,7 +14,10 @@
 //! feed reference, `ON_RESET`) come from [`Canon::Init`]; [`LinuxCncPrinter::finish`] adds the two
 //! `ON_RESET()` lines `rs274` prints when it exits.
 
-use crate::canon::{ArcMove, Canon, FeedMode, LengthUnits, Plane, Pose, SpindleDirection};
+use crate::canon::{
+    AccelerationProfile, ArcMove, Canon, FeedMode, LengthUnits, PathMode, Plane, Pose,
+    SpindleDirection,
+};
 use crate::span::Spanned;
 use std::fmt::Write as _;
 
@@ -154,9 +157,103 @@ impl LinuxCncPrinter {
             Canon::StopSpindle { spindle } => {
                 self.line(n, format!("STOP_SPINDLE_TURNING({spindle})"))
             }
-            Canon::SetSpindleMode { spindle, css_speed } => {
-                self.line(n, format!("SET_SPINDLE_MODE({spindle} {css_speed:.4})"))
+            Canon::SetSpindleMode {
+                spindle,
+                constant_surface_speed,
+                max_rpm,
+            } => {
+                let mode = if *constant_surface_speed { *max_rpm } else { 0.0 };
+                self.line(n, format!("SET_SPINDLE_MODE({spindle} {mode:.4})"))
             }
+            Canon::SplineFeed(s) => {
+                // rs274 prints only the number of control points of a NURBS.
+                self.line(n, format!("NURBS_FEED({}, ...)", s.control_points.len()))
+            }
+            Canon::StraightProbe { motion, .. } => {
+                self.line(n, "TURN_PROBE_ON()".into());
+                let p = self.pose6(&motion.end);
+                self.line(n, format!("STRAIGHT_PROBE({p})"));
+                self.line(n, "TURN_PROBE_OFF()".into());
+            }
+            Canon::RigidTap { end, .. } => {
+                let w = self.to_work(end);
+                self.line(n, format!("RIGID_TAP({})", fmt_list(&w[..3])));
+            }
+            Canon::StartSpindleSync {
+                pitch,
+                velocity_mode,
+            } => {
+                let k = pitch / self.units.mm_per_unit();
+                self.line(
+                    n,
+                    format!("START_SPEED_FEED_SYNC({k:.6},{})", *velocity_mode as u8),
+                );
+            }
+            Canon::StopSpindleSync => self.line(n, "STOP_SPEED_FEED_SYNCH()".into()),
+            Canon::SetPathMode {
+                mode,
+                naive_cam_tolerance,
+            } => {
+                let k = self.units.mm_per_unit();
+                let (name, tol) = match mode {
+                    PathMode::ExactStop => ("CANON_EXACT_STOP", 0.0),
+                    PathMode::ExactPath => ("CANON_EXACT_PATH", 0.0),
+                    PathMode::Continuous { tolerance } => ("CANON_CONTINUOUS", tolerance / k),
+                };
+                self.line(n, format!("SET_MOTION_CONTROL_MODE({name}, {tol:.6})"));
+                if let Some(q) = naive_cam_tolerance {
+                    self.line(n, format!("SET_NAIVECAM_TOLERANCE({:.4})", q / k));
+                }
+            }
+            Canon::SetAccelerationProfile { profile } => {
+                let name = match profile {
+                    AccelerationProfile::Brisk => "BRISK",
+                    AccelerationProfile::Soft => "SOFT",
+                };
+                self.line(n, format!("SET_ACCELERATION_PROFILE({name})"));
+            }
+            Canon::SetFeedOverrideEnabled { enabled } => self.line(
+                n,
+                if *enabled {
+                    "ENABLE_FEED_OVERRIDE()"
+                } else {
+                    "DISABLE_FEED_OVERRIDE()"
+                }
+                .into(),
+            ),
+            Canon::OrientSpindle {
+                spindle,
+                degrees,
+                direction,
+            } => self.line(
+                n,
+                format!("ORIENT_SPINDLE({spindle}, {degrees:.4}, {direction})"),
+            ),
+            Canon::DigitalOutput {
+                index,
+                on,
+                synchronised,
+            } => {
+                let name = match (synchronised, on) {
+                    (true, true) => "SET_MOTION_OUTPUT_BIT",
+                    (true, false) => "CLEAR_MOTION_OUTPUT_BIT",
+                    (false, true) => "SET_AUX_OUTPUT_BIT",
+                    (false, false) => "CLEAR_AUX_OUTPUT_BIT",
+                };
+                self.line(n, format!("{name}({index})"));
+            }
+            Canon::WaitInput {
+                index,
+                analog,
+                mode,
+                timeout,
+            } => self.line(
+                n,
+                format!(
+                    "WAIT({index}, {}, {mode}, {timeout:.4})",
+                    if *analog { 1 } else { 0 }
+                ),
+            ),
             Canon::Mist { on } => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
             Canon::Flood { on } => {
                 self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())

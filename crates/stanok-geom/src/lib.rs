@@ -11,14 +11,18 @@
 //! * the arc model is exactly the one of `stanok-canon`'s `ArcMove` (see [`Helix`]), so that every
 //!   consumer agrees on where an arc goes.
 //!
+//! Splines: every spline of both controls is handed over as a rational B-spline ([`Nurbs`]).
+//!
 //! Planned here later: lines and arcs in the plane with offsets and intersections (cutter
-//! compensation), splines (Akima, cubic, NURBS).
+//! compensation), Akima and cubic spline construction.
 #![deny(missing_docs)]
 
 mod arc2d;
 mod helix;
+mod nurbs;
 mod vec3;
 
 pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};
 pub use helix::Helix;
+pub use nurbs::{bezier_knots, distance_to_segment, Nurbs, NurbsError, MAX_DEGREE};
 pub use vec3::{add, cross, dot, norm, normalize, scale, sub, Vec3};

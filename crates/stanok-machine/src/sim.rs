@@ -29,10 +29,10 @@
 use crate::data::{AxisData, AxisKind, MachineData};
 use serde::Serialize;
 use stanok_canon::{
-    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
+    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection, SplineMove,
     AXIS_LETTERS,
 };
-use stanok_geom::Helix;
+use stanok_geom::{Helix, Nurbs};
 use stanok_motion::nominal::{self, AxisLimits};
 use std::collections::BTreeMap;
 
@@ -198,6 +198,35 @@ impl SimMachine {
             Canon::StraightTraverse(m) => self.apply_line(m, LineKind::Rapid, span)?,
             Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
             Canon::ArcFeed(a) => self.apply_arc(a, span)?,
+            Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
+            Canon::StraightProbe { motion, .. } => {
+                self.apply_line(motion, LineKind::Feed, span)?
+            }
+            Canon::RigidTap { start, end, .. } => {
+                let down = LineMove {
+                    start: *start,
+                    end: *end,
+                    feed: 0.0,
+                };
+                self.check_move(start, end, &end.to_array(), &end.to_array(), span)?;
+                self.apply_line(&down, LineKind::Feed, span)?;
+                let up = LineMove {
+                    start: *end,
+                    end: *start,
+                    feed: 0.0,
+                };
+                self.apply_line(&up, LineKind::Feed, span)?;
+            }
+            Canon::OrientSpindle {
+                spindle, degrees, ..
+            } => self.log(line, format!("M19 spindle {spindle} orient to {degrees} deg")),
+            Canon::DigitalOutput { index, on, .. } => self.log(
+                line,
+                format!("output {index} {}", if *on { "on" } else { "off" }),
+            ),
+            Canon::WaitInput { index, timeout, .. } => {
+                self.log(line, format!("M66 wait for input {index} (timeout {timeout} s)"))
+            }
             Canon::Dwell { seconds } => {
                 let t = nominal::dwell_time(*seconds);
                 self.report.dwell_time_s += t;
@@ -274,6 +303,11 @@ impl SimMachine {
             | Canon::SetG92Offset { .. }
             | Canon::SetXyRotation { .. }
             | Canon::SetSpindleMode { .. }
+            | Canon::StartSpindleSync { .. }
+            | Canon::StopSpindleSync
+            | Canon::SetPathMode { .. }
+            | Canon::SetAccelerationProfile { .. }
+            | Canon::SetFeedOverrideEnabled { .. }
             | Canon::SelectTool { .. }
             | Canon::UseToolLengthOffset { .. }
             | Canon::StartToolChange
@@ -412,6 +446,37 @@ impl SimMachine {
         r.nominal_time_s += nominal::feed_time(length, clamp_feed(a.feed, self.machine.max_feed));
         BoundingBox::include(&mut r.bounding_box, box_lo, box_hi);
         r.final_position = a.end;
+        Ok(())
+    }
+}
+
+impl SimMachine {
+    /// A spline: checked and measured over its tessellation (chord tolerance 1 µm).
+    fn apply_spline(&mut self, sp: &SplineMove, span: Span) -> Result<(), Diagnostic> {
+        let curve = Nurbs::new(sp.degree, &sp.control_points, &sp.weights, &sp.knots);
+        let mut pts = Vec::new();
+        curve.tessellate(1e-3, &mut pts);
+        let (s, e) = (sp.start.to_array(), sp.end.to_array());
+        let mut lo = [0.0; 9];
+        let mut hi = [0.0; 9];
+        for i in 0..9 {
+            (lo[i], hi[i]) = (s[i].min(e[i]), s[i].max(e[i]));
+        }
+        for p in &pts {
+            for i in 0..3 {
+                lo[i] = lo[i].min(p[i]);
+                hi[i] = hi[i].max(p[i]);
+            }
+        }
+        self.check_move(&sp.start, &sp.end, &lo, &hi, span)?;
+        let length: f64 = pts.windows(2).map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0]))).sum();
+        let r = &mut self.report;
+        r.feed_segments += 1;
+        r.motion_segments += 1;
+        r.feed_distance_mm += length;
+        r.nominal_time_s += nominal::feed_time(length, clamp_feed(sp.feed, self.machine.max_feed));
+        BoundingBox::include(&mut r.bounding_box, [lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
+        r.final_position = sp.end;
         Ok(())
     }
 }

@@ -234,7 +234,8 @@ pub(super) fn program_end(cx: &mut Ctx<'_>, params: &mut Parameters, pallet_shut
     cx.out.push(Canon::StopSpindle { spindle: 0 });
     cx.out.push(Canon::SetSpindleMode {
         spindle: 0,
-        css_speed: 0.0,
+        constant_surface_speed: false,
+        max_rpm: 0.0,
     });
     if cx.st.mist {
         cx.st.mist = false;

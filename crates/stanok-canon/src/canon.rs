@@ -329,7 +329,7 @@ pub enum Canon {
         /// The new profile.
         profile: AccelerationProfile,
     },
-    /// Feed (and spindle) override enabled or disabled (LinuxCNC M48/M49/M50, G76 threads).
+    /// Feed override enabled or disabled (LinuxCNC M48/M49/M50, G76 threads, tapping cycles).
     SetFeedOverrideEnabled {
         /// True = the operator's override applies.
         enabled: bool,
@@ -340,8 +340,34 @@ pub enum Canon {
         spindle: u8,
         /// Angle, degrees.
         degrees: f64,
-        /// LinuxCNC's Q direction: 0 = shortest, 1 = CW, 2 = CCW.
+        /// LinuxCNC's P direction: 0 = shortest, 1 = CW, 2 = CCW.
         direction: u8,
+        /// Seconds to wait for the orientation to complete (LinuxCNC M19 Q); None = no wait.
+        timeout: Option<f64>,
+    },
+    /// Spindle speed override enabled or disabled (LinuxCNC M48/M49/M51, tapping cycles).
+    SetSpindleOverrideEnabled {
+        /// Spindle number.
+        spindle: u8,
+        /// True = the operator's override applies.
+        enabled: bool,
+    },
+    /// LinuxCNC M52: adaptive feed (an external input scales the feed) on or off.
+    SetAdaptiveFeed {
+        /// On.
+        enabled: bool,
+    },
+    /// LinuxCNC M53: the feed-stop input is honoured or not.
+    SetFeedHoldEnabled {
+        /// On.
+        enabled: bool,
+    },
+    /// LinuxCNC M61: the tool in the spindle is declared without a tool change.
+    SetCurrentTool {
+        /// Tool number (0 = none).
+        tool: u32,
+        /// LinuxCNC's tool-table slot of that tool (rs274 prints it).
+        slot: u32,
     },
     /// A digital output (LinuxCNC M62–M65, AxiOMA G110/G111 PLC outputs).
     DigitalOutput {

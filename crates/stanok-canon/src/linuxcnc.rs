@@ -162,7 +162,11 @@ impl LinuxCncPrinter {
                 constant_surface_speed,
                 max_rpm,
             } => {
-                let mode = if *constant_surface_speed { *max_rpm } else { 0.0 };
+                let mode = if *constant_surface_speed {
+                    *max_rpm
+                } else {
+                    0.0
+                };
                 self.line(n, format!("SET_SPINDLE_MODE({spindle} {mode:.4})"))
             }
             Canon::SplineFeed(s) => {
@@ -195,14 +199,25 @@ impl LinuxCncPrinter {
                 naive_cam_tolerance,
             } => {
                 let k = self.units.mm_per_unit();
-                let (name, tol) = match mode {
-                    PathMode::ExactStop => ("CANON_EXACT_STOP", 0.0),
-                    PathMode::ExactPath => ("CANON_EXACT_PATH", 0.0),
-                    PathMode::Continuous { tolerance } => ("CANON_CONTINUOUS", tolerance / k),
-                };
-                self.line(n, format!("SET_MOTION_CONTROL_MODE({name}, {tol:.6})"));
-                if let Some(q) = naive_cam_tolerance {
-                    self.line(n, format!("SET_NAIVECAM_TOLERANCE({:.4})", q / k));
+                // rs274 prints the tolerance, and then the naive-CAM one, only for G64.
+                match mode {
+                    PathMode::ExactStop => {
+                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)".into())
+                    }
+                    PathMode::ExactPath => {
+                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)".into())
+                    }
+                    PathMode::Continuous { tolerance } => {
+                        self.line(
+                            n,
+                            format!(
+                                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {:.6})",
+                                tolerance / k
+                            ),
+                        );
+                        let q = naive_cam_tolerance.unwrap_or(*tolerance);
+                        self.line(n, format!("SET_NAIVECAM_TOLERANCE({:.4})", q / k));
+                    }
                 }
             }
             Canon::SetAccelerationProfile { profile } => {
@@ -225,10 +240,40 @@ impl LinuxCncPrinter {
                 spindle,
                 degrees,
                 direction,
-            } => self.line(
+                timeout,
+            } => {
+                self.line(
+                    n,
+                    format!("ORIENT_SPINDLE({spindle}, {degrees:.4}, {direction})"),
+                );
+                if let Some(t) = timeout {
+                    self.line(n, format!("SPINDLE.{spindle}.WAIT_ORIENT_COMPLETE({t:.4})"));
+                }
+            }
+            Canon::SetSpindleOverrideEnabled { spindle, enabled } => self.line(
                 n,
-                format!("ORIENT_SPINDLE({spindle}, {degrees:.4}, {direction})"),
+                format!(
+                    "{}_SPEED_OVERRIDE({spindle})",
+                    if *enabled { "ENABLE" } else { "DISABLE" }
+                ),
             ),
+            Canon::SetAdaptiveFeed { enabled } => self.line(
+                n,
+                format!(
+                    "{}_ADAPTIVE_FEED()",
+                    if *enabled { "ENABLE" } else { "DISABLE" }
+                ),
+            ),
+            Canon::SetFeedHoldEnabled { enabled } => self.line(
+                n,
+                format!(
+                    "{}_FEED_HOLD()",
+                    if *enabled { "ENABLE" } else { "DISABLE" }
+                ),
+            ),
+            Canon::SetCurrentTool { slot, .. } => {
+                self.line(n, format!("CHANGE_TOOL_NUMBER({slot})"))
+            }
             Canon::DigitalOutput {
                 index,
                 on,
@@ -242,18 +287,8 @@ impl LinuxCncPrinter {
                 };
                 self.line(n, format!("{name}({index})"));
             }
-            Canon::WaitInput {
-                index,
-                analog,
-                mode,
-                timeout,
-            } => self.line(
-                n,
-                format!(
-                    "WAIT({index}, {}, {mode}, {timeout:.4})",
-                    if *analog { 1 } else { 0 }
-                ),
-            ),
+            // rs274 prints nothing for M66 (its simulated inputs answer at once).
+            Canon::WaitInput { .. } => {}
             Canon::Mist { on } => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
             Canon::Flood { on } => {
                 self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())

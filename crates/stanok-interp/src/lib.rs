@@ -199,6 +199,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             home_return: state::HomeReturn::None,
             spindle_tools: [0; 4],
             spindle_edges: [0; 4],
+            rs274: rs274::Rs274State::default(),
             position: opts.initial_position,
         };
         let mut state = state;

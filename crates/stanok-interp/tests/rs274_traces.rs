@@ -268,6 +268,47 @@ corpus_tests! {
     g92: "g92-example-1";
     g92_family: "derived-g92-family";
     g07_diameter_mode: "derived-g07-diameter-mode";
+    // Cycles, spindle synchronisation, probing, splines, path control (issue 4).
+    derived_canned_missing_r_error: "derived-canned-missing-r-error";
+    derived_canned_r_below_z_error: "derived-canned-r-below-z-error";
+    derived_canned_series_lowered_r: "derived-canned-series-lowered-r";
+    derived_g38_2_target_equals_start_error: "derived-g38.2-target-equals-start-error";
+    derived_g73_chip_break: "derived-g73-chip-break";
+    derived_g74_tap_left_hand: "derived-g74-tap-left-hand";
+    derived_g83_peck: "derived-g83-peck";
+    derived_g84_tap_right_hand: "derived-g84-tap-right-hand";
+    derived_g85_bore_feed_out: "derived-g85-bore-feed-out";
+    derived_g86_bore_spindle_stop: "derived-g86-bore-spindle-stop";
+    derived_g89_bore_dwell_feed_out: "derived-g89-bore-dwell-feed-out";
+    derived_g99_retract_r_plane: "derived-g99-retract-r-plane";
+    g05_cubic_spline_example_1: "g05-cubic-spline-example-1";
+    g05_cubic_spline_example_2: "g05-cubic-spline-example-2";
+    g05_1_quadratic_spline_example_1: "g05.1-quadratic-spline-example-1";
+    g05_2_nurbs_example_1: "g05.2-nurbs-example-1";
+    g33_inline_example_2: "g33-inline-example-2";
+    g33_inline_example_3: "g33-inline-example-3";
+    g33_spindle_sync_example_1: "g33-spindle-sync-example-1";
+    g33_1_rigid_tap_example_1: "g33.1-rigid-tap-example-1";
+    g38_2_probe_tool_length_example_1: "g38.2-probe-tool-length-example-1";
+    g40_example_1: "g40-example-1";
+    g64_example_1: "g64-example-1";
+    g64_example_2: "g64-example-2";
+    g64_example_3: "g64-example-3";
+    g64_example_4: "g64-example-4";
+    g76_threading_example_1: "g76-threading-example-1";
+    g80_example_1: "g80-example-1";
+    g80_example_2: "g80-example-2";
+    g80_example_3_eight_holes: "g80-example-3-eight-holes";
+    g81_eight_holes_example: "g81-eight-holes-example";
+    g81_example_1_absolute: "g81-example-1-absolute";
+    g81_example_2_incremental_repeat: "g81-example-2-incremental-repeat";
+    g81_example_3_start_below_r: "g81-example-3-start-below-r";
+    g81_example_4_incremental_from_origin: "g81-example-4-incremental-from-origin";
+    g81_example_5_absolute_from_origin: "g81-example-5-absolute-from-origin";
+    g81_twelve_holes_example: "g81-twelve-holes-example";
+    g82_example_1: "g82-example-1";
+    g96_example_1: "g96-example-1";
+    g98_retract_example_1: "g98-retract-example-1";
 }
 
 /// Stanok's own programs with LinuxCNC goldens.

@@ -29,6 +29,7 @@ use crate::params::Parameters;
 use crate::state::{DistanceMode, MotionMode, PathMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection};
 
+mod cycles;
 mod home;
 mod motion;
 mod offsets;
@@ -39,6 +40,47 @@ use motion::motion_block;
 pub use offsets::g5x_from_params;
 use offsets::{g10_origin, g92_family, program_end, select_coordinate_system};
 use stanok_syntax::ColSpan;
+
+/// RS274/NGC state beyond the shared modal groups (LinuxCNC's `setup` fields of the same names).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Rs274State {
+    /// A group-1 code beyond G0–G3/G80 in force (×10: 50 G5, 382 G38.2, 810 G81 …): axis words
+    /// alone repeat it. None = `ModalState::motion` says what is in force.
+    pub motion_code: Option<u32>,
+    /// Canned cycles: the sticky R (mm, as written: a G91 R stays an increment).
+    pub cycle_r: f64,
+    /// Canned cycles: the sticky drilling-axis word (mm, as written).
+    pub cycle_cc: f64,
+    /// Canned cycles: the sticky dwell P, s.
+    pub cycle_p: f64,
+    /// Canned cycles: the sticky peck Q, mm.
+    pub cycle_q: f64,
+    /// Canned cycles: the drilling-axis level when the series began (program mm).
+    pub cycle_il: f64,
+    /// `cycle_il` is set (a series is running).
+    pub cycle_il_set: bool,
+    /// Sense of the main spindle as last commanded (M3/M4); None before any.
+    pub spindle_direction: Option<SpindleDirection>,
+    /// G64 Q, mm (LinuxCNC's naive-CAM tolerance; it defaults to P).
+    pub naive_cam_tolerance: f64,
+    /// M50 P0 / M49 (or a G76) disabled the feed override.
+    pub feed_override_disabled: bool,
+}
+
+/// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
+pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
+    let mode = match mode {
+        PathMode::ExactStop => stanok_canon::PathMode::ExactStop,
+        PathMode::ExactPath => stanok_canon::PathMode::ExactPath,
+        PathMode::Continuous { blend_tolerance } => stanok_canon::PathMode::Continuous {
+            tolerance: blend_tolerance,
+        },
+    };
+    Canon::SetPathMode {
+        mode,
+        naive_cam_tolerance: Some(naive_cam),
+    }
+}
 
 /// What the driver does after the block.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -327,7 +369,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let span = g.span[group as usize];
         let issue = match code {
             410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
-            50 | 51 | 52 | 330 | 331 | 382..=385 | 700..=760 | 810..=890 => {
+            50 | 51 | 52 | 330 | 331 | 382..=385 | 700..=720 | 760 => {
                 Some("RS274/NGC cycles, splines and probing")
             }
             960 => Some("feed and spindle technology"),
@@ -402,6 +444,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
                     SpindleDirection::CounterClockwise
                 };
                 cx.st.spindle_on[0] = true;
+                cx.st.rs274.spindle_direction = Some(direction);
                 cx.out.push(Canon::StartSpindle {
                     spindle: 0,
                     direction,
@@ -409,6 +452,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             }
             _ => {
                 cx.st.spindle_on[0] = false;
+                cx.st.rs274.spindle_direction = None;
                 cx.out.push(Canon::StopSpindle { spindle: 0 });
             }
         }
@@ -523,10 +567,15 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             611 => PathMode::ExactStop,
             _ => {
                 let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
-                let _naive_cam = cx.words.take(b'Q');
+                let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
+                cx.st.rs274.naive_cam_tolerance = q;
                 PathMode::Continuous { blend_tolerance: p }
             }
         };
+        cx.out.push(path_mode_canon(
+            cx.st.path_mode,
+            cx.st.rs274.naive_cam_tolerance,
+        ));
     }
     // 15. Distance mode; 17. arc (IJK) distance mode. LinuxCNC comments only a real change.
     if let Some((code, _)) = g.get(Group::Distance) {
@@ -576,6 +625,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         Some((code, span)) => Some((code, span, true)),
         None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
             let code = match cx.st.motion {
+                _ if cx.st.rs274.motion_code.is_some() => cx.st.rs274.motion_code.unwrap_or(800),
                 MotionMode::Rapid => 0,
                 MotionMode::Linear => 10,
                 MotionMode::ArcCw => 20,

@@ -16,7 +16,15 @@ pub(super) fn motion_block(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
+    if !(730..=890).contains(&code) || code == 760 || code == 800 {
+        // Leaving the canned cycles ends a series (its initial level is forgotten).
+        cx.st.rs274.cycle_il_set = false;
+    }
+    if matches!(code, 0 | 10 | 20 | 30 | 800) {
+        cx.st.rs274.motion_code = None;
+    }
     match code {
+        730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
         800 => {
             if explicit {
                 cx.st.motion = MotionMode::None;

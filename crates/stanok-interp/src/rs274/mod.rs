@@ -33,6 +33,7 @@ mod cycles;
 mod home;
 mod motion;
 mod offsets;
+mod sync;
 mod tools;
 
 pub use motion::helix_length;
@@ -369,7 +370,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let span = g.span[group as usize];
         let issue = match code {
             410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
-            50 | 51 | 52 | 330 | 331 | 382..=385 | 700..=720 | 760 => {
+            50 | 51 | 52 | 382..=385 | 700..=720 => {
                 Some("RS274/NGC cycles, splines and probing")
             }
             960 => Some("feed and spindle technology"),

@@ -25,6 +25,9 @@ pub(super) fn motion_block(
     }
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
+        330 => super::sync::g33(cx, span),
+        331 => super::sync::g33_1(cx, span),
+        760 => super::sync::g76(cx, span),
         800 => {
             if explicit {
                 cx.st.motion = MotionMode::None;

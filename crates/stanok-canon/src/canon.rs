@@ -297,6 +297,9 @@ pub enum Canon {
         motion: LineMove,
         /// Stop condition and error rule.
         probe: ProbeKind,
+        /// Where the probe changes state according to the probe surfaces the run was configured
+        /// with (the same data the machine is given); None = it runs to the end without doing so.
+        contact: Option<Pose>,
     },
     /// G33.1 (and G84/G74 in rigid mode): spindle-synchronised feed to `end`, spindle reversal,
     /// synchronised return to `start`. The pitch is the one of the `StartSpindleSync` before it.

@@ -174,6 +174,45 @@ pub struct ControlData {
     /// file holds besides the offsets above (e.g. user parameters 31…5000 that a machine keeps).
     /// Values exactly as stored: their meaning, and so their unit, is the program's.
     pub parameters: BTreeMap<u32, f64>,
+    /// The simulated probe's world: where a probe move (G38.n, G75) makes contact. Empty = the
+    /// probe never makes contact (LinuxCNC's standalone interpreter behaves so).
+    pub probe_surfaces: Vec<ProbeSurface>,
+}
+
+/// A half-space of machine coordinates in which the probe is in contact, e.g. `z <= -3.2` (the top
+/// of a workpiece or a tool setter at Z −3.2 mm).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ProbeSurface {
+    /// Axis index in `Pose` order (0 = X … 8 = W).
+    pub axis: usize,
+    /// Contact where the coordinate is ≤ `value` (true) or ≥ `value` (false).
+    pub at_or_below: bool,
+    /// mm (deg for A B C), machine coordinates.
+    pub value: f64,
+}
+
+impl ProbeSurface {
+    /// True if the probe at `p` touches this surface.
+    pub fn contact(&self, p: &Pose) -> bool {
+        let v = p.to_array()[self.axis.min(8)];
+        if self.at_or_below {
+            v <= self.value
+        } else {
+            v >= self.value
+        }
+    }
+
+    /// Fraction t in [0, 1] along start → end where the contact state first changes from that at
+    /// `start` (None if it never does).
+    pub fn crossing(&self, start: &Pose, end: &Pose) -> Option<f64> {
+        let a = start.to_array()[self.axis.min(8)];
+        let b = end.to_array()[self.axis.min(8)];
+        let (ca, cb) = (self.contact(start), self.contact(end));
+        if ca == cb || a == b {
+            return None;
+        }
+        Some(((self.value - a) / (b - a)).clamp(0.0, 1.0))
+    }
 }
 
 #[cfg(test)]

@@ -193,7 +193,7 @@ proptest! {
     ) {
         let mut m = MachineData::default_mill();
         m.linuxcnc_units = if inch { LengthUnits::Inches } else { LengthUnits::Millimetres };
-        m.control = ControlData { tools, offsets, parameters };
+        m.control = ControlData { tools, offsets, parameters, ..Default::default() };
         let text = m.to_toml();
         let back = MachineData::from_toml_str(&text, "m.toml");
         prop_assert_eq!(back.as_ref(), Ok(&m), "{}", text);

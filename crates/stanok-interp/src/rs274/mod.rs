@@ -33,6 +33,7 @@ mod cycles;
 mod home;
 mod motion;
 mod offsets;
+mod probe;
 mod sync;
 mod tools;
 
@@ -370,7 +371,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let span = g.span[group as usize];
         let issue = match code {
             410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
-            50 | 51 | 52 | 382..=385 | 700..=720 => {
+            50 | 51 | 52 | 700..=720 => {
                 Some("RS274/NGC cycles, splines and probing")
             }
             960 => Some("feed and spindle technology"),
@@ -638,7 +639,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         None => None,
     };
     if let Some((code, span, explicit)) = motion {
-        motion_block(cx, code, span, explicit, g.g53, f_word.is_some())?;
+        motion_block(cx, params, code, span, explicit, g.g53, f_word.is_some())?;
     } else if let Some(span) = g.g53 {
         return Err(cx.err(
             "rs274::g53-without-motion",

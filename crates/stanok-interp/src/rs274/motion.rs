@@ -10,6 +10,7 @@ use stanok_syntax::ColSpan;
 
 pub(super) fn motion_block(
     cx: &mut Ctx<'_>,
+    params: &mut crate::params::Parameters,
     code: u32,
     span: ColSpan,
     explicit: bool,
@@ -26,6 +27,7 @@ pub(super) fn motion_block(
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
         330 => super::sync::g33(cx, span),
+        382..=385 => super::probe::straight_probe(cx, params, code, span),
         331 => super::sync::g33_1(cx, span),
         760 => super::sync::g76(cx, span),
         800 => {

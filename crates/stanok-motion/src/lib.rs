@@ -1,19 +1,39 @@
-//! # stanok-motion: from Canon motion to time
+//! # stanok-motion: from Canon motion to timed axis setpoints
 //!
-//! What will live here (later issues): the look-ahead **planner** (junction and curvature speed
-//! limits, G60/G64 exact stop and path tolerance, BRISK trapezoidal and SOFT jerk-limited profiles,
-//! reverse and forward passes in the grbl/Klipper style) producing `PlannedBlock`s, and the
-//! servo-period **interpolator** that turns planned blocks into setpoints with overrides and feed
-//! hold. The planner will respect every axis' velocity, acceleration and jerk limit, property-tested.
+//! ```text
+//!  Canon ─▶ adapter ─▶ path (chords, G64 blends) ─▶ planner (look-ahead) ─▶ interpolator ─▶ setpoints
+//! ```
+//! * [`adapter`]: modal motion state (G60/G61/G64 P, BRISK/SOFT, feed mode, spindle sync,
+//!   overrides) stamped on every [`segment::PathSegment`]; forced exact stops.
+//! * [`path`]: segments → tangent-continuous [`piece::Piece`]s: chords of arcs and splines, circular
+//!   blends within the G64 tolerance, per-piece speed/acceleration/jerk limits from the axis limits.
+//! * [`planner`]: grbl-style reverse/forward passes over a bounded window.
+//! * [`profile_trapezoid`] (BRISK), [`profile_scurve`] (SOFT): one piece's time law.
+//! * [`interpolator`]: the servo-period grid; [`stage::MotionStage`] wires everything.
+//! * [`nominal`]: length / feed, the lower bound the run report keeps beside the planned time.
 //!
-//! What lives here now: [`nominal`], the "nominal" time of a move: path length over the programmed
-//! (or rapid) rate, as if every move started and stopped at full speed with infinite acceleration.
-//! It is the number a run report can give before the planner exists, and a lower bound for the
-//! planned time of the same moves.
+//! Guarantees (property-tested in `tests/` and over the corpus in the `stanok` crate): no setpoint
+//! exceeds an axis' velocity or acceleration limit (and jerk in SOFT, analytically); under G64 P
+//! the path stays within P; under G60/G61 every block end is met exactly at rest; the trace ends
+//! exactly at the last programmed position and lasts the reported cycle time.
 //!
 //! Architecture invariant: this crate never sees offsets, units, modal groups or G-code; it takes
-//! machine-frame lengths (mm, or degrees for rotary-only moves), rates in units per minute and returns
-//! seconds.
+//! machine-frame positions (mm, deg), rates and returns seconds and setpoints.
 #![deny(missing_docs)]
 
+pub mod adapter;
+pub mod interpolator;
+pub mod limits;
+pub mod monitor;
 pub mod nominal;
+pub mod path;
+pub mod piece;
+pub mod planner;
+pub mod profile_scurve;
+pub mod profile_trapezoid;
+pub mod segment;
+pub mod stage;
+
+pub use interpolator::Setpoint;
+pub use limits::{AxisLimit, MotionConfig};
+pub use stage::{MotionStage, StageStats};

@@ -1,0 +1,311 @@
+//! From the Canon stream to planner input: modal state that matters to motion.
+//!
+//! ## What it tracks and why
+//! Canon carries motion and modal changes as separate commands; the planner wants every segment to
+//! be self-contained. `CanonAdapter` keeps the modal state and stamps it on each segment:
+//! * path mode (`SetPathMode`: G60/G61 exact stop, G61.1 exact path, G64 P tolerance),
+//! * acceleration profile (`SetAccelerationProfile`: BRISK/SOFT),
+//! * feed mode and spindle synchronisation (`SetFeedMode`, `StartSpindleSync` → feed = pitch ×
+//!   spindle rpm; `SetSpindleSpeed` of spindle 0),
+//! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync).
+//!
+//! ## Speeds
+//! Canon feeds are mm/min along the feed length (the interpreter already turned G93 inverse time
+//! and G95 per-revolution feeds into mm/min). Here: mm/min → mm/s, clamp to the machine's maximum
+//! feed, times the feed override (0.1 %…200 %), times (9-D length / feed length) — see
+//! [`crate::segment`]. A feed that is zero, negative or not a number (the interpreter never emits
+//! one; a spindle-synchronised move with the spindle at rest could) runs at the maximum feed, so
+//! that nothing waits for ever. Rapids use the rapid rate times the rapid override (0.1 %…100 %).
+//!
+//! ## Stops (spec axioma-2 §3.4, rs274 §4.30)
+//! Exact stops are forced by M0/M1, tool changes, the tool-change start, program end, pallet
+//! shuttle, dwell (stop, then stand), waiting for an input, spindle orientation, a feed-mode change,
+//! the start and the end of spindle synchronisation, and around probe moves and rigid taps.
+//!
+//! Invariant: no input panics; non-finite coordinates make a segment that the path builder drops.
+
+use crate::limits::MotionConfig;
+use crate::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry, SPLINE_CHORD_TOLERANCE};
+use stanok_canon::{
+    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, PathMode, Pose, SplineMove,
+};
+use stanok_geom::{Helix, Nurbs};
+
+/// The slowest override the planner accepts (a 0 % override is a feed hold, not a speed).
+const MIN_OVERRIDE: f64 = 1e-3;
+
+/// Modal motion state between Canon commands (see the module doc).
+#[derive(Debug, Clone)]
+pub struct CanonAdapter {
+    config: MotionConfig,
+    path_mode: PathMode,
+    profile: AccelerationProfile,
+    feed_mode: FeedMode,
+    spindle_rpm: f64,
+    spindle_pitch: Option<f64>,
+    override_enabled: bool,
+}
+
+/// Length the feed applies to (spec axioma-2 §3.2) and the 9-D length, of a straight move.
+fn feed_and_path_length(start: &Point9, end: &Point9) -> (f64, f64) {
+    let len =
+        |r: std::ops::Range<usize>| r.map(|i| (end[i] - start[i]).powi(2)).sum::<f64>().sqrt();
+    let (xyz, abc, uvw) = (len(0..3), len(3..6), len(6..9));
+    let path = (xyz * xyz + abc * abc + uvw * uvw).sqrt();
+    let feed = if xyz > 0.0 {
+        xyz
+    } else if uvw > 0.0 {
+        uvw
+    } else {
+        abc
+    };
+    (feed, path)
+}
+
+impl CanonAdapter {
+    /// Power-on state: G64 with the default tolerance, BRISK, G94, override enabled.
+    pub fn new(config: &MotionConfig) -> Self {
+        CanonAdapter {
+            config: config.clone().sanitised(),
+            path_mode: PathMode::Continuous { tolerance: 0.0 },
+            profile: AccelerationProfile::Brisk,
+            feed_mode: FeedMode::UnitsPerMinute,
+            spindle_rpm: 0.0,
+            spindle_pitch: None,
+            override_enabled: true,
+        }
+    }
+
+    /// Changes the feed override (fraction, 0…2) for the segments adapted from now on.
+    pub fn set_feed_override(&mut self, fraction: f64) {
+        self.config.feed_override = fraction;
+        self.config = self.config.clone().sanitised();
+    }
+
+    /// Changes the rapid override (fraction, 0…1) for the segments adapted from now on.
+    pub fn set_rapid_override(&mut self, fraction: f64) {
+        self.config.rapid_override = fraction;
+        self.config = self.config.clone().sanitised();
+    }
+
+    /// Path speed (unit/s along the 9-D path) of a feed move programmed at `feed_per_min`.
+    fn feed_speed(&self, feed_per_min: f64, ratio: f64) -> f64 {
+        let mut f = match self.spindle_pitch {
+            Some(pitch) => pitch * self.spindle_rpm / 60.0,
+            None => feed_per_min / 60.0,
+        };
+        if !(f.is_finite() && f > 0.0) {
+            f = self.config.max_feed;
+        }
+        f = f.min(self.config.max_feed);
+        if self.override_enabled && self.spindle_pitch.is_none() {
+            f *= self.config.feed_override.max(MIN_OVERRIDE);
+        }
+        f * ratio
+    }
+
+    fn rapid_speed(&self, ratio: f64) -> f64 {
+        self.config.rapid_rate * self.config.rapid_override.max(MIN_OVERRIDE) * ratio
+    }
+
+    fn segment(
+        &self,
+        start: Pose,
+        end: Pose,
+        geometry: SegmentGeometry,
+        speed: f64,
+        rapid: bool,
+        line: u32,
+    ) -> PathSegment {
+        PathSegment {
+            start: start.to_array(),
+            end: end.to_array(),
+            geometry,
+            path_speed: speed,
+            rapid,
+            path_mode: self.path_mode,
+            profile: self.profile,
+            line,
+        }
+    }
+
+    fn line(&self, m: &LineMove, rapid: bool, line: u32) -> PlannerInput {
+        let (s, e) = (m.start.to_array(), m.end.to_array());
+        let (feed_len, path_len) = feed_and_path_length(&s, &e);
+        let ratio = if feed_len > 0.0 {
+            path_len / feed_len
+        } else {
+            1.0
+        };
+        let speed = if rapid {
+            self.rapid_speed(ratio)
+        } else {
+            self.feed_speed(m.feed, ratio)
+        };
+        PlannerInput::Segment(self.segment(
+            m.start,
+            m.end,
+            SegmentGeometry::Line,
+            speed,
+            rapid,
+            line,
+        ))
+    }
+
+    fn arc(&self, a: &ArcMove, line: u32) -> PlannerInput {
+        let helix = Helix {
+            start: a.start.xyz(),
+            end: a.end.xyz(),
+            centre: a.centre,
+            axis: a.axis,
+            turns: a.turns,
+        };
+        let xyz = helix.length();
+        let (s, e) = (a.start.to_array(), a.end.to_array());
+        let other: f64 = (3..9).map(|i| (e[i] - s[i]).powi(2)).sum();
+        let path = (xyz * xyz + other).sqrt();
+        let ratio = if xyz > 0.0 && path.is_finite() {
+            path / xyz
+        } else {
+            1.0
+        };
+        let speed = self.feed_speed(a.feed, ratio);
+        PlannerInput::Segment(self.segment(
+            a.start,
+            a.end,
+            SegmentGeometry::Arc(helix),
+            speed,
+            false,
+            line,
+        ))
+    }
+
+    fn spline(&self, sp: &SplineMove, line: u32) -> PlannerInput {
+        let curve = Nurbs::new(sp.degree, &sp.control_points, &sp.weights, &sp.knots);
+        let mut xyz = vec![sp.start.xyz()];
+        if curve.validate().is_ok() {
+            curve.tessellate(SPLINE_CHORD_TOLERANCE, &mut xyz);
+        }
+        // The curve ends exactly at the programmed end.
+        let end = sp.end.xyz();
+        if xyz.len() > 1 {
+            let last = xyz.len() - 1;
+            xyz[last] = end;
+        } else {
+            xyz.push(end);
+        }
+        let lengths: Vec<f64> = xyz
+            .windows(2)
+            .map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0])))
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        let (s, e) = (sp.start.to_array(), sp.end.to_array());
+        let mut points = Vec::with_capacity(xyz.len());
+        let mut run = 0.0;
+        for (k, p) in xyz.iter().enumerate() {
+            if k > 0 {
+                run += lengths[k - 1];
+            }
+            let f = if total > 0.0 { run / total } else { 1.0 };
+            let mut q = [0.0; 9];
+            q[..3].copy_from_slice(p);
+            for i in 3..9 {
+                q[i] = s[i] + (e[i] - s[i]) * f;
+            }
+            points.push(q);
+        }
+        let other: f64 = (3..9).map(|i| (e[i] - s[i]).powi(2)).sum();
+        let ratio = if total > 0.0 {
+            (total * total + other).sqrt() / total
+        } else {
+            1.0
+        };
+        let speed = self.feed_speed(sp.feed, ratio);
+        PlannerInput::Segment(self.segment(
+            sp.start,
+            sp.end,
+            SegmentGeometry::Polyline(points),
+            speed,
+            false,
+            line,
+        ))
+    }
+
+    /// Turns one Canon command into zero or more planner inputs, in order.
+    pub fn adapt(&mut self, cmd: &Canon, line: u32, out: &mut impl FnMut(PlannerInput)) {
+        let stop =
+            |out: &mut dyn FnMut(PlannerInput)| out(PlannerInput::Stop { dwell_s: 0.0, line });
+        match cmd {
+            Canon::StraightTraverse(m) => out(self.line(m, true, line)),
+            Canon::StraightFeed(m) => out(self.line(m, false, line)),
+            Canon::ArcFeed(a) => out(self.arc(a, line)),
+            Canon::SplineFeed(sp) => out(self.spline(sp, line)),
+            Canon::StraightProbe { motion, .. } => {
+                stop(out);
+                out(self.line(motion, false, line));
+                stop(out);
+            }
+            Canon::RigidTap { start, end, scale } => {
+                stop(out);
+                let down = LineMove {
+                    start: *start,
+                    end: *end,
+                    feed: 0.0,
+                };
+                out(self.line(&down, false, line));
+                stop(out);
+                let mut up = self.line(
+                    &LineMove {
+                        start: *end,
+                        end: *start,
+                        feed: 0.0,
+                    },
+                    false,
+                    line,
+                );
+                if let PlannerInput::Segment(s) = &mut up {
+                    if scale.is_finite() && *scale > 0.0 {
+                        s.path_speed = (s.path_speed * scale).min(self.config.max_feed);
+                    }
+                }
+                out(up);
+                stop(out);
+            }
+            Canon::Dwell { seconds } => out(PlannerInput::Stop {
+                dwell_s: if seconds.is_finite() && *seconds > 0.0 {
+                    *seconds
+                } else {
+                    0.0
+                },
+                line,
+            }),
+            Canon::SetPathMode { mode, .. } => self.path_mode = *mode,
+            Canon::SetAccelerationProfile { profile } => self.profile = *profile,
+            Canon::SetFeedMode { mode } => {
+                if *mode != self.feed_mode {
+                    stop(out);
+                }
+                self.feed_mode = *mode;
+            }
+            Canon::SetSpindleSpeed { spindle: 0, rpm } => self.spindle_rpm = rpm.abs(),
+            Canon::StartSpindleSync { pitch, .. } => {
+                stop(out);
+                self.spindle_pitch = Some(pitch.abs());
+            }
+            Canon::StopSpindleSync => {
+                stop(out);
+                self.spindle_pitch = None;
+            }
+            Canon::SetFeedOverrideEnabled { enabled } => self.override_enabled = *enabled,
+            Canon::ProgramStop { .. }
+            | Canon::ChangeTool { .. }
+            | Canon::ChangeSpindleTool { .. }
+            | Canon::StartToolChange
+            | Canon::ProgramEnd
+            | Canon::PalletShuttle
+            | Canon::WaitInput { .. }
+            | Canon::OrientSpindle { .. } => stop(out),
+            _ => {}
+        }
+    }
+}

@@ -1,0 +1,220 @@
+//! The servo-rate interpolator: planned pieces → axis setpoints every servo period.
+//!
+//! ## Algorithm
+//! Time runs on one global grid t_k = k·T (T = servo period). A released piece occupies
+//! [t_start, t_start + duration) of the timeline, with its profile (trapezoid for BRISK, S-curve
+//! for SOFT, standstill for a dwell); every grid instant inside that interval is sampled at
+//! τ = t_k − t_start: path position s(τ), speed, acceleration and jerk from the profile, then the
+//! point, tangent and curvature of the piece's shape at s. Axis quantities follow by the chain rule:
+//! * velocity_i = v·t_i
+//! * acceleration_i = a·t_i + v²·κ_i
+//! * jerk_i = (j − v³/r²)·t_i + 3·v·a·κ_i (κ = d²p/ds², |κ| = 1/r on arcs, 0 on lines).
+//!
+//! [`Interpolator::finish`] emits one more setpoint at the first grid instant at or after the end
+//! of the last piece, exactly at that piece's end point and at rest. So the trace starts at t = 0,
+//! has one setpoint per period, and its duration is the planned time rounded up to a whole period.
+//!
+//! ## Invariants
+//! * Per setpoint: a fixed amount of arithmetic, no allocation, no loop that depends on the input
+//!   (the caller's sink decides what to do with it).
+//! * The profile never leaves the piece (s clamped to [0, length]); a piece's last point is its
+//!   exact `end`.
+
+use crate::piece::Shape;
+use crate::planner::PlannedPiece;
+use crate::profile_scurve::SCurve;
+use crate::profile_trapezoid::{Kinematics, Trapezoid};
+use crate::segment::Point9;
+
+/// One servo-period setpoint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setpoint {
+    /// Time from the start of the run, s.
+    pub t: f64,
+    /// Axis positions, mm/deg (X Y Z A B C U V W).
+    pub position: Point9,
+    /// Analytic axis velocities, unit/s.
+    pub velocity: Point9,
+    /// Analytic axis accelerations, unit/s².
+    pub acceleration: Point9,
+    /// Analytic axis jerks, unit/s³ (meaningful in SOFT; BRISK switches acceleration instantly).
+    pub jerk: Point9,
+    /// The piece runs a SOFT profile.
+    pub soft: bool,
+    /// Source line of the piece.
+    pub line: u32,
+}
+
+/// The time law of one piece.
+#[derive(Debug, Clone, Copy)]
+pub enum Profile {
+    /// BRISK.
+    Trapezoid(Trapezoid),
+    /// SOFT.
+    SCurve(SCurve),
+    /// Standing still, s.
+    Dwell(f64),
+}
+
+impl Profile {
+    /// The profile of a planned piece.
+    pub fn of(p: &PlannedPiece) -> Profile {
+        let pc = &p.piece;
+        match pc.shape {
+            Shape::Dwell { seconds, .. } => Profile::Dwell(seconds),
+            _ if pc.soft => Profile::SCurve(SCurve::new(
+                pc.length, p.v_entry, p.v_exit, pc.v_max, pc.a_max, pc.j_max,
+            )),
+            _ => Profile::Trapezoid(Trapezoid::new(
+                pc.length, p.v_entry, p.v_exit, pc.v_max, pc.a_max,
+            )),
+        }
+    }
+
+    /// Duration, s.
+    pub fn duration(&self) -> f64 {
+        match self {
+            Profile::Trapezoid(t) => t.duration(),
+            Profile::SCurve(s) => s.duration(),
+            Profile::Dwell(d) => *d,
+        }
+    }
+
+    /// State at `t` from the piece start.
+    #[inline]
+    pub fn at(&self, t: f64) -> Kinematics {
+        match self {
+            Profile::Trapezoid(p) => p.at(t),
+            Profile::SCurve(p) => p.at(t),
+            Profile::Dwell(_) => Kinematics::default(),
+        }
+    }
+}
+
+/// The setpoint of a piece at path state `k` (module doc).
+#[inline]
+pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
+    let pc = &piece.piece;
+    let s = k.s.clamp(0.0, pc.length);
+    let pt = if s >= pc.length {
+        None
+    } else {
+        Some(pc.shape.at(s))
+    };
+    let mut sp = Setpoint {
+        t,
+        position: pc.end,
+        velocity: [0.0; 9],
+        acceleration: [0.0; 9],
+        jerk: [0.0; 9],
+        soft: pc.soft,
+        line: pc.line,
+    };
+    let inv_r2 = match pc.shape {
+        Shape::Arc { radius, .. } => 1.0 / (radius * radius),
+        _ => 0.0,
+    };
+    let pt = pt.unwrap_or_else(|| {
+        let mut end = pc.shape.at(pc.length);
+        end.position = pc.end;
+        end
+    });
+    sp.position = pt.position;
+    let (v, a, j) = (k.v, k.a, k.j);
+    for i in 0..9 {
+        let (ti, ki) = (pt.tangent[i], pt.curvature[i]);
+        sp.velocity[i] = v * ti;
+        sp.acceleration[i] = a * ti + v * v * ki;
+        sp.jerk[i] = (j - v * v * v * inv_r2) * ti + 3.0 * v * a * ki;
+    }
+    sp
+}
+
+/// Samples released pieces on the servo grid (module doc).
+#[derive(Debug, Clone)]
+pub struct Interpolator {
+    period: f64,
+    tick: u64,
+    piece_start: f64,
+    end: Point9,
+    line: u32,
+}
+
+impl Interpolator {
+    /// Starts at t = 0 standing at `at`.
+    pub fn new(period: f64, at: Point9) -> Self {
+        Interpolator {
+            period,
+            tick: 0,
+            piece_start: 0.0,
+            end: at,
+            line: 0,
+        }
+    }
+
+    /// Where the machine stands once every piece received so far has run.
+    pub fn end(&self) -> Point9 {
+        self.end
+    }
+
+    /// Moves the standing point (before any motion: the program's initial position).
+    pub fn set_position(&mut self, at: Point9) {
+        self.end = at;
+    }
+
+    /// Planned time of the pieces received so far, s (not rounded to the period).
+    pub fn planned_time(&self) -> f64 {
+        self.piece_start
+    }
+
+    /// Setpoints emitted so far.
+    pub fn ticks(&self) -> u64 {
+        self.tick
+    }
+
+    /// The servo period, s.
+    pub fn period(&self) -> f64 {
+        self.period
+    }
+
+    /// Samples one piece: every grid instant in its time interval goes to `out`.
+    pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
+        let profile = Profile::of(piece);
+        let duration = profile.duration();
+        let duration = if duration.is_finite() && duration >= 0.0 {
+            duration
+        } else {
+            0.0
+        };
+        let t_end = self.piece_start + duration;
+        loop {
+            let t = self.tick as f64 * self.period;
+            if t >= t_end {
+                break;
+            }
+            let k = profile.at(t - self.piece_start);
+            out(&sample(piece, k, t));
+            self.tick += 1;
+        }
+        self.piece_start = t_end;
+        self.end = piece.piece.end;
+        self.line = piece.piece.line;
+    }
+
+    /// The last setpoint: at the end point, at rest, on the first grid instant at or after the
+    /// end of the last piece. Returns the trace duration (that instant), s.
+    pub fn finish(&mut self, out: &mut impl FnMut(&Setpoint)) -> f64 {
+        let t = self.tick as f64 * self.period;
+        out(&Setpoint {
+            t,
+            position: self.end,
+            velocity: [0.0; 9],
+            acceleration: [0.0; 9],
+            jerk: [0.0; 9],
+            soft: false,
+            line: self.line,
+        });
+        self.tick += 1;
+        t
+    }
+}

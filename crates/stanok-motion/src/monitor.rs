@@ -1,0 +1,200 @@
+//! Checking setpoints against the axis limits: analytic values and finite differences.
+//!
+//! ## What is measured
+//! For every axis, on every setpoint:
+//! * the **analytic** velocity, acceleration and (SOFT pieces) jerk the interpolator computed from
+//!   the profile and the geometry;
+//! * the **finite differences** of the positions at the servo period T:
+//!   v ≈ (p_k − p_{k−1})/T, a ≈ (p_k − 2p_{k−1} + p_{k−2})/T², j ≈ third difference / T³.
+//!
+//! A first difference is the mean of the velocity over the period, and a second difference the
+//! mean of the acceleration weighted by a triangle kernel of unit mass, so for a trajectory whose
+//! axis positions are C¹ (the path builder's invariant) the finite differences can never exceed the
+//! analytic peaks: the velocity and acceleration checks apply to both, with a relative slack of
+//! [`RELATIVE_SLACK`] and an absolute slack for rounding in the positions (8 ulp of the largest
+//! coordinate, divided by T, T², T³).
+//!
+//! Jerk: BRISK has no jerk limit (acceleration switches instantly, the finite-difference jerk is
+//! a spike of Δa/T at every switch). SOFT profiles are jerk-limited along the path and the analytic
+//! axis jerk is checked; the finite-difference jerk is reported but not checked, because where a
+//! straight piece meets a blend arc the centripetal acceleration steps by v²/r (the path has a
+//! curvature jump) and the third difference shows that step as a spike of about v²/(r·T). On paths
+//! of straight pieces only (exact stop), SOFT's finite-difference jerk stays within the limit; the
+//! tests check that case.
+
+use crate::interpolator::Setpoint;
+use crate::limits::AxisLimit;
+use crate::segment::Point9;
+
+/// Relative slack of every limit check.
+pub const RELATIVE_SLACK: f64 = 1e-6;
+/// Most violations kept (the count goes on).
+const MAX_KEPT: usize = 100;
+
+/// Peaks of one axis, absolute values, unit/s, unit/s², unit/s³.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AxisPeaks {
+    /// Analytic velocity.
+    pub velocity: f64,
+    /// Analytic acceleration.
+    pub acceleration: f64,
+    /// Analytic jerk (SOFT pieces only).
+    pub jerk: f64,
+    /// Finite-difference velocity.
+    pub fd_velocity: f64,
+    /// Finite-difference acceleration.
+    pub fd_acceleration: f64,
+    /// Finite-difference jerk.
+    pub fd_jerk: f64,
+}
+
+/// A limit exceeded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Violation {
+    /// Time, s.
+    pub t: f64,
+    /// Source line of the setpoint.
+    pub line: u32,
+    /// Axis index (X = 0 … W = 8).
+    pub axis: usize,
+    /// What: "velocity", "acceleration", "jerk", with "(finite difference)" when measured on the
+    /// positions.
+    pub what: &'static str,
+    /// Measured value.
+    pub value: f64,
+    /// The limit.
+    pub limit: f64,
+}
+
+/// Watches a stream of setpoints (module doc).
+#[derive(Debug, Clone)]
+pub struct TraceMonitor {
+    limits: [AxisLimit; 9],
+    period: f64,
+    history: [Point9; 3],
+    soft_history: [bool; 3],
+    seen: u64,
+    /// Peaks per axis.
+    pub peaks: [AxisPeaks; 9],
+    /// The first violations (at most 100).
+    pub violations: Vec<Violation>,
+    /// All violations.
+    pub violation_count: u64,
+    /// The last setpoint's time, s.
+    pub last_t: f64,
+    /// The last setpoint's position.
+    pub last_position: Point9,
+}
+
+impl TraceMonitor {
+    /// A monitor for setpoints every `period` seconds.
+    pub fn new(limits: [AxisLimit; 9], period: f64) -> Self {
+        TraceMonitor {
+            limits,
+            period,
+            history: [[0.0; 9]; 3],
+            soft_history: [false; 3],
+            seen: 0,
+            peaks: [AxisPeaks::default(); 9],
+            violations: Vec::new(),
+            violation_count: 0,
+            last_t: 0.0,
+            last_position: [0.0; 9],
+        }
+    }
+
+    /// Setpoints seen.
+    pub fn count(&self) -> u64 {
+        self.seen
+    }
+
+    fn flag(
+        &mut self,
+        sp: &Setpoint,
+        axis: usize,
+        what: &'static str,
+        value: f64,
+        limit: f64,
+        abs_slack: f64,
+    ) {
+        if value > limit * (1.0 + RELATIVE_SLACK) + abs_slack {
+            self.violation_count += 1;
+            if self.violations.len() < MAX_KEPT {
+                self.violations.push(Violation {
+                    t: sp.t,
+                    line: sp.line,
+                    axis,
+                    what,
+                    value,
+                    limit,
+                });
+            }
+        }
+    }
+
+    /// Looks at the next setpoint.
+    pub fn observe(&mut self, sp: &Setpoint) {
+        let p = sp.position;
+        let t = self.period;
+        let scale = p
+            .iter()
+            .chain(self.history[0].iter())
+            .fold(1.0f64, |m, x| m.max(x.abs()));
+        let ulp8 = 8.0 * scale * f64::EPSILON;
+        for i in 0..9 {
+            let lim = self.limits[i];
+            let (v, a, j) = (
+                sp.velocity[i].abs(),
+                sp.acceleration[i].abs(),
+                sp.jerk[i].abs(),
+            );
+            let pk = &mut self.peaks[i];
+            pk.velocity = pk.velocity.max(v);
+            pk.acceleration = pk.acceleration.max(a);
+            if sp.soft {
+                pk.jerk = pk.jerk.max(j);
+            }
+            self.flag(sp, i, "velocity", v, lim.velocity, 0.0);
+            self.flag(sp, i, "acceleration", a, lim.acceleration, 0.0);
+            if sp.soft {
+                self.flag(sp, i, "jerk", j, lim.jerk, 0.0);
+            }
+            let h = &self.history;
+            if self.seen >= 1 {
+                let fv = ((p[i] - h[0][i]) / t).abs();
+                self.peaks[i].fd_velocity = self.peaks[i].fd_velocity.max(fv);
+                self.flag(
+                    sp,
+                    i,
+                    "velocity (finite difference)",
+                    fv,
+                    lim.velocity,
+                    2.0 * ulp8 / t,
+                );
+            }
+            let h = &self.history;
+            if self.seen >= 2 {
+                let fa = ((p[i] - 2.0 * h[0][i] + h[1][i]) / (t * t)).abs();
+                self.peaks[i].fd_acceleration = self.peaks[i].fd_acceleration.max(fa);
+                self.flag(
+                    sp,
+                    i,
+                    "acceleration (finite difference)",
+                    fa,
+                    lim.acceleration,
+                    4.0 * ulp8 / (t * t),
+                );
+            }
+            let h = &self.history;
+            if self.seen >= 3 {
+                let fj = ((p[i] - 3.0 * h[0][i] + 3.0 * h[1][i] - h[2][i]) / (t * t * t)).abs();
+                self.peaks[i].fd_jerk = self.peaks[i].fd_jerk.max(fj);
+            }
+        }
+        self.history = [p, self.history[0], self.history[1]];
+        self.soft_history = [sp.soft, self.soft_history[0], self.soft_history[1]];
+        self.seen += 1;
+        self.last_t = sp.t;
+        self.last_position = p;
+    }
+}

@@ -1,0 +1,187 @@
+//! Path pieces: what the planner times. A programmed segment becomes one or more pieces; every
+//! piece is a straight line or a circular arc in the 9-D axis space, joined to its neighbours with a
+//! continuous tangent (or at a stop), so that a profile with continuous path speed gives continuous
+//! axis velocities.
+
+use crate::limits::AxisLimit;
+use crate::segment::Point9;
+
+/// The geometry of a piece, parameterised by arc length s ∈ [0, length].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shape {
+    /// p(s) = start + s·dir, `dir` a unit vector.
+    Line {
+        /// Start point.
+        start: Point9,
+        /// Unit direction.
+        dir: Point9,
+    },
+    /// p(s) = centre + radius·(cos φ·e1 + sin φ·e2), φ = s / radius; e1, e2 orthonormal.
+    Arc {
+        /// Centre.
+        centre: Point9,
+        /// Unit vector from the centre to the start.
+        e1: Point9,
+        /// Unit tangent at the start.
+        e2: Point9,
+        /// Radius, > 0.
+        radius: f64,
+    },
+    /// All axes stand still at `at` for `seconds` (a G4 dwell), length 0.
+    Dwell {
+        /// Where the machine stands.
+        at: Point9,
+        /// How long, s.
+        seconds: f64,
+    },
+}
+
+/// Position, unit tangent and curvature vector (d²p/ds²) at one arc length.
+#[derive(Debug, Clone, Copy)]
+pub struct PathPoint {
+    /// Position.
+    pub position: Point9,
+    /// Unit tangent dp/ds.
+    pub tangent: Point9,
+    /// d²p/ds² (zero on lines; centripetal, magnitude 1/radius, on arcs).
+    pub curvature: Point9,
+}
+
+impl Shape {
+    /// The point at arc length `s` (clamped to the piece by the caller).
+    #[inline]
+    pub fn at(&self, s: f64) -> PathPoint {
+        let mut p = PathPoint {
+            position: [0.0; 9],
+            tangent: [0.0; 9],
+            curvature: [0.0; 9],
+        };
+        match self {
+            Shape::Line { start, dir } => {
+                for i in 0..9 {
+                    p.position[i] = start[i] + s * dir[i];
+                    p.tangent[i] = dir[i];
+                }
+            }
+            Shape::Arc {
+                centre,
+                e1,
+                e2,
+                radius,
+            } => {
+                let (sn, cs) = (s / radius).sin_cos();
+                for i in 0..9 {
+                    let radial = cs * e1[i] + sn * e2[i];
+                    p.position[i] = centre[i] + radius * radial;
+                    p.tangent[i] = -sn * e1[i] + cs * e2[i];
+                    p.curvature[i] = -radial / radius;
+                }
+            }
+            Shape::Dwell { at, .. } => p.position = *at,
+        }
+        p
+    }
+}
+
+/// One piece of path with its speed limits (all in path units: unit/s, unit/s², unit/s³).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// Geometry.
+    pub shape: Shape,
+    /// Exact end point (where the next piece starts; the programmed end before a stop).
+    pub end: Point9,
+    /// Arc length, unit (0 only for a dwell).
+    pub length: f64,
+    /// Highest path speed anywhere on the piece (feed, axis velocities, curvature).
+    pub v_max: f64,
+    /// Highest tangential acceleration (axis accelerations, minus the centripetal share on arcs).
+    pub a_max: f64,
+    /// Highest tangential jerk (SOFT).
+    pub j_max: f64,
+    /// SOFT (jerk-limited S-curve) or BRISK (trapezoid).
+    pub soft: bool,
+    /// The piece starts from standstill (an exact stop before it).
+    pub entry_stop: bool,
+    /// Source line.
+    pub line: u32,
+    /// Upper bound of the distance of any point of the piece from the programmed path, unit.
+    pub deviation: f64,
+    /// The distance allowed (the G64 tolerance in force, or the internal tolerance), unit.
+    pub tolerance: f64,
+}
+
+/// Centripetal acceleration may use this share of an arc's acceleration budget; the rest is kept
+/// for speeding up and slowing down on it.
+pub const CENTRIPETAL_SHARE: f64 = 0.95;
+/// In SOFT, v³/r² (the jerk of turning at constant speed) may use this share of the jerk budget.
+pub const SOFT_TURN_JERK_SHARE: f64 = 0.5;
+
+fn guard(x: f64) -> f64 {
+    if x.is_finite() && x > 0.0 {
+        x
+    } else if x == f64::INFINITY {
+        1e12
+    } else {
+        0.0
+    }
+}
+
+/// Limits of a line with unit direction `dir` at programmed path speed `speed`:
+/// v ≤ min_i V_i/|u_i|, a ≤ min_i A_i/|u_i|, j ≤ min_i J_i/|u_i|.
+pub fn line_limits(dir: &Point9, speed: f64, axes: &[AxisLimit; 9]) -> (f64, f64, f64) {
+    let (mut v, mut a, mut j) = (speed, f64::INFINITY, f64::INFINITY);
+    for i in 0..9 {
+        let u = dir[i].abs();
+        if u > 0.0 {
+            v = v.min(axes[i].velocity / u);
+            a = a.min(axes[i].acceleration / u);
+            j = j.min(axes[i].jerk / u);
+        }
+    }
+    (guard(v), guard(a), guard(j))
+}
+
+/// Limits of a circular arc in the plane (e1, e2) of `radius` (module doc of `path`). With
+/// ρ_i = √(e1_i² + e2_i²) ≥ |tangent_i|, |normal_i| everywhere on the arc, per-axis acceleration is
+/// at most (|a_t| + v²/r)·ρ_i, so with A = min_i A_i/ρ_i: v²/r ≤ c·A (c ≤ [`CENTRIPETAL_SHARE`]) and
+/// |a_t| ≤ (1 − c)·A. SOFT: axis jerk ≤ (|j_t| + 3·v·|a_t|/r + v³/r²)·ρ_i, kept within J = min_i J_i/ρ_i
+/// by v³/r² ≤ ½J, 3·v·a_t/r ≤ ¼J, j_t ≤ ¼J.
+pub fn arc_limits(
+    e1: &Point9,
+    e2: &Point9,
+    radius: f64,
+    speed: f64,
+    soft: bool,
+    axes: &[AxisLimit; 9],
+) -> (f64, f64, f64) {
+    let (mut vb, mut ab, mut jb) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    for i in 0..9 {
+        let rho = e1[i].hypot(e2[i]);
+        if rho > 0.0 {
+            vb = vb.min(axes[i].velocity / rho);
+            ab = ab.min(axes[i].acceleration / rho);
+            jb = jb.min(axes[i].jerk / rho);
+        }
+    }
+    let (ab, jb) = (guard(ab), guard(jb));
+    let mut v = speed.min(vb).min((CENTRIPETAL_SHARE * ab * radius).sqrt());
+    if soft {
+        v = v.min((SOFT_TURN_JERK_SHARE * jb * radius * radius).cbrt());
+    }
+    let v = guard(v);
+    let c = if ab > 0.0 {
+        (v * v / (radius * ab)).min(CENTRIPETAL_SHARE)
+    } else {
+        1.0
+    };
+    let mut a = (1.0 - c) * ab;
+    let mut j = jb;
+    if soft {
+        let rest = (1.0 - SOFT_TURN_JERK_SHARE) * jb;
+        if v > 0.0 {
+            a = a.min(0.5 * rest * radius / (3.0 * v));
+        }
+        j = 0.5 * rest;
+    }
+    (v, guard(a), guard(j))
+}

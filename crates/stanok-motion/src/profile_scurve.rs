@@ -1,0 +1,278 @@
+//! SOFT: the jerk-limited S-curve profile of one piece, with non-zero boundary speeds.
+//!
+//! ## Shape
+//! Every piece starts and ends with zero acceleration (so pieces join with continuous acceleration
+//! whatever their limits), and is: a speed ramp v0 → vp, a cruise at vp, a ramp vp → v1. A ramp of
+//! Δv with acceleration limit a and jerk limit j (spec axioma-2 §3.5):
+//! * Δv ≥ a²/j: jerk for a/j, constant a for Δv/a − a/j, jerk back for a/j; T = Δv/a + a/j;
+//! * otherwise: peak acceleration √(Δv·j) < a, two jerk phases of √(Δv/j); T = 2√(Δv/j).
+//!
+//! The ramp is point-symmetric about its middle, so its distance is exactly the mean speed times
+//! its duration: D(u → w) = (u + w)/2 · T(|w − u|). D grows with the higher speed, so the peak vp is
+//! the largest value in [max(v0, v1), v_max] with D(v0 → vp) + D(vp → v1) ≤ L, found by bisection
+//! (60 halvings: ~1e-18 relative). The planner only hands pieces with D(v0 → v1) ≤ L ([`reach`]).
+//!
+//! ## Limits
+//! |acceleration| ≤ a and |jerk| ≤ j everywhere inside the profile, exactly (up to rounding): the
+//! phases are built from them. Known limit: zero acceleration at every piece boundary makes SOFT
+//! slower than necessary on paths of many tiny pieces (each piece ramps on its own).
+
+use crate::profile_trapezoid::Kinematics;
+
+/// One speed ramp (module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Ramp {
+    from: f64,
+    /// +1 speeding up, −1 slowing down.
+    sign: f64,
+    jerk: f64,
+    peak_a: f64,
+    t_jerk: f64,
+    t_const: f64,
+}
+
+impl Ramp {
+    fn new(from: f64, to: f64, a: f64, j: f64) -> Self {
+        let dv = (to - from).abs();
+        let sign = if to >= from { 1.0 } else { -1.0 };
+        if dv <= 0.0 {
+            return Ramp {
+                from,
+                sign,
+                ..Default::default()
+            };
+        }
+        if dv >= a * a / j {
+            Ramp {
+                from,
+                sign,
+                jerk: j,
+                peak_a: a,
+                t_jerk: a / j,
+                t_const: dv / a - a / j,
+            }
+        } else {
+            let t_jerk = (dv / j).sqrt();
+            Ramp {
+                from,
+                sign,
+                jerk: j,
+                peak_a: j * t_jerk,
+                t_jerk,
+                t_const: 0.0,
+            }
+        }
+    }
+
+    fn duration(&self) -> f64 {
+        2.0 * self.t_jerk + self.t_const
+    }
+
+    /// The state at `t` ∈ [0, duration] from the ramp start.
+    fn at(&self, t: f64) -> Kinematics {
+        let (u, sg, jk, ap, tj) = (self.from, self.sign, self.jerk, self.peak_a, self.t_jerk);
+        if t <= tj {
+            return Kinematics {
+                s: u * t + sg * jk * t * t * t / 6.0,
+                v: u + sg * 0.5 * jk * t * t,
+                a: sg * jk * t,
+                j: sg * jk,
+            };
+        }
+        let s1 = u * tj + sg * jk * tj * tj * tj / 6.0;
+        let v1 = u + sg * 0.5 * jk * tj * tj;
+        let tau = t - tj;
+        if tau <= self.t_const {
+            return Kinematics {
+                s: s1 + v1 * tau + sg * 0.5 * ap * tau * tau,
+                v: v1 + sg * ap * tau,
+                a: sg * ap,
+                j: 0.0,
+            };
+        }
+        let tc = self.t_const;
+        let s2 = s1 + v1 * tc + sg * 0.5 * ap * tc * tc;
+        let v2 = v1 + sg * ap * tc;
+        let tau = (tau - tc).min(tj);
+        Kinematics {
+            s: s2 + v2 * tau + sg * (0.5 * ap * tau * tau - jk * tau * tau * tau / 6.0),
+            v: v2 + sg * (ap * tau - 0.5 * jk * tau * tau),
+            a: sg * (ap - jk * tau),
+            j: -sg * jk,
+        }
+    }
+}
+
+/// Duration of a ramp between speeds `u` and `w`.
+fn ramp_time(u: f64, w: f64, a: f64, j: f64) -> f64 {
+    let dv = (w - u).abs();
+    if dv >= a * a / j {
+        dv / a + a / j
+    } else {
+        2.0 * (dv / j).sqrt()
+    }
+}
+
+/// Distance of a ramp between `u` and `w` (module doc).
+pub fn ramp_distance(u: f64, w: f64, a: f64, j: f64) -> f64 {
+    0.5 * (u + w) * ramp_time(u, w, a, j)
+}
+
+fn sane(x: f64) -> f64 {
+    if x.is_finite() && x > 0.0 {
+        x
+    } else {
+        1e12
+    }
+}
+
+/// The highest speed w ≥ v with D(v → w) ≤ `length` (and so, read backwards, the highest entry
+/// speed from which a piece can slow down to v).
+pub fn reach(v: f64, length: f64, a: f64, j: f64) -> f64 {
+    let (a, j) = (sane(a), sane(j));
+    let mut lo = 0.0;
+    let mut hi = (2.0 * a * length).sqrt() + (length * length * j).cbrt() + 1e-9;
+    if !hi.is_finite() {
+        return v;
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if ramp_distance(v, v + mid, a, j) <= length {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    v + lo
+}
+
+/// An S-curve profile (module doc).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SCurve {
+    up: Ramp,
+    down: Ramp,
+    vp: f64,
+    d_up: f64,
+    t_up: f64,
+    t_cruise: f64,
+    t_down: f64,
+    length: f64,
+    /// 1, or a hair less if rounding made the ramps longer than the piece.
+    squeeze: f64,
+}
+
+impl SCurve {
+    /// The profile of a piece of `length` from `v0` to `v1`, at most `v_max`, with acceleration
+    /// limit `a` and jerk limit `j`.
+    pub fn new(length: f64, v0: f64, v1: f64, v_max: f64, a: f64, j: f64) -> Self {
+        let (a, j) = (sane(a), sane(j));
+        let length = length.max(0.0);
+        let (v0, v1) = (v0.max(0.0), v1.max(0.0));
+        let lo_v = v0.max(v1);
+        let v_max = v_max.max(lo_v);
+        let need = |vp: f64| ramp_distance(v0, vp, a, j) + ramp_distance(vp, v1, a, j);
+        let vp = if need(v_max) <= length {
+            v_max
+        } else {
+            let (mut lo, mut hi) = (lo_v, v_max);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if need(mid) <= length {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            lo
+        };
+        let (d_up, d_down) = (ramp_distance(v0, vp, a, j), ramp_distance(vp, v1, a, j));
+        let cruise = length - d_up - d_down;
+        let squeeze = if cruise < 0.0 && d_up + d_down > 0.0 {
+            length / (d_up + d_down)
+        } else {
+            1.0
+        };
+        let up = Ramp::new(v0, vp, a, j);
+        let down = Ramp::new(vp, v1, a, j);
+        SCurve {
+            up,
+            down,
+            vp,
+            d_up,
+            t_up: up.duration(),
+            t_cruise: if vp > 0.0 { cruise.max(0.0) / vp } else { 0.0 },
+            t_down: down.duration(),
+            length,
+            squeeze,
+        }
+    }
+
+    /// Total time, s.
+    pub fn duration(&self) -> f64 {
+        self.t_up + self.t_cruise + self.t_down
+    }
+
+    /// The state at time `t` from the piece start (clamped).
+    pub fn at(&self, t: f64) -> Kinematics {
+        let t = t.max(0.0);
+        let mut k = if t < self.t_up {
+            self.up.at(t)
+        } else if t < self.t_up + self.t_cruise {
+            Kinematics {
+                s: self.d_up + self.vp * (t - self.t_up),
+                v: self.vp,
+                a: 0.0,
+                j: 0.0,
+            }
+        } else {
+            let tau = (t - self.t_up - self.t_cruise).min(self.t_down);
+            let mut k = self.down.at(tau);
+            k.s += self.d_up + self.vp * self.t_cruise;
+            if tau >= self.t_down {
+                k.a = 0.0;
+                k.j = 0.0;
+            }
+            k
+        };
+        k.s = (k.s * self.squeeze).min(self.length);
+        k
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ramp_time_matches_the_spec_formulas() {
+        // Δv = 100, a = 1000, j = 20000: a²/j = 50 ≤ 100 → t = 0.1 + 0.05.
+        assert!((ramp_time(0.0, 100.0, 1000.0, 20_000.0) - 0.15).abs() < 1e-12);
+        // Δv = 20 < 50 → t = 2√(20/20000).
+        assert!((ramp_time(10.0, 30.0, 1000.0, 20_000.0) - 2.0 * (0.001f64).sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn long_piece_rest_to_rest() {
+        // 100 mm at 100 mm/s, a = 1000, j = 20000: ramps 0.15 s over 7.5 mm each; cruise 85 mm.
+        let p = SCurve::new(100.0, 0.0, 0.0, 100.0, 1000.0, 20_000.0);
+        assert!(
+            (p.duration() - (0.3 + 0.85)).abs() < 1e-9,
+            "{}",
+            p.duration()
+        );
+        let end = p.at(p.duration());
+        assert!((end.s - 100.0).abs() < 1e-9 && end.v.abs() < 1e-9);
+        let mut t = 0.0;
+        while t < p.duration() {
+            let k = p.at(t);
+            assert!(k.a.abs() <= 1000.0 * (1.0 + 1e-9) && k.j.abs() <= 20_000.0 * (1.0 + 1e-9));
+            t += 1e-4;
+        }
+    }
+
+    #[test]
+    fn reach_inverts_the_distance() {
+        let w = reach(20.0, 3.0, 1000.0, 20_000.0);
+        assert!((ramp_distance(20.0, w, 1000.0, 20_000.0) - 3.0).abs() < 1e-9);
+    }
+}

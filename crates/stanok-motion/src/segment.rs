@@ -1,0 +1,70 @@
+//! The planner's input: one programmed motion block with everything the planner must know about it.
+//!
+//! The [`adapter`](crate::adapter) builds these from the Canon stream, so that every segment carries
+//! the path mode (G60/G61/G64 with its tolerance) and the profile (BRISK/SOFT) that were in force when
+//! it was programmed, and its speed already converted to the planner's path parameter.
+//!
+//! ## Path parameter
+//! The planner moves along the path in the **nine-dimensional** axis space X Y Z A B C U V W (mm and
+//! degrees mixed, Euclidean length). The programmed feed applies to the *feed length* of spec
+//! axioma-2 §3.2 (XYZ if XYZ moves, else UVW, else ABC); `path_speed` is that feed scaled by
+//! (9-D length / feed length), so that the feed length advances at exactly the programmed feed while
+//! the other axes follow synchronously.
+
+use stanok_canon::{AccelerationProfile, PathMode};
+use stanok_geom::Helix;
+
+/// A point of all nine axes, `Pose::to_array` order (mm / deg).
+pub type Point9 = [f64; 9];
+
+/// The shape of a programmed segment.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SegmentGeometry {
+    /// A straight move from `start` to `end`.
+    Line,
+    /// A circle, helix or spiral in XYZ (the other axes move linearly with the swept angle).
+    Arc(Helix),
+    /// A curve given as points (a spline tessellated within [`SPLINE_CHORD_TOLERANCE`]), `start`
+    /// first and `end` last; the other axes move linearly with the XYZ length.
+    Polyline(Vec<Point9>),
+}
+
+/// Chord tolerance of spline tessellation, mm.
+pub const SPLINE_CHORD_TOLERANCE: f64 = 1e-3;
+
+/// One programmed motion block, ready for planning.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathSegment {
+    /// Where it starts.
+    pub start: Point9,
+    /// Where it ends.
+    pub end: Point9,
+    /// Its shape.
+    pub geometry: SegmentGeometry,
+    /// Programmed speed along the 9-D path, unit/s (see the module doc), after clamping to the
+    /// machine's maximum feed (or the rapid rate) and applying the override; always > 0.
+    pub path_speed: f64,
+    /// G0 (true) or a feed move.
+    pub rapid: bool,
+    /// How its end joins the next segment.
+    pub path_mode: PathMode,
+    /// BRISK or SOFT.
+    pub profile: AccelerationProfile,
+    /// Source line (1-based) for reports.
+    pub line: u32,
+}
+
+/// What the planner receives.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PlannerInput {
+    /// A motion block.
+    Segment(PathSegment),
+    /// All axes must stop here (M0/M1, tool change, probe, program end, feed-mode change, spindle
+    /// synchronisation…) and then stand still for `dwell_s` seconds (G4; 0 for a plain stop).
+    Stop {
+        /// Standstill after the stop, s.
+        dwell_s: f64,
+        /// Source line.
+        line: u32,
+    },
+}

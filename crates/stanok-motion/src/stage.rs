@@ -1,0 +1,169 @@
+//! The motion stage: Canon in, setpoints out, streaming.
+//!
+//! ```text
+//!  Canon ─▶ CanonAdapter ─▶ PathBuilder ─▶ Planner (window) ─▶ Interpolator ─▶ sink(&Setpoint)
+//!           modal state      chords, blends   reverse/forward     servo grid
+//! ```
+//! Each stage pushes into the next through a closure, so nothing is collected: memory is the
+//! planner window plus the chords of one segment, whatever the program's length. Setpoints are
+//! produced as soon as the planner releases pieces (when its window is full, at a stop, at the end).
+
+use crate::adapter::CanonAdapter;
+use crate::interpolator::{Interpolator, Setpoint};
+use crate::limits::MotionConfig;
+use crate::path::PathBuilder;
+use crate::planner::Planner;
+use crate::segment::{PlannerInput, Point9};
+use stanok_canon::Canon;
+
+/// Statistics of the pieces planned so far.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StageStats {
+    /// Pieces released by the planner (lines, blends, dwells).
+    pub pieces: u64,
+    /// Largest analytic deviation bound of any piece from the programmed path, unit.
+    pub max_deviation: f64,
+    /// Pieces whose deviation bound exceeded the tolerance in force (must stay 0).
+    pub tolerance_violations: u64,
+}
+
+/// Canon → setpoints (module doc).
+#[derive(Debug, Clone)]
+pub struct MotionStage {
+    adapter: CanonAdapter,
+    builder: PathBuilder,
+    planner: Planner,
+    interpolator: Interpolator,
+    stats: StageStats,
+    finished: Option<f64>,
+}
+
+impl MotionStage {
+    /// A stage standing at the origin.
+    pub fn new(config: &MotionConfig) -> Self {
+        let config = config.clone().sanitised();
+        MotionStage {
+            adapter: CanonAdapter::new(&config),
+            builder: PathBuilder::new(&config),
+            planner: Planner::new(config.lookahead),
+            interpolator: Interpolator::new(config.servo_period, [0.0; 9]),
+            stats: StageStats::default(),
+            finished: None,
+        }
+    }
+
+    /// Feed override (fraction 0.001…2) for the blocks from now on.
+    pub fn set_feed_override(&mut self, fraction: f64) {
+        self.adapter.set_feed_override(fraction);
+    }
+
+    /// Rapid override (fraction 0.001…1) for the blocks from now on.
+    pub fn set_rapid_override(&mut self, fraction: f64) {
+        self.adapter.set_rapid_override(fraction);
+    }
+
+    /// Pieces released so far, deviation statistics.
+    pub fn stats(&self) -> StageStats {
+        self.stats
+    }
+
+    /// Planned time so far (pieces released to the interpolator), s.
+    pub fn planned_time(&self) -> f64 {
+        self.interpolator.planned_time()
+    }
+
+    /// The servo period, s.
+    pub fn servo_period(&self) -> f64 {
+        self.interpolator.period()
+    }
+
+    /// Feeds a planner input directly (tests and benchmarks: no Canon needed).
+    pub fn push_input(&mut self, input: PlannerInput, out: &mut impl FnMut(&Setpoint)) {
+        let Self {
+            builder,
+            planner,
+            interpolator,
+            stats,
+            ..
+        } = self;
+        builder.push(input, &mut |piece| {
+            planner.push(piece, &mut |pp| {
+                stats.pieces += 1;
+                stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
+                if pp.piece.deviation
+                    > pp.piece
+                        .tolerance
+                        .max(2.0 * crate::path::INTERNAL_TOLERANCE)
+                        * (1.0 + 1e-9)
+                {
+                    stats.tolerance_violations += 1;
+                }
+                interpolator.push(&pp, out)
+            })
+        });
+    }
+
+    /// The machine stands at `at` (Canon `Init`); anything pending is run first.
+    pub fn set_position(&mut self, at: Point9, out: &mut impl FnMut(&Setpoint)) {
+        self.drain(out);
+        let Self {
+            builder,
+            planner,
+            interpolator,
+            ..
+        } = self;
+        builder.set_position(at, &mut |piece| {
+            planner.push(piece, &mut |pp| interpolator.push(&pp, out))
+        });
+        interpolator.set_position(at);
+    }
+
+    /// Feeds one Canon command of source line `line`.
+    pub fn apply(&mut self, cmd: &Canon, line: u32, out: &mut impl FnMut(&Setpoint)) {
+        if let Canon::Init { position, .. } = cmd {
+            self.set_position(position.to_array(), out);
+            return;
+        }
+        let mut inputs: [Option<PlannerInput>; 5] = Default::default();
+        let mut n = 0;
+        self.adapter.adapt(cmd, line, &mut |input| {
+            if n < inputs.len() {
+                inputs[n] = Some(input);
+                n += 1;
+            }
+        });
+        for input in inputs.into_iter().flatten() {
+            self.push_input(input, out);
+        }
+    }
+
+    /// Runs everything pending (the path stops at its current end).
+    pub fn drain(&mut self, out: &mut impl FnMut(&Setpoint)) {
+        let Self {
+            builder,
+            planner,
+            interpolator,
+            stats,
+            ..
+        } = self;
+        let mut release = |pp: crate::planner::PlannedPiece| {
+            stats.pieces += 1;
+            stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
+            interpolator.push(&pp, out)
+        };
+        builder.flush(&mut |piece| planner.push(piece, &mut release));
+        planner.flush(&mut release);
+    }
+
+    /// The program is over: runs everything and emits the final setpoint. Returns the trace
+    /// duration (the cycle time), s. Calling it again returns the same time and emits nothing.
+    pub fn finish(&mut self, out: &mut impl FnMut(&Setpoint)) -> f64 {
+        if let Some(t) = self.finished {
+            return t;
+        }
+        self.drain(out);
+        let t = self.interpolator.finish(out);
+        self.finished = Some(t);
+        t
+    }
+}

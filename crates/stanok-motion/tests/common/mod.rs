@@ -1,0 +1,91 @@
+//! Helpers shared by the motion tests: a 3-axis machine, segment builders, a run that collects the
+//! trace, distances to the programmed path.
+#![allow(dead_code)]
+
+use stanok_canon::{AccelerationProfile, PathMode};
+use stanok_motion::monitor::TraceMonitor;
+use stanok_motion::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry};
+use stanok_motion::{AxisLimit, MotionConfig, MotionStage, Setpoint};
+
+/// X Y Z: 10 000 mm/min, 1000 mm/s², 20 000 mm/s³ (the built-in mill); other axes absent.
+pub fn mill() -> MotionConfig {
+    let mut axes = [AxisLimit::UNLIMITED; 9];
+    for a in axes.iter_mut().take(3) {
+        *a = AxisLimit::from_machine(10_000.0, 1000.0, 20_000.0);
+    }
+    MotionConfig::new(axes, 10_000.0, 5_000.0)
+}
+
+pub fn p3(x: f64, y: f64, z: f64) -> Point9 {
+    let mut p = [0.0; 9];
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    p
+}
+
+/// A straight feed segment at `feed` mm/min (path speed = feed for XYZ-only moves).
+pub fn line(
+    a: Point9,
+    b: Point9,
+    feed: f64,
+    mode: PathMode,
+    profile: AccelerationProfile,
+) -> PlannerInput {
+    PlannerInput::Segment(PathSegment {
+        start: a,
+        end: b,
+        geometry: SegmentGeometry::Line,
+        path_speed: feed / 60.0,
+        rapid: false,
+        path_mode: mode,
+        profile,
+        line: 1,
+    })
+}
+
+/// Runs the inputs from `start`; returns the trace, the monitor and the cycle time.
+pub fn run(
+    config: &MotionConfig,
+    start: Point9,
+    inputs: Vec<PlannerInput>,
+) -> (Vec<Setpoint>, TraceMonitor, f64) {
+    let mut stage = MotionStage::new(config);
+    let mut trace = Vec::new();
+    let mut monitor = TraceMonitor::new(config.axes, config.servo_period);
+    let mut sink = |sp: &Setpoint| {
+        monitor.observe(sp);
+        trace.push(*sp);
+    };
+    stage.set_position(start, &mut sink);
+    for i in inputs {
+        stage.push_input(i, &mut sink);
+    }
+    let t = stage.finish(&mut sink);
+    (trace, monitor, t)
+}
+
+pub fn dist(a: &Point9, b: &Point9) -> f64 {
+    (0..9).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Distance from `q` to the segment a–b.
+pub fn dist_to_segment(q: &Point9, a: &Point9, b: &Point9) -> f64 {
+    let ab: Vec<f64> = (0..9).map(|i| b[i] - a[i]).collect();
+    let len2: f64 = ab.iter().map(|x| x * x).sum();
+    let t = if len2 > 0.0 {
+        ((0..9).map(|i| (q[i] - a[i]) * ab[i]).sum::<f64>() / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let proj: Point9 = std::array::from_fn(|i| a[i] + t * ab[i]);
+    dist(q, &proj)
+}
+
+/// Distance from `q` to the polyline through `points`.
+pub fn dist_to_polyline(q: &Point9, points: &[Point9]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| dist_to_segment(q, &w[0], &w[1]))
+        .fold(f64::INFINITY, f64::min)
+}

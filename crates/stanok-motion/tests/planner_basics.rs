@@ -1,0 +1,103 @@
+//! Known numbers: single moves, corners, stops, the report/trace relations.
+
+mod common;
+use common::*;
+use stanok_canon::{AccelerationProfile::*, PathMode};
+
+const G64: PathMode = PathMode::Continuous { tolerance: 0.05 };
+
+#[test]
+fn hundred_mm_line_at_f6000_takes_1_1_s() {
+    let cfg = mill();
+    let (trace, mon, t) = run(
+        &cfg,
+        p3(0.0, 0.0, 0.0),
+        vec![line(
+            p3(0.0, 0.0, 0.0),
+            p3(100.0, 0.0, 0.0),
+            6000.0,
+            G64,
+            Brisk,
+        )],
+    );
+    // Trapezoid: 100/100 + 100/1000 = 1.1 s; the trace lasts exactly that (a whole number of ms).
+    assert!((t - 1.1).abs() < 1e-9, "{t}");
+    assert_eq!(trace.len(), 1101);
+    assert_eq!(trace.last().unwrap().position, p3(100.0, 0.0, 0.0));
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    assert!((mon.peaks[0].velocity - 100.0).abs() < 1e-9);
+    assert!((mon.peaks[0].acceleration - 1000.0).abs() < 1e-9);
+}
+
+#[test]
+fn exact_stop_corner_stops_at_the_corner() {
+    let cfg = mill();
+    let a = p3(0.0, 0.0, 0.0);
+    let b = p3(10.0, 0.0, 0.0);
+    let c = p3(10.0, 10.0, 0.0);
+    let (trace, mon, t) = run(
+        &cfg,
+        a,
+        vec![
+            line(a, b, 6000.0, PathMode::ExactStop, Brisk),
+            line(b, c, 6000.0, PathMode::ExactStop, Brisk),
+        ],
+    );
+    // Each 10 mm leg rest to rest: triangle, peak 100 mm/s: 0.2 s each.
+    assert!((t - 0.4).abs() < 1e-9, "{t}");
+    let at_corner = trace.iter().find(|s| (s.t - 0.2).abs() < 1e-9).unwrap();
+    assert!(
+        dist(&at_corner.position, &b) < 1e-12,
+        "{:?}",
+        at_corner.position
+    );
+    assert!(at_corner.velocity.iter().all(|v| v.abs() < 1e-9));
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+}
+
+#[test]
+fn g64_corner_is_blended_within_tolerance_and_faster() {
+    let cfg = mill();
+    let a = p3(0.0, 0.0, 0.0);
+    let b = p3(50.0, 0.0, 0.0);
+    let c = p3(50.0, 50.0, 0.0);
+    let (trace, mon, t) = run(
+        &cfg,
+        a,
+        vec![
+            line(a, b, 3000.0, G64, Brisk),
+            line(b, c, 3000.0, G64, Brisk),
+        ],
+    );
+    let (_, _, t_stop) = run(
+        &cfg,
+        a,
+        vec![
+            line(a, b, 3000.0, PathMode::ExactStop, Brisk),
+            line(b, c, 3000.0, PathMode::ExactStop, Brisk),
+        ],
+    );
+    // 90° corner, P = 0.05: d = P/tan(22.5°) = 0.1207 mm cut from each leg, blend radius
+    // r = d/tan(45°) = 0.1207 mm, corner speed √(0.95·1000·r) = 10.71 mm/s instead of 0: the
+    // saving is the braking from 50 to 10.7 mm/s and back, ≈ 2·(v²/2a)/v … a few ms.
+    assert!(t < t_stop - 0.004, "blended {t} vs stopped {t_stop}");
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    let worst = trace
+        .iter()
+        .map(|s| dist_to_polyline(&s.position, &[a, b, c]))
+        .fold(0.0, f64::max);
+    assert!(worst <= 0.05 + 1e-9, "{worst}");
+    // Speed never reaches zero at the corner.
+    let min_speed_mid = trace
+        .iter()
+        .filter(|s| s.t > 0.2 && s.t < t - 0.2)
+        .map(|s| s.velocity[0].hypot(s.velocity[1]))
+        .fold(f64::INFINITY, f64::min);
+    let r = 0.05 / (std::f64::consts::PI / 8.0).tan();
+    let v_corner = (0.95 * 1000.0 * r).sqrt();
+    assert!(
+        (min_speed_mid - v_corner).abs() < 0.05,
+        "{min_speed_mid} vs {v_corner}"
+    );
+    assert_eq!(trace.last().unwrap().position, c);
+}

@@ -34,6 +34,8 @@ pub struct LinuxCncPrinter {
     g92: Pose,
     tlo: Pose,
     rotation_deg: f64,
+    /// G96 in force: spindle speeds are surface speeds (m/min in Canon; ft/min printed in G20).
+    css: bool,
     out: String,
 }
 
@@ -53,6 +55,7 @@ impl LinuxCncPrinter {
             g92: Pose::ZERO,
             tlo: Pose::ZERO,
             rotation_deg: 0.0,
+            css: false,
             out: String::new(),
         }
     }
@@ -145,7 +148,12 @@ impl LinuxCncPrinter {
                 self.line(n, format!("SET_XY_ROTATION({degrees:.4})"));
             }
             Canon::SetSpindleSpeed { spindle, rpm } => {
-                self.line(n, format!("SET_SPINDLE_SPEED({spindle}, {rpm:.4})"))
+                let s = if self.css && self.units == LengthUnits::Inches {
+                    rpm / 0.3048
+                } else {
+                    *rpm
+                };
+                self.line(n, format!("SET_SPINDLE_SPEED({spindle}, {s:.4})"))
             }
             Canon::StartSpindle { spindle, direction } => {
                 let name = match direction {

@@ -31,6 +31,7 @@ use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirec
 
 mod cycles;
 mod home;
+mod mcodes;
 mod motion;
 mod offsets;
 mod probe;
@@ -67,6 +68,8 @@ pub struct Rs274State {
     pub naive_cam_tolerance: f64,
     /// M50 P0 / M49 (or a G76) disabled the feed override.
     pub feed_override_disabled: bool,
+    /// G96 constant surface speed in force.
+    pub css: bool,
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -251,6 +254,16 @@ struct MCodes {
     n_coolant: usize,
     user: [u32; 4],
     n_user: usize,
+    /// M62–M66 in written order.
+    io: [(u32, ColSpan); 4],
+    n_io: usize,
+    /// M48–M53 in written order.
+    overrides: [u32; 4],
+    n_overrides: usize,
+    /// M19.
+    orient: Option<ColSpan>,
+    /// M61.
+    set_tool: Option<ColSpan>,
 }
 
 #[inline(always)]
@@ -264,6 +277,12 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
         n_coolant: 0,
         user: [0; 4],
         n_user: 0,
+        io: [(0, ColSpan::default()); 4],
+        n_io: 0,
+        overrides: [0; 4],
+        n_overrides: 0,
+        orient: None,
+        set_tool: None,
     };
     if cx.words.m.len() > 4 {
         return Err(cx.err(
@@ -280,8 +299,8 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                 m.stop_span = span;
                 t
             }
-            6 => std::mem::replace(&mut m.tool_change, true),
-            3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE,
+            6 => std::mem::replace(&mut m.tool_change, true) || m.set_tool.is_some(),
+            3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE || m.orient.is_some(),
             7..=9 => {
                 m.coolant[m.n_coolant] = code;
                 m.n_coolant += 1;
@@ -292,7 +311,19 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                 m.n_user += 1;
                 false
             }
-            19 | 48..=53 | 61..=68 | 70..=73 => {
+            19 => m.orient.replace(span).is_some() || m.spindle != NO_CODE,
+            61 => m.set_tool.replace(span).is_some() || m.tool_change,
+            62..=66 => {
+                m.io[m.n_io] = (code, span);
+                m.n_io += 1;
+                false
+            }
+            48..=53 => {
+                m.overrides[m.n_overrides] = code;
+                m.n_overrides += 1;
+                false
+            }
+            67 | 68 | 70..=73 => {
                 return Err(unsupported(
                     cx,
                     &format!("M{code}"),
@@ -374,7 +405,6 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             50 | 51 | 52 | 700..=720 => {
                 Some("RS274/NGC cycles, splines and probing")
             }
-            960 => Some("feed and spindle technology"),
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,
         };
@@ -416,24 +446,59 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             cx.out.push(Canon::SetFeedRate { feed });
         }
     }
-    // 4. S.
+    // 4. Spindle mode (G96/G97), then S.
+    if let Some((code, _)) = g.get(Group::SpindleMode) {
+        let css = code == 960;
+        let max_rpm = if css {
+            match cx.words.take(b'D') {
+                Some(d) if d.v <= 0.0 => {
+                    return Err(cx.err(
+                        "rs274::g96-d",
+                        "D word must be positive with G96",
+                        d.span,
+                    ))
+                }
+                Some(d) => d.v,
+                None => 1e30,
+            }
+        } else {
+            0.0
+        };
+        cx.st.rs274.css = css;
+        cx.out.push(Canon::SetSpindleMode {
+            spindle: 0,
+            constant_surface_speed: css,
+            max_rpm,
+        });
+    }
     if let Some(s) = cx.words.take(b'S') {
         if s.v < 0.0 {
             return Err(cx.err("rs274::negative-s", "Negative spindle speed used", s.span));
         }
         cx.st.spindle_speed[0] = s.v;
-        cx.out.push(Canon::SetSpindleSpeed {
-            spindle: 0,
-            rpm: s.v,
-        });
+        // Under G96 S is a surface speed: Canon carries it in m/min.
+        let rpm = if cx.st.rs274.css && cx.st.units == LengthUnits::Inches {
+            s.v * 0.3048
+        } else {
+            s.v
+        };
+        cx.out.push(Canon::SetSpindleSpeed { spindle: 0, rpm });
     }
     // 5. T.
     if let Some(t) = cx.words.take(b'T') {
         tools::select_tool(cx, params, t)?;
     }
-    // 6. M6.
+    // 5a. HAL I/O: M62–M66.
+    for &(code, span) in &m.io[..m.n_io] {
+        mcodes::io(cx, code, span)?;
+    }
+    // 6. M6, M61.
     if m.tool_change {
         tools::change_tool(cx, params);
+        cx.st.rs274.spindle_direction = None;
+    }
+    if let Some(span) = m.set_tool {
+        mcodes::set_tool_number(cx, params, span)?;
     }
     // 7. Spindle, coolant, user M codes.
     if m.spindle != NO_CODE {
@@ -461,6 +526,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     for &code in &m.coolant[..m.n_coolant] {
         cx.coolant(code);
+    }
+    if let Some(span) = m.orient {
+        mcodes::orient(cx, span)?;
+    }
+    for &code in &m.overrides[..m.n_overrides] {
+        mcodes::overrides(cx, code)?;
     }
     for &code in &m.user[..m.n_user] {
         cx.out.push(Canon::AuxiliaryFunction {

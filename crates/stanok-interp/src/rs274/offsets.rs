@@ -230,7 +230,13 @@ pub(super) fn program_end(cx: &mut Ctx<'_>, params: &mut Parameters, pallet_shut
     });
     cx.st.feed = 0.0;
     cx.out.push(Canon::SetFeedRate { feed: 0.0 });
+    if cx.st.rs274.feed_override_disabled {
+        cx.st.rs274.feed_override_disabled = false;
+        cx.out.push(Canon::SetFeedOverrideEnabled { enabled: true });
+    }
     cx.st.spindle_on[0] = false;
+    cx.st.rs274.spindle_direction = None;
+    cx.st.rs274.css = false;
     cx.out.push(Canon::StopSpindle { spindle: 0 });
     cx.out.push(Canon::SetSpindleMode {
         spindle: 0,

@@ -67,7 +67,7 @@ pub(super) fn select_tool(cx: &mut Ctx<'_>, params: &Parameters, t: Val) -> Resu
 }
 
 /// Writes #5400…#5413 from the loaded tool's table entry (zeros for T0 or a tool without data).
-fn load_tool_parameters(params: &mut Parameters, tool: u32) {
+pub(super) fn load_tool_parameters(params: &mut Parameters, tool: u32) {
     let e = edge(params.tools().get(tool));
     params.set(5400, tool as f64);
     params.set_pose_mm(5401, &e.offset);

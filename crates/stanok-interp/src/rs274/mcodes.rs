@@ -1,0 +1,185 @@
+//! RS274/NGC M codes beyond spindle, coolant and stops: M19 spindle orientation, M48–M53 override
+//! and feed-hold switches, M61 (declare the loaded tool), M62–M65 digital outputs and M66 wait on an
+//! input (spec rs274ngc §5; LinuxCNC 2.9's `rs274` for what it prints).
+//!
+//! Where they run in a line (LinuxCNC's order of execution): M62–M66 after T and before M6/M61,
+//! M19 with the spindle codes, M48–M53 after coolant and before the user M codes.
+
+use crate::ctx::Ctx;
+use crate::params::Parameters;
+use stanok_canon::{Canon, Diagnostic};
+use stanok_syntax::ColSpan;
+
+/// Most I/O index a program may address (LinuxCNC's default `num_dio`/`num_aio` is 4; machines
+/// raise it up to 64).
+const MAX_IO: f64 = 63.0;
+
+fn index_word(cx: &mut Ctx<'_>, letter: u8, code: u32, span: ColSpan) -> Result<u32, Diagnostic> {
+    match cx.words.take(letter) {
+        Some(v) if v.v >= 0.0 && v.v <= MAX_IO && v.v.fract() == 0.0 => Ok(v.v as u32),
+        Some(v) => Err(cx.err(
+            "rs274::io-index",
+            format!("Invalid {} value with M{code}", letter as char),
+            v.span,
+        )),
+        None => Err(cx.err(
+            "rs274::io-index-missing",
+            format!("No valid {} word with M{code}", letter as char),
+            span,
+        )),
+    }
+}
+
+/// M62/M63 (with the next motion) and M64/M65 (now): set or clear a digital output; M66: wait for
+/// an input (P digital, E analogue; L mode 0 immediate … 4 low; Q timeout).
+pub(super) fn io(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
+    match code {
+        62..=65 => {
+            let index = index_word(cx, b'P', code, span)?;
+            cx.out.push(Canon::DigitalOutput {
+                index,
+                on: code == 62 || code == 64,
+                synchronised: code <= 63,
+            });
+        }
+        _ => {
+            let analog = cx.words.has(b'E');
+            if analog && cx.words.has(b'P') {
+                return Err(cx.err(
+                    "rs274::m66-p-and-e",
+                    "Both digital and analog inputs selected",
+                    span,
+                ));
+            }
+            let index = index_word(cx, if analog { b'E' } else { b'P' }, code, span)?;
+            let mode = match cx.words.take(b'L') {
+                Some(l) if (0.0..=4.0).contains(&l.v) && l.v.fract() == 0.0 => l.v as u8,
+                Some(l) => {
+                    return Err(cx.err("rs274::m66-l", "Unknown wait type in M66", l.span));
+                }
+                None => 0,
+            };
+            if analog && mode != 0 {
+                return Err(cx.err(
+                    "rs274::m66-analog-wait",
+                    "Can't select analog input with wait type != immediate return",
+                    span,
+                ));
+            }
+            let timeout = cx.words.take(b'Q').map_or(0.0, |q| q.v);
+            if timeout < 0.0 {
+                return Err(cx.err("rs274::m66-q", "Negative Q value with M66", span));
+            }
+            cx.out.push(Canon::WaitInput {
+                index,
+                analog,
+                mode,
+                timeout,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// M19 R (angle) Q (timeout) P (direction 0/1/2). LinuxCNC prints nothing without R.
+pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
+    let r = cx.words.take(b'R');
+    let q = cx.words.take(b'Q');
+    let p = cx.words.take(b'P');
+    let direction = match p {
+        Some(p) if [0.0, 1.0, 2.0].contains(&p.v) => p.v as u8,
+        Some(p) => {
+            return Err(cx.err(
+                "rs274::m19-p",
+                "M19 P must be 0, 1 or 2",
+                p.span,
+            ))
+        }
+        None => 0,
+    };
+    let _ = span;
+    if let Some(r) = r {
+        cx.out.push(Canon::OrientSpindle {
+            spindle: 0,
+            degrees: r.v,
+            direction,
+            timeout: q.map(|q| q.v),
+        });
+    }
+    Ok(())
+}
+
+/// M48 (all overrides on), M49 (off), M50 P (feed), M51 P (spindle), M52 P (adaptive feed),
+/// M53 P (feed hold input): P0 disables, P1 or no P enables.
+pub(super) fn overrides(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
+    let enabled = match code {
+        48 => true,
+        49 => false,
+        _ => match cx.words.take(b'P') {
+            Some(p) if p.v == 0.0 => false,
+            Some(p) if p.v == 1.0 => true,
+            Some(p) => {
+                return Err(cx.err(
+                    "rs274::override-p",
+                    format!("M{code} P must be 0 or 1"),
+                    p.span,
+                ))
+            }
+            None => true,
+        },
+    };
+    if matches!(code, 48..=50) {
+        cx.st.rs274.feed_override_disabled = !enabled;
+        cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
+    }
+    if matches!(code, 48 | 49 | 51) {
+        cx.out.push(Canon::SetSpindleOverrideEnabled {
+            spindle: 0,
+            enabled,
+        });
+    }
+    match code {
+        52 => cx.out.push(Canon::SetAdaptiveFeed { enabled }),
+        53 => cx.out.push(Canon::SetFeedHoldEnabled { enabled }),
+        _ => {}
+    }
+    Ok(())
+}
+
+/// M61 Q: the spindle holds tool Q from now on, without a tool change.
+pub(super) fn set_tool_number(
+    cx: &mut Ctx<'_>,
+    params: &mut Parameters,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let Some(q) = cx.words.take(b'Q') else {
+        return Err(cx.err("rs274::m61-q-missing", "Q word missing with M61", span));
+    };
+    if q.v < 0.0 || q.v.fract() != 0.0 || q.v > u32::MAX as f64 {
+        return Err(cx.err(
+            "rs274::m61-q",
+            format!("Need non-negative integer Q with M61, got {}", q.v),
+            q.span,
+        ));
+    }
+    let tool = q.v as u32;
+    let slot = if tool == 0 {
+        0
+    } else {
+        match params.tool_slot(tool) {
+            Some(s) => s,
+            None => {
+                return Err(cx.err(
+                    "rs274::tool-not-found",
+                    format!("Requested tool {tool} not found in the tool table"),
+                    q.span,
+                ))
+            }
+        }
+    };
+    cx.st.current_tool = tool;
+    cx.st.selected_tool = Some(tool);
+    super::tools::load_tool_parameters(params, tool);
+    cx.out.push(Canon::SetCurrentTool { tool, slot });
+    Ok(())
+}

@@ -11,10 +11,11 @@
 //! * [`files`]: the `--tools` / `--offsets` files, read by extension.
 //! * [`SimMachine`]: executes a Canon stream on a simulated machine, refusing what the machine cannot
 //!   do (travel limits, missing axes) with a [`Diagnostic`](stanok_canon::Diagnostic) at the block,
-//!   and builds the [`RunReport`] with nominal timing (`stanok_motion::nominal`: no acceleration yet).
+//!   runs it through the look-ahead planner and servo interpolator of `stanok-motion`
+//!   (`sim_motion.rs`: setpoints checked against travel and dynamic limits), and builds the
+//!   [`RunReport`] with the planned cycle time beside the nominal one.
 //!
-//! Planned here later: built-in lathe and 5-axis machines, running the planner's setpoints instead
-//! of nominal times.
+//! Planned here later: built-in lathe and 5-axis machines.
 //!
 //! Architecture invariant: this crate reads Canon, never G-code; machine data never panics on any
 //! text, and the simulated machine never lets an accepted command exceed a travel limit.
@@ -26,9 +27,12 @@ mod data;
 pub mod files;
 pub mod linuxcnc;
 mod sim;
+mod sim_motion;
 
 pub use data::{
     offsets_from_toml_str, tools_from_toml_str, AxisData, AxisKind, MachineData, StoredOffsets,
     BAD_DATA,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
+pub use sim_motion::{AxisMotion, SetpointSink, SimOptions};
+pub use stanok_motion::Setpoint;

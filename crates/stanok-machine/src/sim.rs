@@ -1,4 +1,9 @@
-//! The simulated machine: executes a Canon stream with nominal timing and builds the run report.
+//! The simulated machine: checks and executes a Canon stream and builds the run report.
+//!
+//! Every accepted command also goes to the motion stage (`sim_motion.rs`): the look-ahead planner
+//! and the servo-rate interpolator of `stanok-motion`, whose setpoints are executed and measured
+//! there. The report has both times: `nominal_time_s` (length / feed, the lower bound kept from
+//! before the planner) and `cycle_time_s` (the planned, executed trace).
 //!
 //! ## One command, check first, then commit (grbl's STEP 3 / STEP 4)
 //!
@@ -27,10 +32,11 @@
 //! put a NaN or ∞ into the times (degenerate geometry is the interpreter's to refuse).
 
 use crate::data::{AxisData, AxisKind, MachineData};
+use crate::sim_motion::{AxisMotion, MotionRun, SetpointSink, SimOptions};
 use serde::Serialize;
 use stanok_canon::{
-    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection, SplineMove,
-    AXIS_LETTERS,
+    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
+    SplineMove, AXIS_LETTERS,
 };
 use stanok_geom::{Helix, Nurbs};
 use stanok_motion::nominal::{self, AxisLimits};
@@ -67,7 +73,7 @@ pub struct LoggedEvent {
     pub text: String,
 }
 
-/// What a run did, with nominal timing (no acceleration).
+/// What a run did: counts, distances, nominal and planned time, axis peaks, logs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RunReport {
     /// Machine data name.
@@ -104,10 +110,27 @@ pub struct RunReport {
     pub final_position: Pose,
     /// True once a program end (M2/M30) was executed.
     pub program_ended: bool,
+    /// Planned cycle time: the duration of the servo-rate setpoint trace (acceleration, jerk,
+    /// look-ahead and dwells included), s. Filled by [`SimMachine::finish`].
+    pub cycle_time_s: f64,
+    /// Servo period of the trace, s.
+    pub servo_period_s: f64,
+    /// Setpoints executed (one per servo period, plus the final one).
+    pub setpoints: u64,
+    /// Feed override the run used, %.
+    pub feed_override_percent: f64,
+    /// Peaks of every machine axis against its limits.
+    pub axes: Vec<AxisMotion>,
+    /// Largest bound of the distance from the programmed path of any planned piece, mm.
+    pub max_path_deviation_mm: f64,
+    /// Limit, travel and tolerance violations of the setpoints (the first 100 or so); must be empty.
+    pub violations: Vec<LoggedEvent>,
+    /// How many violations in all.
+    pub violation_count: u64,
 }
 
 /// Executes Canon commands on a simulated machine (see the module doc).
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct SimMachine {
     machine: MachineData,
     /// The machine's axis for each index of `Pose::to_array`, if it has one.
@@ -115,6 +138,7 @@ pub struct SimMachine {
     /// Last commanded speed of each spindle, rev/min.
     spindle_rpm: BTreeMap<u8, f64>,
     report: RunReport,
+    motion: MotionRun,
 }
 
 /// Which counter a straight move goes to.
@@ -146,8 +170,14 @@ fn line_length(start: &Pose, end: &Pose) -> (f64, bool) {
 }
 
 impl SimMachine {
-    /// A machine standing at the origin with an empty report.
+    /// A machine standing at the origin with an empty report, default options (1 ms servo period,
+    /// no override).
     pub fn new(machine: MachineData) -> Self {
+        Self::with_options(machine, SimOptions::default())
+    }
+
+    /// A machine standing at the origin with an empty report, running with `options`.
+    pub fn with_options(machine: MachineData, options: SimOptions) -> Self {
         let mut axes: [Option<AxisData>; 9] = Default::default();
         for a in &machine.axes {
             axes[a.pose_index()] = Some(a.clone());
@@ -170,13 +200,35 @@ impl SimMachine {
             m_functions: Vec::new(),
             final_position: Pose::ZERO,
             program_ended: false,
+            cycle_time_s: 0.0,
+            servo_period_s: options.servo_period_s,
+            setpoints: 0,
+            feed_override_percent: options.feed_override * 100.0,
+            axes: Vec::new(),
+            max_path_deviation_mm: 0.0,
+            violations: Vec::new(),
+            violation_count: 0,
         };
+        let motion = MotionRun::new(&machine, &options);
         SimMachine {
             machine,
             axes,
             spindle_rpm: BTreeMap::new(),
             report,
+            motion,
         }
+    }
+
+    /// Every setpoint also goes to `sink` (a trace writer, a progress display).
+    pub fn set_setpoint_sink(&mut self, sink: SetpointSink) {
+        self.motion.set_observer(sink);
+    }
+
+    /// The program is over (or stopped at an error): runs the motion still in the planner's
+    /// window to its end and returns the full report.
+    pub fn finish(&mut self) -> RunReport {
+        self.motion.finish();
+        self.report()
     }
 
     /// The machine data this machine runs with.
@@ -187,6 +239,13 @@ impl SimMachine {
     /// Applies one command. Returns `Err(Diagnostic)` if it cannot run (an axis the machine lacks, a
     /// travel-limit violation); the state is then unchanged and the run stops there.
     pub fn apply(&mut self, cmd: &Spanned<Canon>) -> Result<(), Diagnostic> {
+        self.check_and_log(cmd)?;
+        self.motion.apply(&cmd.value, cmd.span.line);
+        Ok(())
+    }
+
+    /// Checks a command and updates the counters and logs (module doc, steps 1–3).
+    fn check_and_log(&mut self, cmd: &Spanned<Canon>) -> Result<(), Diagnostic> {
         let span = cmd.span;
         let line = span.line;
         match &cmd.value {
@@ -199,9 +258,7 @@ impl SimMachine {
             Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
             Canon::ArcFeed(a) => self.apply_arc(a, span)?,
             Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
-            Canon::StraightProbe { motion, .. } => {
-                self.apply_line(motion, LineKind::Feed, span)?
-            }
+            Canon::StraightProbe { motion, .. } => self.apply_line(motion, LineKind::Feed, span)?,
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,
@@ -219,14 +276,18 @@ impl SimMachine {
             }
             Canon::OrientSpindle {
                 spindle, degrees, ..
-            } => self.log(line, format!("M19 spindle {spindle} orient to {degrees} deg")),
+            } => self.log(
+                line,
+                format!("M19 spindle {spindle} orient to {degrees} deg"),
+            ),
             Canon::DigitalOutput { index, on, .. } => self.log(
                 line,
                 format!("output {index} {}", if *on { "on" } else { "off" }),
             ),
-            Canon::WaitInput { index, timeout, .. } => {
-                self.log(line, format!("M66 wait for input {index} (timeout {timeout} s)"))
-            }
+            Canon::WaitInput { index, timeout, .. } => self.log(
+                line,
+                format!("M66 wait for input {index} (timeout {timeout} s)"),
+            ),
             Canon::Dwell { seconds } => {
                 let t = nominal::dwell_time(*seconds);
                 self.report.dwell_time_s += t;
@@ -255,6 +316,12 @@ impl SimMachine {
                 }
                 self.report.tool_changes += 1;
                 self.log(line, format!("M6 tool change to T{tool}"));
+            }
+            Canon::SetCurrentTool { tool, .. } => {
+                if *tool != 0 && !self.report.tools_used.contains(tool) {
+                    self.report.tools_used.push(*tool);
+                }
+                self.log(line, format!("M61 tool T{tool} declared in the spindle"));
             }
             Canon::ChangeSpindleTool { spindle, tool } => {
                 self.report.tool_changes += 1;
@@ -308,6 +375,9 @@ impl SimMachine {
             | Canon::SetPathMode { .. }
             | Canon::SetAccelerationProfile { .. }
             | Canon::SetFeedOverrideEnabled { .. }
+            | Canon::SetSpindleOverrideEnabled { .. }
+            | Canon::SetAdaptiveFeed { .. }
+            | Canon::SetFeedHoldEnabled { .. }
             | Canon::SelectTool { .. }
             | Canon::UseToolLengthOffset { .. }
             | Canon::StartToolChange
@@ -318,9 +388,12 @@ impl SimMachine {
         Ok(())
     }
 
-    /// The report so far (call after the last command).
+    /// The report so far; the motion fields cover the setpoints executed so far (call
+    /// [`SimMachine::finish`] after the last command for the whole run).
     pub fn report(&self) -> RunReport {
-        self.report.clone()
+        let mut r = self.report.clone();
+        self.motion.fill(&mut r);
+        r
     }
 
     fn log(&mut self, line: u32, text: impl Into<String>) {
@@ -469,13 +542,20 @@ impl SimMachine {
             }
         }
         self.check_move(&sp.start, &sp.end, &lo, &hi, span)?;
-        let length: f64 = pts.windows(2).map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0]))).sum();
+        let length: f64 = pts
+            .windows(2)
+            .map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0])))
+            .sum();
         let r = &mut self.report;
         r.feed_segments += 1;
         r.motion_segments += 1;
         r.feed_distance_mm += length;
         r.nominal_time_s += nominal::feed_time(length, clamp_feed(sp.feed, self.machine.max_feed));
-        BoundingBox::include(&mut r.bounding_box, [lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
+        BoundingBox::include(
+            &mut r.bounding_box,
+            [lo[0], lo[1], lo[2]],
+            [hi[0], hi[1], hi[2]],
+        );
         r.final_position = sp.end;
         Ok(())
     }
@@ -492,302 +572,5 @@ fn clamp_feed(feed: f64, max_feed: f64) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use stanok_canon::{LengthUnits, Plane};
-    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
-
-    fn at(line: u32, value: Canon) -> Spanned<Canon> {
-        Spanned::new(Span::new(0, 0, line, 1), value)
-    }
-
-    fn p(x: f64, y: f64, z: f64) -> Pose {
-        Pose::ZERO.with_xyz([x, y, z])
-    }
-
-    fn init(position: Pose) -> Canon {
-        Canon::Init {
-            position,
-            units: LengthUnits::Millimetres,
-            g5x_index: 1,
-            g5x_offset: Pose::ZERO,
-            g92_offset: Pose::ZERO,
-            xy_rotation: 0.0,
-        }
-    }
-
-    fn line(start: Pose, end: Pose, feed: f64) -> LineMove {
-        LineMove { start, end, feed }
-    }
-
-    /// A 90° counter-clockwise XY arc from (100, 50) centred so that it bulges to x = c + 10.
-    fn bulging_arc(feed: f64) -> ArcMove {
-        let c = [
-            100.0 - 10.0 * FRAC_1_SQRT_2,
-            50.0 + 10.0 * FRAC_1_SQRT_2,
-            0.0,
-        ];
-        ArcMove {
-            start: p(100.0, 50.0, 0.0),
-            end: p(100.0, c[1] + 10.0 * FRAC_1_SQRT_2, 0.0),
-            centre: c,
-            axis: [0.0, 0.0, 1.0],
-            turns: 1,
-            plane: Plane::XY,
-            feed,
-        }
-    }
-
-    fn run(machine: MachineData, cmds: &[Spanned<Canon>]) -> (SimMachine, Option<Diagnostic>) {
-        let mut sim = SimMachine::new(machine);
-        for c in cmds {
-            if let Err(d) = sim.apply(c) {
-                return (sim, Some(d));
-            }
-        }
-        (sim, None)
-    }
-
-    fn close(a: f64, b: f64) -> bool {
-        (a - b).abs() <= 1e-9 * b.abs().max(1.0)
-    }
-
-    #[test]
-    fn rapid_feed_arc_dwell_report() {
-        let o = p(0.0, 0.0, 0.0);
-        let cmds = [
-            at(1, init(o)),
-            at(2, Canon::StraightTraverse(line(o, p(100.0, 0.0, 0.0), 0.0))),
-            at(
-                3,
-                Canon::StraightFeed(line(p(100.0, 0.0, 0.0), p(100.0, 50.0, 0.0), 1000.0)),
-            ),
-            at(4, Canon::ArcFeed(bulging_arc(600.0))),
-            at(5, Canon::Dwell { seconds: 2.0 }),
-        ];
-        let (sim, err) = run(MachineData::default_mill(), &cmds);
-        assert_eq!(err, None);
-        let r = sim.report();
-        assert_eq!(r.machine, "mill");
-        assert_eq!(
-            (
-                r.motion_segments,
-                r.rapid_segments,
-                r.feed_segments,
-                r.arc_segments
-            ),
-            (3, 1, 1, 1)
-        );
-        assert!(close(r.rapid_distance_mm, 100.0));
-        // 50 mm line + quarter circle of r = 10 (5π mm).
-        assert!(
-            close(r.feed_distance_mm, 50.0 + 5.0 * PI),
-            "{}",
-            r.feed_distance_mm
-        );
-        assert!(close(r.dwell_time_s, 2.0));
-        // 100 mm at 10 000 mm/min = 0.6 s; 50 mm at 1000 mm/min = 3 s; 5π mm at 600 mm/min = π/2 s.
-        assert!(
-            close(r.nominal_time_s, 0.6 + 3.0 + FRAC_PI_2 + 2.0),
-            "{}",
-            r.nominal_time_s
-        );
-        let b = r.bounding_box.unwrap();
-        assert_eq!(b.min, [0.0, 0.0, 0.0]);
-        // The arc's extreme point x = c + r lies beyond both of its end points (x = 100).
-        assert!(close(b.max[0], 110.0 - 10.0 * FRAC_1_SQRT_2), "{:?}", b);
-        assert!(close(b.max[1], 50.0 + 20.0 * FRAC_1_SQRT_2), "{:?}", b);
-        assert_eq!(r.final_position, bulging_arc(0.0).end);
-        assert!(!r.program_ended);
-    }
-
-    #[test]
-    fn arc_bulging_out_of_limits_is_refused() {
-        let mut m = MachineData::default_mill();
-        m.axes[0].max = 102.0; // end points (x = 100) inside, bulge (x ≈ 102.93) outside
-        let start = p(100.0, 50.0, 0.0);
-        let cmds = [
-            at(1, init(start)),
-            at(7, Canon::ArcFeed(bulging_arc(600.0))),
-        ];
-        let (sim, err) = run(m, &cmds);
-        let d = err.expect("travel limit");
-        assert_eq!(d.code.to_string(), "machine::travel-limit");
-        assert_eq!(d.span.line, 7);
-        assert!(
-            d.message
-                .contains("X would reach 102.9289 mm, beyond its maximum 102.0000 mm"),
-            "{d}"
-        );
-        let r = sim.report();
-        assert_eq!((r.arc_segments, r.motion_segments), (0, 0));
-        assert_eq!(r.bounding_box, None);
-        assert_eq!(r.final_position, start);
-    }
-
-    #[test]
-    fn straight_moves_and_init_are_checked_too() {
-        let o = p(0.0, 0.0, 0.0);
-        let cmds = [
-            at(1, init(o)),
-            at(
-                2,
-                Canon::StraightTraverse(line(o, p(0.0, 0.0, -300.5), 0.0)),
-            ),
-        ];
-        let d = run(MachineData::default_mill(), &cmds).1.unwrap();
-        assert!(
-            d.message
-                .contains("Z would reach -300.5000 mm, beyond its minimum -300.0000 mm"),
-            "{d}"
-        );
-        let d = run(
-            MachineData::default_mill(),
-            &[at(1, init(p(501.0, 0.0, 0.0)))],
-        )
-        .1
-        .unwrap();
-        assert_eq!(d.code.to_string(), "machine::travel-limit");
-        // Exactly at the limit (with interpreter rounding) passes.
-        let edge = p(500.0 + 1e-12, -500.0, 300.0);
-        assert_eq!(
-            run(
-                MachineData::default_mill(),
-                &[
-                    at(1, init(o)),
-                    at(2, Canon::StraightFeed(line(o, edge, 100.0)))
-                ]
-            )
-            .1,
-            None
-        );
-    }
-
-    #[test]
-    fn an_axis_the_machine_lacks_must_not_move() {
-        let o = p(0.0, 0.0, 0.0);
-        let mut turned = o;
-        turned.a = 90.0;
-        let cmds = [
-            at(1, init(o)),
-            at(3, Canon::StraightFeed(line(o, turned, 100.0))),
-        ];
-        let d = run(MachineData::default_mill(), &cmds).1.unwrap();
-        assert_eq!(d.code.to_string(), "machine::missing-axis");
-        assert!(d.message.contains("no A axis"), "{d}");
-    }
-
-    #[test]
-    fn feeds_are_clamped_and_zero_feed_takes_no_time() {
-        let o = p(0.0, 0.0, 0.0);
-        let cmds = [
-            at(
-                1,
-                Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 20_000.0)),
-            ), // clamped to 5000
-            at(2, Canon::StraightFeed(line(p(100.0, 0.0, 0.0), o, 0.0))),
-            at(3, Canon::StraightFeed(line(o, o, f64::NAN))),
-        ];
-        let r = run(MachineData::default_mill(), &cmds).0.report();
-        assert!(close(r.nominal_time_s, 1.2), "{}", r.nominal_time_s);
-        assert!(close(r.feed_distance_mm, 200.0));
-        assert_eq!(r.feed_segments, 3);
-    }
-
-    #[test]
-    fn rapids_are_slowed_by_axis_velocity() {
-        let mut m = MachineData::default_mill();
-        m.axes[2].max_velocity = 2_000.0;
-        let o = p(0.0, 0.0, 0.0);
-        // 100 mm in Z at 2000 mm/min: 3 s instead of 0.6 s.
-        let cmds = [at(
-            1,
-            Canon::StraightTraverse(line(o, p(0.0, 0.0, -100.0), 0.0)),
-        )];
-        let r = run(m, &cmds).0.report();
-        assert!(close(r.nominal_time_s, 3.0), "{}", r.nominal_time_s);
-    }
-
-    #[test]
-    fn logs_m_functions_tools_and_messages_with_lines() {
-        let cmds = [
-            at(
-                1,
-                Canon::Message {
-                    text: "load part".into(),
-                },
-            ),
-            at(2, Canon::SelectTool { tool: 3 }),
-            at(2, Canon::ChangeTool { tool: 3 }),
-            at(
-                3,
-                Canon::SetSpindleSpeed {
-                    spindle: 0,
-                    rpm: 1200.0,
-                },
-            ),
-            at(
-                3,
-                Canon::StartSpindle {
-                    spindle: 0,
-                    direction: SpindleDirection::Clockwise,
-                },
-            ),
-            at(4, Canon::Flood { on: true }),
-            at(5, Canon::ChangeTool { tool: 7 }),
-            at(6, Canon::ChangeTool { tool: 3 }),
-            at(
-                7,
-                Canon::AuxiliaryFunction {
-                    number: 73,
-                    timing: AuxTiming::Postfix,
-                },
-            ),
-            at(8, Canon::ProgramStop { optional: true }),
-            at(
-                9,
-                Canon::Message {
-                    text: String::new(),
-                },
-            ),
-            at(9, Canon::StopSpindle { spindle: 0 }),
-            at(9, Canon::Flood { on: false }),
-            at(10, Canon::PalletShuttle),
-            at(10, Canon::ProgramEnd),
-        ];
-        let r = run(MachineData::default_mill(), &cmds).0.report();
-        assert_eq!(r.tools_used, vec![3, 7]);
-        assert_eq!(r.tool_changes, 3);
-        assert_eq!(
-            r.messages,
-            vec![LoggedEvent {
-                line: 1,
-                text: "load part".into()
-            }]
-        );
-        let log: Vec<(u32, &str)> = r
-            .m_functions
-            .iter()
-            .map(|e| (e.line, e.text.as_str()))
-            .collect();
-        assert_eq!(
-            log,
-            vec![
-                (2, "M6 tool change to T3"),
-                (3, "M3 spindle 0 clockwise, 1200 rpm"),
-                (4, "M8 flood on"),
-                (5, "M6 tool change to T7"),
-                (6, "M6 tool change to T3"),
-                (7, "M73 auxiliary function (after motion)"),
-                (8, "M1 optional stop"),
-                (9, "M5 spindle 0 stop"),
-                (9, "M9 flood off"),
-                (10, "pallet shuttle"),
-                (10, "M2/M30 program end"),
-            ]
-        );
-        assert!(r.program_ended);
-        assert_eq!(r.bounding_box, None);
-        assert_eq!(r.nominal_time_s, 0.0);
-    }
-}
+#[path = "sim_tests.rs"]
+mod tests;

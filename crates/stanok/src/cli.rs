@@ -78,6 +78,27 @@ pub struct VarArgs {
     pub var: Option<PathBuf>,
 }
 
+/// How `stanok run` moves the simulated machine.
+#[derive(Debug, Clone, Args)]
+pub struct MotionArgs {
+    /// Servo (interpolation) period in milliseconds (0.01 … 1000).
+    #[arg(long, value_name = "MS", default_value_t = 1.0)]
+    pub servo_period: f64,
+    /// Write the servo-rate setpoints to a CSV file: `t,X,Y,Z[,A,B,C…]` (the machine's axes;
+    /// seconds, mm, degrees), one line per servo period.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+    /// Feed override in percent (more than 0, at most 200).
+    #[arg(long, value_name = "PERCENT", default_value_t = 100.0)]
+    pub feed_override: f64,
+    /// Rapid override in percent (more than 0, at most 100).
+    #[arg(long, value_name = "PERCENT", default_value_t = 100.0)]
+    pub rapid_override: f64,
+    /// Planner look-ahead window, path pieces (at least 2).
+    #[arg(long, value_name = "PIECES", default_value_t = 1024)]
+    pub lookahead: usize,
+}
+
 /// Output format of `stanok canon`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum CanonFormat {
@@ -111,6 +132,8 @@ pub enum Command {
         json: bool,
         #[command(flatten)]
         var: VarArgs,
+        #[command(flatten)]
+        motion: MotionArgs,
     },
     /// Print the canonical command stream.
     Canon {

@@ -13,16 +13,18 @@
 mod cli;
 mod diagnostics;
 mod machine_show;
+mod progress;
 mod report;
+mod trace;
 
 use clap::Parser;
-use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand, VarArgs};
+use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand, MotionArgs, VarArgs};
 use machine_show::{DataSource, Sources};
 use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
-use stanok_machine::{linuxcnc, MachineData, SimMachine, StoredOffsets};
+use stanok_machine::{linuxcnc, MachineData, SimMachine, SimOptions, StoredOffsets};
 use stanok_syntax::Dialect;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
@@ -53,7 +55,15 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             machine,
             json,
             var,
-        } => run_program(&file, dialect.map(Into::into), &machine, json, &var),
+            motion,
+        } => run_program(
+            &file,
+            dialect.map(Into::into),
+            &machine,
+            json,
+            &var,
+            &motion,
+        ),
         Command::Canon {
             file,
             dialect,
@@ -287,7 +297,15 @@ fn run_program(
     args: &MachineArgs,
     json: bool,
     var: &VarArgs,
+    motion: &MotionArgs,
 ) -> Result<ExitCode, String> {
+    let options = match sim_options(motion) {
+        Ok(o) => o,
+        Err(why) => {
+            eprintln!("error: {why}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     let mut machine = match load_machine(args) {
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
@@ -297,10 +315,19 @@ fn run_program(
     }
     let units = machine.linuxcnc_units;
     let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
-    let mut sim = SimMachine::new(machine);
+    let trace = match &motion.trace {
+        Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
+        None => None,
+    };
+    let mut sim = SimMachine::with_options(machine, options);
+    let progress = progress::Progress::new(file);
+    sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
     let mut failure: Option<Diagnostic> = None;
     for item in interp.by_ref() {
-        let applied = item.and_then(|cmd| sim.apply(&cmd));
+        let applied = item.and_then(|cmd| {
+            progress.command(cmd.span.start);
+            sim.apply(&cmd)
+        });
         if let Err(d) = applied {
             failure = Some(d);
             break;
@@ -308,7 +335,11 @@ fn run_program(
     }
     save_var(var, &interp, units)?;
     let warnings = interp.take_warnings();
-    let mut rep = sim.report();
+    let mut rep = sim.finish();
+    progress.done();
+    if let Some(t) = &trace {
+        t.close()?;
+    }
     rep.blocks = interp.stats().blocks_executed;
     if json {
         let mut out = report::json(file, dialect, &rep, failure.as_ref(), &warnings);
@@ -327,6 +358,37 @@ fn run_program(
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
+    })
+}
+
+/// `stanok run`'s motion options, checked.
+fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
+    if !(m.servo_period >= 0.01 && m.servo_period <= 1000.0) {
+        return Err(format!(
+            "--servo-period must be 0.01 … 1000 ms, not {}",
+            m.servo_period
+        ));
+    }
+    if !(m.feed_override > 0.0 && m.feed_override <= 200.0) {
+        return Err(format!(
+            "--feed-override must be more than 0 and at most 200 %, not {}",
+            m.feed_override
+        ));
+    }
+    if !(m.rapid_override > 0.0 && m.rapid_override <= 100.0) {
+        return Err(format!(
+            "--rapid-override must be more than 0 and at most 100 %, not {}",
+            m.rapid_override
+        ));
+    }
+    if m.lookahead < 2 {
+        return Err("--lookahead must be at least 2 pieces".into());
+    }
+    Ok(SimOptions {
+        servo_period_s: m.servo_period * 1e-3,
+        feed_override: m.feed_override / 100.0,
+        rapid_override: m.rapid_override / 100.0,
+        lookahead: m.lookahead,
     })
 }
 

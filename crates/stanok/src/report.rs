@@ -43,9 +43,56 @@ pub fn text(file: &Path, dialect: Dialect, r: &RunReport, failure: Option<&Diagn
     );
     let _ = writeln!(
         s,
+        "Cycle time  {:.3} s planned (look-ahead, acceleration{}, servo period {} ms, {} setpoints, feed override {}%)",
+        r.cycle_time_s,
+        if r.axes.iter().any(|a| a.peak_jerk > 0.0) { ", jerk" } else { "" },
+        r.servo_period_s * 1e3,
+        r.setpoints,
+        r.feed_override_percent
+    );
+    let _ = writeln!(
+        s,
         "Time        {:.3} s nominal (length / feed, no acceleration), of which dwell {:.3} s",
         r.nominal_time_s, r.dwell_time_s
     );
+    if !r.axes.is_empty() {
+        let _ = writeln!(
+            s,
+            "Axis peaks  (planned / limit; trace = finite differences of the setpoints)"
+        );
+        for a in &r.axes {
+            let u = if matches!(a.axis, 'A' | 'B' | 'C') {
+                "deg"
+            } else {
+                "mm"
+            };
+            let _ = writeln!(
+                s,
+                "  {}  v {:.1}/{:.1} {u}/s (trace {:.1})  a {:.1}/{:.1} {u}/s² (trace {:.1})  j {:.0}/{:.0} {u}/s³ (SOFT)",
+                a.axis,
+                a.peak_velocity,
+                a.max_velocity,
+                a.trace_peak_velocity,
+                a.peak_acceleration,
+                a.max_acceleration,
+                a.trace_peak_acceleration,
+                a.peak_jerk,
+                a.max_jerk
+            );
+        }
+    }
+    if r.violation_count == 0 {
+        let _ = writeln!(
+            s,
+            "Limits      ok: no velocity, acceleration, jerk, travel or path-tolerance violation (path deviation ≤ {:.4} mm)",
+            r.max_path_deviation_mm
+        );
+    } else {
+        let _ = writeln!(s, "Limits      {} VIOLATION(S)", r.violation_count);
+        for v in &r.violations {
+            let _ = writeln!(s, "  line {:>5}  {}", v.line, v.text);
+        }
+    }
     match &r.bounding_box {
         Some(b) => {
             let _ = writeln!(

@@ -1,0 +1,259 @@
+//! The simulated machine's motion: Canon → planner → servo setpoints, checked and measured.
+//!
+//! `SimMachine::apply` hands every accepted command to a [`MotionStage`]; the setpoints it streams
+//! out are executed here, one servo period at a time:
+//! 1. **Soft limits.** Every setpoint must lie within each axis' travel (1e-9 slack); the planner
+//!    guarantees it (blends and chords stay within the convex hull of the programmed path, which
+//!    `SimMachine::apply` checked), this verifies it.
+//! 2. **Dynamics.** [`TraceMonitor`] measures analytic and finite-difference velocity,
+//!    acceleration and jerk per axis against the machine's limits.
+//! 3. **Observer.** An optional sink (the CLI's `--trace` writer, its progress bar) sees every
+//!    setpoint; nothing is stored here, so memory does not grow with the run.
+//!
+//! [`MotionRun::fill`] puts the cycle time (the trace duration), peaks and violations into the
+//! [`RunReport`](crate::RunReport).
+
+use crate::data::MachineData;
+use crate::sim::LoggedEvent;
+use serde::Serialize;
+use stanok_canon::{Canon, AXIS_LETTERS};
+use stanok_motion::monitor::TraceMonitor;
+use stanok_motion::{AxisLimit, MotionConfig, MotionStage, Setpoint};
+
+/// Receives every setpoint (e.g. a trace writer).
+pub type SetpointSink = Box<dyn FnMut(&Setpoint)>;
+
+/// How the simulated machine runs the motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimOptions {
+    /// Servo period, s (default 1 ms).
+    pub servo_period_s: f64,
+    /// Feed override, fraction (1 = 100 %, at most 2).
+    pub feed_override: f64,
+    /// Rapid override, fraction (at most 1).
+    pub rapid_override: f64,
+    /// Planner look-ahead, pieces.
+    pub lookahead: usize,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        SimOptions {
+            servo_period_s: stanok_motion::limits::DEFAULT_SERVO_PERIOD,
+            feed_override: 1.0,
+            rapid_override: 1.0,
+            lookahead: stanok_motion::limits::DEFAULT_LOOKAHEAD,
+        }
+    }
+}
+
+/// Peaks of one machine axis against its limits. Units: the axis' unit (mm or deg) per s, s², s³.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AxisMotion {
+    /// Axis letter.
+    pub axis: char,
+    /// Velocity limit.
+    pub max_velocity: f64,
+    /// Acceleration limit.
+    pub max_acceleration: f64,
+    /// Jerk limit (SOFT).
+    pub max_jerk: f64,
+    /// Highest analytic velocity.
+    pub peak_velocity: f64,
+    /// Highest analytic acceleration.
+    pub peak_acceleration: f64,
+    /// Highest analytic jerk in SOFT pieces.
+    pub peak_jerk: f64,
+    /// Highest velocity by finite differences of the setpoints.
+    pub trace_peak_velocity: f64,
+    /// Highest acceleration by finite differences.
+    pub trace_peak_acceleration: f64,
+    /// Highest jerk by finite differences (not a limit in BRISK; see `stanok_motion::monitor`).
+    pub trace_peak_jerk: f64,
+}
+
+/// The motion part of a simulated run (module doc).
+pub(crate) struct MotionRun {
+    stage: MotionStage,
+    monitor: TraceMonitor,
+    travel: [Option<(char, f64, f64)>; 9],
+    limits: [AxisLimit; 9],
+    observer: Option<SetpointSink>,
+    travel_violations: Vec<LoggedEvent>,
+    travel_violation_count: u64,
+    feed_override: f64,
+    cycle_time: Option<f64>,
+}
+
+impl std::fmt::Debug for MotionRun {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MotionRun")
+            .field("setpoints", &self.monitor.count())
+            .finish_non_exhaustive()
+    }
+}
+
+impl MotionRun {
+    pub(crate) fn new(machine: &MachineData, options: &SimOptions) -> Self {
+        let mut limits = [AxisLimit::UNLIMITED; 9];
+        let mut travel = [None; 9];
+        for a in &machine.axes {
+            let i = a.pose_index();
+            limits[i] = AxisLimit::from_machine(a.max_velocity, a.max_acceleration, a.max_jerk);
+            travel[i] = Some((a.name, a.min, a.max));
+        }
+        let mut config = MotionConfig::new(limits, machine.rapid_rate, machine.max_feed);
+        config.servo_period = options.servo_period_s;
+        config.feed_override = options.feed_override;
+        config.rapid_override = options.rapid_override;
+        config.lookahead = options.lookahead;
+        let config = config.sanitised();
+        MotionRun {
+            stage: MotionStage::new(&config),
+            monitor: TraceMonitor::new(limits, config.servo_period),
+            travel,
+            limits,
+            observer: None,
+            travel_violations: Vec::new(),
+            travel_violation_count: 0,
+            feed_override: config.feed_override,
+            cycle_time: None,
+        }
+    }
+
+    pub(crate) fn set_observer(&mut self, sink: SetpointSink) {
+        self.observer = Some(sink);
+    }
+
+    /// Runs one accepted command.
+    pub(crate) fn apply(&mut self, cmd: &Canon, line: u32) {
+        let Self {
+            stage,
+            monitor,
+            travel,
+            observer,
+            travel_violations,
+            travel_violation_count,
+            ..
+        } = self;
+        let mut sink = |sp: &Setpoint| {
+            execute(
+                sp,
+                monitor,
+                travel,
+                travel_violations,
+                travel_violation_count,
+            );
+            if let Some(o) = observer.as_mut() {
+                o(sp);
+            }
+        };
+        stage.apply(cmd, line, &mut sink);
+    }
+
+    /// Runs what is left; idempotent.
+    pub(crate) fn finish(&mut self) {
+        if self.cycle_time.is_some() {
+            return;
+        }
+        let Self {
+            stage,
+            monitor,
+            travel,
+            observer,
+            travel_violations,
+            travel_violation_count,
+            ..
+        } = self;
+        let mut sink = |sp: &Setpoint| {
+            execute(
+                sp,
+                monitor,
+                travel,
+                travel_violations,
+                travel_violation_count,
+            );
+            if let Some(o) = observer.as_mut() {
+                o(sp);
+            }
+        };
+        self.cycle_time = Some(stage.finish(&mut sink));
+    }
+
+    /// The motion fields of the report.
+    pub(crate) fn fill(&self, r: &mut crate::RunReport) {
+        r.cycle_time_s = self.cycle_time.unwrap_or(self.monitor.last_t);
+        r.servo_period_s = self.stage.servo_period();
+        r.setpoints = self.monitor.count();
+        r.feed_override_percent = self.feed_override * 100.0;
+        let stats = self.stage.stats();
+        r.max_path_deviation_mm = stats.max_deviation;
+        r.axes = (0..9)
+            .filter_map(|i| {
+                let (axis, ..) = self.travel[i]?;
+                let (l, p) = (self.limits[i], self.monitor.peaks[i]);
+                Some(AxisMotion {
+                    axis,
+                    max_velocity: l.velocity,
+                    max_acceleration: l.acceleration,
+                    max_jerk: l.jerk,
+                    peak_velocity: p.velocity,
+                    peak_acceleration: p.acceleration,
+                    peak_jerk: p.jerk,
+                    trace_peak_velocity: p.fd_velocity,
+                    trace_peak_acceleration: p.fd_acceleration,
+                    trace_peak_jerk: p.fd_jerk,
+                })
+            })
+            .collect();
+        let mut v: Vec<LoggedEvent> = self.travel_violations.clone();
+        for x in &self.monitor.violations {
+            v.push(LoggedEvent {
+                line: x.line,
+                text: format!(
+                    "t = {:.4} s: {} {} {:.6} exceeds its limit {:.6}",
+                    x.t, AXIS_LETTERS[x.axis], x.what, x.value, x.limit
+                ),
+            });
+        }
+        if stats.tolerance_violations > 0 {
+            v.push(LoggedEvent {
+                line: 0,
+                text: format!(
+                    "{} path pieces beyond the path tolerance",
+                    stats.tolerance_violations
+                ),
+            });
+        }
+        r.violations = v;
+        r.violation_count =
+            self.travel_violation_count + self.monitor.violation_count + stats.tolerance_violations;
+    }
+}
+
+/// Executes one setpoint: measure, check travel.
+fn execute(
+    sp: &Setpoint,
+    monitor: &mut TraceMonitor,
+    travel: &[Option<(char, f64, f64)>; 9],
+    violations: &mut Vec<LoggedEvent>,
+    count: &mut u64,
+) {
+    monitor.observe(sp);
+    for (i, t) in travel.iter().enumerate() {
+        let Some((name, lo, hi)) = t else { continue };
+        let x = sp.position[i];
+        if !(x >= lo - 1e-9 && x <= hi + 1e-9) {
+            *count += 1;
+            if violations.len() < 100 {
+                violations.push(LoggedEvent {
+                    line: sp.line,
+                    text: format!(
+                        "t = {:.4} s: {name} setpoint {x:.6} outside its travel [{lo}, {hi}]",
+                        sp.t
+                    ),
+                });
+            }
+        }
+    }
+}

@@ -48,6 +48,19 @@ pub struct Parameters {
     tools: ToolTable,
     /// Old entries of the tools the block changed.
     tool_journal: Vec<(u32, Option<Tool>)>,
+    /// G5.2 control points collected so far (program X Y Z mm, weight), with the order.
+    nurbs: NurbsBuffer,
+    /// The buffer as it was before the block first changed it (for `rollback`).
+    nurbs_backup: Option<NurbsBuffer>,
+}
+
+/// The control points of an open G5.2 block.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct NurbsBuffer {
+    /// Order k = degree + 1.
+    pub order: u32,
+    /// Points (program coordinates, mm) and weights.
+    pub points: Vec<([f64; 3], f64)>,
 }
 
 impl Default for Parameters {
@@ -63,6 +76,8 @@ impl Default for Parameters {
             journal: Vec::new(),
             tools: ToolTable::default(),
             tool_journal: Vec::new(),
+            nurbs: NurbsBuffer::default(),
+            nurbs_backup: None,
         }
     }
 }
@@ -239,8 +254,22 @@ impl Parameters {
         self.tool_journal.clear();
     }
 
+    /// The open G5.2 block's control points.
+    pub fn nurbs(&self) -> &NurbsBuffer {
+        &self.nurbs
+    }
+
+    /// The open G5.2 block's control points, to change (undone by `rollback`).
+    pub fn nurbs_mut(&mut self) -> &mut NurbsBuffer {
+        if self.in_block && self.nurbs_backup.is_none() {
+            self.nurbs_backup = Some(self.nurbs.clone());
+        }
+        &mut self.nurbs
+    }
+
     /// The block succeeded: keep its writes.
     pub fn commit(&mut self) {
+        self.nurbs_backup = None;
         self.in_block = false;
         self.journal.clear();
         self.tool_journal.clear();
@@ -248,6 +277,9 @@ impl Parameters {
 
     /// The block failed: undo its writes.
     pub fn rollback(&mut self) {
+        if let Some(b) = self.nurbs_backup.take() {
+            self.nurbs = b;
+        }
         self.in_block = false;
         while let Some((n, v)) = self.journal.pop() {
             self.numbered[n] = v;

@@ -88,13 +88,7 @@ pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> 
     let p = cx.words.take(b'P');
     let direction = match p {
         Some(p) if [0.0, 1.0, 2.0].contains(&p.v) => p.v as u8,
-        Some(p) => {
-            return Err(cx.err(
-                "rs274::m19-p",
-                "M19 P must be 0, 1 or 2",
-                p.span,
-            ))
-        }
+        Some(p) => return Err(cx.err("rs274::m19-p", "M19 P must be 0, 1 or 2", p.span)),
         None => 0,
     };
     let _ = span;

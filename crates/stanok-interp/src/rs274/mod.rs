@@ -35,6 +35,7 @@ mod mcodes;
 mod motion;
 mod offsets;
 mod probe;
+mod spline;
 mod sync;
 mod tools;
 
@@ -70,6 +71,8 @@ pub struct Rs274State {
     pub feed_override_disabled: bool,
     /// G96 constant surface speed in force.
     pub css: bool,
+    /// The P, Q of the last G5 (mm): a following G5 without I, J continues tangentially.
+    pub g5_pq: [f64; 2],
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -402,9 +405,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let span = g.span[group as usize];
         let issue = match code {
             410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
-            50 | 51 | 52 | 700..=720 => {
-                Some("RS274/NGC cycles, splines and probing")
-            }
+            700..=720 => Some("RS274/NGC cycles, splines and probing"),
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,
         };
@@ -452,11 +453,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let max_rpm = if css {
             match cx.words.take(b'D') {
                 Some(d) if d.v <= 0.0 => {
-                    return Err(cx.err(
-                        "rs274::g96-d",
-                        "D word must be positive with G96",
-                        d.span,
-                    ))
+                    return Err(cx.err("rs274::g96-d", "D word must be positive with G96", d.span))
                 }
                 Some(d) => d.v,
                 None => 1e30,
@@ -690,6 +687,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             280 | 300 => home::go_home(cx, params, code == 280)?,
             281 | 301 => home::store_home(cx, params, code == 281),
             520 | 920..=923 => g92_family(cx, params, code, span)?,
+            53 => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
             _ => {}
         }
     }

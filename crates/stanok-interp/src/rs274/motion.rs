@@ -27,6 +27,9 @@ pub(super) fn motion_block(
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
         330 => super::sync::g33(cx, span),
+        50 => super::spline::cubic(cx, span, f_in_block),
+        51 => super::spline::quadratic(cx, span, f_in_block),
+        52 => super::spline::nurbs_point(cx, params, explicit, span),
         382..=385 => super::probe::straight_probe(cx, params, code, span),
         331 => super::sync::g33_1(cx, span),
         760 => super::sync::g76(cx, span),

@@ -97,7 +97,9 @@ pub(super) fn straight_probe(
     let trip = surfaces
         .iter()
         .filter_map(|s| s.crossing(&start_m, &end_m))
-        .fold(None, |best: Option<f64>, t| Some(best.map_or(t, |b| b.min(t))))
+        .fold(None, |best: Option<f64>, t| {
+            Some(best.map_or(t, |b| b.min(t)))
+        })
         .map(|t| {
             let (a, b) = (start_m.to_array(), end_m.to_array());
             let mut p = [0.0; 9];
@@ -108,7 +110,10 @@ pub(super) fn straight_probe(
         });
     if trip.is_none()
         && !surfaces.is_empty()
-        && matches!(kind, ProbeKind::TowardErrorIfNone | ProbeKind::AwayErrorIfNone)
+        && matches!(
+            kind,
+            ProbeKind::TowardErrorIfNone | ProbeKind::AwayErrorIfNone
+        )
     {
         return Err(cx
             .err(

@@ -67,11 +67,7 @@ fn sync_feed(cx: &Ctx<'_>, pitch: f64) -> f64 {
 /// G33: one synchronised straight move.
 pub(super) fn g33(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     if !spindle_turning(cx) {
-        return Err(cx.err(
-            "rs274::g33-spindle",
-            "Spindle not turning in G33",
-            span,
-        ));
+        return Err(cx.err("rs274::g33-spindle", "Spindle not turning in G33", span));
     }
     let pitch = pitch_word(cx, span)?;
     let (end, _) = cx.end_point()?;
@@ -86,11 +82,7 @@ pub(super) fn g33(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
 /// G33.1: rigid tapping to the end point and back (the machine reverses the spindle).
 pub(super) fn g33_1(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     if !spindle_turning(cx) {
-        return Err(cx.err(
-            "rs274::g33-spindle",
-            "Spindle not turning in G33.1",
-            span,
-        ));
+        return Err(cx.err("rs274::g33-spindle", "Spindle not turning in G33.1", span));
     }
     let pitch = pitch_word(cx, span)?;
     // LinuxCNC reads and ignores I (a retract scale in later versions).
@@ -155,11 +147,7 @@ fn thread_words(cx: &mut Ctx<'_>, span: ColSpan) -> Result<ThreadWords, Diagnost
         ));
     }
     if degression < 1.0 {
-        return Err(cx.err(
-            "rs274::g76-degression",
-            "R must be >= 1.0 with G76",
-            span,
-        ));
+        return Err(cx.err("rs274::g76-degression", "R must be >= 1.0 with G76", span));
     }
     if !(0.0..=3.0).contains(&ends) || ends.fract() != 0.0 {
         return Err(cx.err("rs274::g76-l", "Invalid L value with G76", span));
@@ -211,18 +199,10 @@ fn pass_depths(w: &ThreadWords) -> Option<Vec<f64>> {
 /// G76: the multi-pass threading cycle.
 pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     if cx.st.plane != Plane::ZX {
-        return Err(cx.err(
-            "rs274::g76-plane",
-            "G76 only allowed in XZ plane",
-            span,
-        ));
+        return Err(cx.err("rs274::g76-plane", "G76 only allowed in XZ plane", span));
     }
     if !spindle_turning(cx) {
-        return Err(cx.err(
-            "rs274::g76-spindle",
-            "Spindle not turning in G76",
-            span,
-        ));
+        return Err(cx.err("rs274::g76-spindle", "Spindle not turning in G76", span));
     }
     for k in [0, 1, 3, 4, 5, 6, 7, 8] {
         if let Some(v) = cx.words.take(AXIS_WORDS[k]) {
@@ -262,14 +242,16 @@ pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         let clear_x = cut_x - toward * (w.i.abs() + w.k);
         cx.straight(true, at(clear_x, start_z), 0.0);
         if entry_taper {
-            cx.out.push(Canon::SetFeedOverrideEnabled { enabled: false });
+            cx.out
+                .push(Canon::SetFeedOverrideEnabled { enabled: false });
             start_sync(cx, taper_pitch);
             cx.straight(false, at(cut_x - toward * w.k, start_z), feed);
             cx.straight(false, at(cut_x, start_z - s * w.taper), feed);
             start_sync(cx, w.pitch);
         } else {
             cx.straight(true, at(cut_x, start_z), 0.0);
-            cx.out.push(Canon::SetFeedOverrideEnabled { enabled: false });
+            cx.out
+                .push(Canon::SetFeedOverrideEnabled { enabled: false });
             start_sync(cx, w.pitch);
         }
         if exit_taper {

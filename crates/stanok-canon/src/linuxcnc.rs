@@ -63,7 +63,7 @@ impl LinuxCncPrinter {
     /// Prints one command and returns the text it produced (zero or more lines, each ending in `\n`).
     pub fn print(&mut self, cmd: &Spanned<Canon>) -> &str {
         self.out.clear();
-        let n = cmd.block_number;
+        let n = cmd.block_number.map(|n| (n, cmd.label_digits as usize));
         match &cmd.value {
             Canon::Init {
                 units,
@@ -372,10 +372,13 @@ impl LinuxCncPrinter {
         &self.out
     }
 
-    fn line(&mut self, n: Option<u32>, call: String) {
+    fn line(&mut self, n: Option<(u32, usize)>, call: String) {
         self.counter += 1;
         let _ = match n {
-            Some(n) => writeln!(self.out, "{:5} N{:<5} {call}", self.counter, n),
+            Some((n, digits)) => {
+                let label = format!("{n:0digits$}");
+                writeln!(self.out, "{:5} N{label:<5} {call}", self.counter)
+            }
             None => writeln!(self.out, "{:5} N..... {call}", self.counter),
         };
     }

@@ -51,6 +51,10 @@ pub struct Spanned<T> {
     pub span: Span,
     /// The `N` label of that block, if it had one (printers show it, as LinuxCNC's `rs274` does).
     pub block_number: Option<u32>,
+    /// Digits the `N` label was written with, leading zeros included (`N0080` → 4); 0 = as many
+    /// as the number needs. LinuxCNC's `rs274` prints the label as written.
+    #[serde(skip)]
+    pub label_digits: u8,
     /// The value.
     pub value: T,
 }
@@ -61,6 +65,7 @@ impl<T> Spanned<T> {
         Spanned {
             span,
             block_number: None,
+            label_digits: 0,
             value,
         }
     }

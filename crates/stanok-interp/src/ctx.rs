@@ -22,14 +22,35 @@ pub struct Emitter<'a> {
     pub span: Span,
     /// The block's N label.
     pub number: Option<u32>,
+    /// Digits of the N label as written (0 = natural width).
+    pub label_digits: u8,
 }
 
 impl Emitter<'_> {
+    /// Calls `f` on the last `n` motion commands in the queue, oldest first; its flag is true for
+    /// the oldest (RS274/NGC cutter compensation moves a held corner; the commands are still in
+    /// the queue because the driver holds them back while compensation is on).
+    pub fn edit_last_motions(&mut self, n: usize, mut f: impl FnMut(&mut Canon, bool)) {
+        let mut idx = Vec::with_capacity(n);
+        for (i, c) in self.queue.iter().enumerate().rev() {
+            if idx.len() == n {
+                break;
+            }
+            if c.value.motion().is_some() {
+                idx.push(i);
+            }
+        }
+        for (k, &i) in idx.iter().rev().enumerate() {
+            f(&mut self.queue[i].value, k == 0);
+        }
+    }
+
     /// Queues one command of the current block.
     pub fn push(&mut self, value: Canon) {
         self.queue.push_back(Spanned {
             span: self.span,
             block_number: self.number,
+            label_digits: self.label_digits,
             value,
         });
     }
@@ -95,7 +116,7 @@ impl Ctx<'_> {
                     .with_note("program either the Cartesian coordinates or the directly mapped ones"));
             }
         }
-        let mut p = self.st.program_position().to_array();
+        let mut p = self.programmed_position().to_array();
         let mut given = [false; 9];
         for (i, &l) in AXIS_WORDS.iter().enumerate() {
             let Some(val) = self.words.take(l) else {
@@ -120,6 +141,22 @@ impl Ctx<'_> {
             given[i] = true;
         }
         Ok((Pose::from_array(p), given))
+    }
+
+    /// Where the program thinks the tool is: the tool position in program coordinates, except
+    /// under RS274/NGC cutter compensation, where the plane coordinates are the programmed point.
+    pub fn programmed_position(&self) -> Pose {
+        let p = self.st.program_position();
+        match crate::rs274::cutter_comp::programmed_point(&self.st.rs274) {
+            Some(q) => {
+                let (a, b, _) = self.st.plane.axes();
+                let mut v = p.to_array();
+                v[a] = q[0];
+                v[b] = q[1];
+                Pose::from_array(v)
+            }
+            None => p,
+        }
     }
 
     /// True if any axis word is present (not marking them used).

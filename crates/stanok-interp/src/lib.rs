@@ -427,12 +427,26 @@ impl<R: BufRead + Seek> Interpreter<R> {
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
         let mark = self.queue.len();
+        // Commands held for cutter compensation may be edited by this block: keep copies.
+        let held_backup: Vec<Spanned<Canon>> = {
+            let h = self.held().min(mark);
+            self.queue.iter().skip(mark - h).cloned().collect()
+        };
         let span = self.block.span();
         let number = self.block.number;
+        let label_digits = self.block.number_span.map_or(0, |s| {
+            self.block
+                .slice(s)
+                .bytes()
+                .filter(u8::is_ascii_digit)
+                .count()
+                .min(9) as u8
+        });
         let mut out = ctx::Emitter {
             queue: &mut self.queue,
             span,
             number,
+            label_digits,
         };
         let mut pending_params: Vec<(params::Slot, f64)> = Vec::new();
         {
@@ -465,8 +479,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         CommentKind::Debug => Canon::Message {
                             text: flow::substitute_parameters(text, &eval),
                         },
+                        // rs274 drops the blanks a comment starts with.
                         _ => Canon::Comment {
-                            text: text.to_string(),
+                            text: text.trim_start().to_string(),
                         },
                     });
                 }
@@ -492,7 +507,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             Ok(o) => o,
             Err(d) => {
                 // Nothing of a failing block leaves the interpreter.
-                self.queue.truncate(mark);
+                self.queue.truncate(mark - held_backup.len());
+                self.queue.extend(held_backup);
                 self.state = backup;
                 self.params.rollback();
                 return Err(d);
@@ -504,6 +520,25 @@ impl<R: BufRead + Seek> Interpreter<R> {
             self.params.write(&slot, v);
         }
         Ok(outcome == Outcome::End)
+    }
+
+    /// How many commands at the back of the queue are held back (RS274/NGC cutter compensation
+    /// may still move the last compensated corner); none once the run is over.
+    fn held(&self) -> usize {
+        let n = rs274::held_motions(&self.state.rs274);
+        if n == 0 || self.phase == Phase::Done {
+            return 0;
+        }
+        let mut seen = 0;
+        for (i, c) in self.queue.iter().enumerate().rev() {
+            if c.value.motion().is_some() {
+                seen += 1;
+                if seen == n {
+                    return self.queue.len() - i;
+                }
+            }
+        }
+        self.queue.len()
     }
 
     fn end_of_input(&mut self) -> Result<bool, Diagnostic> {
@@ -527,8 +562,10 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
 
     fn next(&mut self) -> Option<Self::Item> {
         loop {
-            if let Some(c) = self.queue.pop_front() {
-                return Some(Ok(c));
+            if self.queue.len() > self.held() {
+                if let Some(c) = self.queue.pop_front() {
+                    return Some(Ok(c));
+                }
             }
             match self.phase {
                 Phase::Done => return None,

@@ -29,6 +29,7 @@ use crate::params::Parameters;
 use crate::state::{DistanceMode, MotionMode, PathMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection};
 
+pub(crate) mod cutter_comp;
 mod cycles;
 mod home;
 mod mcodes;
@@ -73,6 +74,8 @@ pub struct Rs274State {
     pub css: bool,
     /// The P, Q of the last G5 (mm): a following G5 without I, J continues tangentially.
     pub g5_pq: [f64; 2],
+    /// Cutter radius compensation.
+    pub comp: cutter_comp::CutterComp,
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -353,6 +356,24 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
     Ok(m)
 }
 
+fn plane_of_code(code: u32) -> Plane {
+    match code {
+        180 => Plane::ZX,
+        190 => Plane::YZ,
+        _ => Plane::XY,
+    }
+}
+
+/// The held commands while cutter compensation is on: the last compensated element's motion and
+/// everything after it (see `cutter_comp`), counted in motion commands from the back.
+pub fn held_motions(st: &Rs274State) -> usize {
+    if st.comp.on() && st.comp.last.is_some() {
+        st.comp.moves_since as usize + 1
+    } else {
+        0
+    }
+}
+
 /// The document's arc tolerance T (spec rs274ngc §4.3.1): 0.0005 in or 0.005 mm, in mm.
 fn arc_tolerance(cx: &Ctx<'_>) -> f64 {
     if let Some(t) = cx.opts.rs274_arc_tolerance_mm {
@@ -404,7 +425,6 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
         let span = g.span[group as usize];
         let issue = match code {
-            410 | 420 | 411 | 421 => Some("RS274/NGC cutter compensation"),
             700..=720 => Some("RS274/NGC cycles, splines and probing"),
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,
@@ -555,7 +575,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         cx.out.push(Canon::Dwell { seconds: p.v });
     }
     // 9. Plane.
-    if let Some((code, _)) = g.get(Group::Plane) {
+    if let Some((code, span)) = g.get(Group::Plane) {
+        if cx.st.rs274.comp.on() && cx.st.plane != plane_of_code(code) {
+            return Err(cx.err(
+                "rs274::comp-plane-change",
+                "Cannot change planes with cutter radius compensation on",
+                span,
+            ));
+        }
         let plane = match code {
             180 => Plane::ZX,
             190 => Plane::YZ,
@@ -592,7 +619,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     if cx.st.diameter_mode {
         cx.words.scale(b'X', 0.5);
     }
-    // 11. Cutter compensation: only G40 reaches here (G41/G42 rejected above).
+    // 11. Cutter compensation.
+    if let Some((code, span)) = g.get(Group::CutterComp) {
+        if code == 400 {
+            cutter_comp::comp_off(cx);
+        } else {
+            cutter_comp::comp_on(cx, params, code, span)?;
+        }
+    }
     // 12. Tool length.
     let mut axis_words_used_by_g43 = false;
     if let Some((code, span)) = g.get(Group::ToolLength) {

@@ -99,8 +99,14 @@ pub(super) fn motion_block(
                 let length = (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt();
                 feed_for(cx, f_in_block, span, false, || length)?
             };
-            cx.straight(rapid, end, feed);
-            Ok(())
+            if cx.st.rs274.comp.on() && g53.is_none() {
+                super::cutter_comp::straight(cx, rapid, end, feed, span)
+            } else {
+                cx.straight(rapid, end, feed);
+                // The exit move after G40 has used the programmed point.
+                cx.st.rs274.comp.program = None;
+                Ok(())
+            }
         }
         20 | 30 => {
             if let Some(g53_span) = g53 {
@@ -243,7 +249,7 @@ fn arc_block(
         }
         None => 1,
     };
-    let start = cx.st.program_position();
+    let start = cx.programmed_position();
     let (end, given) = cx.end_point()?;
     let plane_words = given[a] || given[b];
     let s = [start.to_array()[a], start.to_array()[b]];
@@ -316,7 +322,11 @@ fn arc_block(
     let feed = feed_for(cx, f_in_block, span, true, || {
         helix_length(start, end, plane, planar.centre, ccw, planar.turns)
     })?;
+    if cx.st.rs274.comp.on() {
+        return super::cutter_comp::arc(cx, ccw, end, planar, feed, span);
+    }
     cx.arc(plane, ccw, end, planar, feed);
+    cx.st.rs274.comp.program = None;
     Ok(())
 }
 

@@ -1,0 +1,617 @@
+//! RS274/NGC cutter radius compensation G40, G41, G42, G41.1, G42.1 — LinuxCNC 2.9's rules
+//! (spec rs274ngc §4.20–§4.21; corner and entry behaviour taken from `rs274` traces, see
+//! tests/rs274/comp-*.ngc).
+//!
+//! ## Model
+//!
+//! Compensation works in the active plane (G17 or G18) on the *programmed* path: the state keeps
+//! the programmed point (where the program thinks the tool is) apart from the tool centre
+//! (`ModalState::position`). Every programmed element — a line or an arc — is offset by the tool
+//! radius r to the left (G41) or right (G42) of its direction of travel:
+//!
+//! * a line moves sideways by r (its normal n, left = direction rotated +90°);
+//! * an arc of radius R about C keeps C and gets radius R' = R − r when the tool is on its inside
+//!   (G41 with G3, G42 with G2) and R + r otherwise; R' ≤ 0 is an error.
+//!
+//! ## Entry (the first move after G41/G42)
+//!
+//! A line ends at its programmed end + r·n (the tool travels straight there from where it
+//! stands; the move must be longer than r). An arc ends at C + R'·u(E − C) on a circle whose
+//! centre lies on the line C–E and that passes through the current point.
+//!
+//! ## Corners (every later move), with `a` = the previous element's end tangent and `b` = the new
+//! element's start tangent at the programmed corner S
+//!
+//! * **convex** (the tool is on the outside: G41 turning right, G42 turning left, by more than
+//!   [`CONCAVE_TOLERANCE`]): an arc of radius r about S is inserted from the previous offset end to
+//!   the new offset start (clockwise for G41, counter-clockwise for G42);
+//! * **concave** (everything else, straight continuations and reversals included): the previous
+//!   offset element is shortened to where it meets the new offset element (line–line, line–circle
+//!   or circle–circle intersection); no intersection is a gouge error.
+//!
+//! Shortening the previous element means changing a command already queued: while compensation is
+//! on, the driver holds back the last motion command and everything after it (the interpreter's
+//! `held` rule), and the corner code edits it in place (`Emitter::last_motion_mut`). Moves without
+//! motion in the plane (a Z plunge) do not form corners; they follow the corner point when it moves.
+//!
+//! G40 releases the held commands; the next move goes from the tool position straight to the
+//! programmed point.
+
+use super::Rs274State;
+use crate::arc::PlanarArc;
+use crate::ctx::Ctx;
+use crate::params::Parameters;
+use stanok_canon::{Canon, Diagnostic, Plane, Pose};
+use stanok_syntax::ColSpan;
+
+/// A corner turning the "convex" way by less than this many radians is joined like a concave one.
+pub const CONCAVE_TOLERANCE: f64 = 0.05;
+
+/// A programmed element in plane coordinates (mm, program frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Element {
+    /// A straight move.
+    Line {
+        /// Programmed start.
+        from: [f64; 2],
+        /// Programmed end.
+        to: [f64; 2],
+    },
+    /// An arc.
+    Arc {
+        /// Centre.
+        centre: [f64; 2],
+        /// Counter-clockwise.
+        ccw: bool,
+        /// Programmed end.
+        to: [f64; 2],
+        /// Radius of the tool's arc (R').
+        tool_radius: f64,
+        /// Where the tool's arc starts (plane, program frame).
+        tool_from: [f64; 2],
+    },
+}
+
+/// Cutter compensation state (part of `Rs274State`, so it is saved and restored with the block).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CutterComp {
+    /// 0 off (G40), 1 left (G41), 2 right (G42).
+    pub side: u8,
+    /// Tool radius r, mm.
+    pub radius: f64,
+    /// The programmed point in the plane, once the first move after G41/G42 set it.
+    pub program: Option<[f64; 2]>,
+    /// The last programmed element (its offset is the held motion).
+    pub last: Option<Element>,
+    /// Moves without plane motion emitted after the last element's motion (held with it).
+    pub moves_since: u32,
+}
+
+impl CutterComp {
+    /// Compensation is on.
+    pub fn on(&self) -> bool {
+        self.side != 0
+    }
+
+    /// +1 for the left side, −1 for the right.
+    fn sign(&self) -> f64 {
+        if self.side == 1 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+fn scale(a: [f64; 2], k: f64) -> [f64; 2] {
+    [a[0] * k, a[1] * k]
+}
+fn len(a: [f64; 2]) -> f64 {
+    a[0].hypot(a[1])
+}
+fn unit(a: [f64; 2]) -> [f64; 2] {
+    let l = len(a);
+    if l > 0.0 {
+        scale(a, 1.0 / l)
+    } else {
+        [1.0, 0.0]
+    }
+}
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+/// `v` rotated +90°.
+fn left(v: [f64; 2]) -> [f64; 2] {
+    [-v[1], v[0]]
+}
+
+/// Tangent of an arc about `c` at point `p`.
+fn arc_tangent(c: [f64; 2], p: [f64; 2], ccw: bool) -> [f64; 2] {
+    let t = left(unit(sub(p, c)));
+    if ccw {
+        t
+    } else {
+        scale(t, -1.0)
+    }
+}
+
+impl Element {
+    fn end_tangent(&self) -> [f64; 2] {
+        match *self {
+            Element::Line { from, to } => unit(sub(to, from)),
+            Element::Arc {
+                centre, ccw, to, ..
+            } => arc_tangent(centre, to, ccw),
+        }
+    }
+}
+
+/// The plane coordinates of a pose.
+fn plane_of(p: &Pose, plane: Plane) -> [f64; 2] {
+    let (a, b, _) = plane.axes();
+    let v = p.to_array();
+    [v[a], v[b]]
+}
+
+fn with_plane(p: Pose, plane: Plane, q: [f64; 2]) -> Pose {
+    let (a, b, _) = plane.axes();
+    let mut v = p.to_array();
+    v[a] = q[0];
+    v[b] = q[1];
+    Pose::from_array(v)
+}
+
+fn err(cx: &Ctx<'_>, code: &'static str, msg: &str, span: ColSpan) -> Diagnostic {
+    cx.err(code, msg, span)
+}
+
+/// G41/G42 (410/420: radius from the tool table, D = tool number) and G41.1/G42.1 (411/421:
+/// D = diameter).
+pub(super) fn comp_on(
+    cx: &mut Ctx<'_>,
+    params: &Parameters,
+    code: u32,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    if cx.st.rs274.comp.on() {
+        return Err(err(
+            cx,
+            "rs274::comp-already-on",
+            "Cannot turn cutter radius comp on when on",
+            span,
+        ));
+    }
+    if cx.st.plane == Plane::YZ {
+        return Err(err(
+            cx,
+            "rs274::comp-plane",
+            "Cannot turn cutter radius comp on out of XY or XZ plane",
+            span,
+        ));
+    }
+    let dynamic = code % 10 == 1;
+    let d = cx.words.take(b'D');
+    let _orientation = if dynamic { cx.words.take(b'L') } else { None };
+    let radius = if dynamic {
+        match d {
+            Some(d) => cx.mm(d.v) / 2.0,
+            None => {
+                return Err(err(
+                    cx,
+                    "rs274::comp-d-missing",
+                    "D word missing with G41.1 or G42.1",
+                    span,
+                ))
+            }
+        }
+    } else {
+        let tool = match d {
+            Some(d) => {
+                if d.v < 0.0 || d.v.fract() != 0.0 {
+                    return Err(err(
+                        cx,
+                        "rs274::comp-d",
+                        "Negative or non-integer D word with G41 or G42",
+                        d.span,
+                    ));
+                }
+                let t = d.v as u32;
+                if t != 0 && params.tools().get(t).is_none() {
+                    return Err(cx.err(
+                        "rs274::tool-not-found",
+                        format!("Requested tool {t} not found in the tool table"),
+                        d.span,
+                    ));
+                }
+                t
+            }
+            None => cx.st.current_tool,
+        };
+        params
+            .tools()
+            .get(tool)
+            .and_then(|t| t.edges.first())
+            .map_or(0.0, |e| e.radius)
+    };
+    // A negative diameter swaps the side, as in LinuxCNC.
+    let mut side = if code / 10 == 41 { 1 } else { 2 };
+    if radius < 0.0 {
+        side = 3 - side;
+    }
+    cx.st.rs274.comp = CutterComp {
+        side,
+        radius: radius.abs(),
+        program: None,
+        last: None,
+        moves_since: 0,
+    };
+    cx.out.push(Canon::Comment {
+        text: format!(
+            "interpreter: cutter radius compensation on {}",
+            if side == 1 { "left" } else { "right" }
+        ),
+    });
+    Ok(())
+}
+
+/// G40.
+pub(super) fn comp_off(cx: &mut Ctx<'_>) {
+    // The programmed point stays until the exit move: its missing words come from it.
+    cx.st.rs274.comp = CutterComp {
+        program: cx.st.rs274.comp.program,
+        ..CutterComp::default()
+    };
+    cx.out.push(Canon::Comment {
+        text: "interpreter: cutter radius compensation off".into(),
+    });
+}
+
+/// The programmed point of the plane, if compensation has set it (else the tool position).
+pub fn programmed_point(st: &Rs274State) -> Option<[f64; 2]> {
+    st.comp.program
+}
+
+/// A straight move under compensation to the programmed `end` (program coordinates).
+pub(super) fn straight(
+    cx: &mut Ctx<'_>,
+    rapid: bool,
+    end: Pose,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let plane = cx.st.plane;
+    let comp = cx.st.rs274.comp;
+    let r = comp.radius;
+    let e = plane_of(&end, plane);
+    let here = cx.st.program_position();
+    let Some(s) = comp.program else {
+        // Entry move.
+        let t = plane_of(&here, plane);
+        let d = len(sub(e, t));
+        if d <= r {
+            return Err(err(
+                cx,
+                "rs274::comp-entry-short",
+                "Length of cutter compensation entry move is not greater than the tool radius",
+                span,
+            ));
+        }
+        let n = scale(left(unit(sub(e, t))), r * comp.sign());
+        cx.straight(rapid, with_plane(end, plane, add(e, n)), feed);
+        let c = &mut cx.st.rs274.comp;
+        c.program = Some(e);
+        c.last = Some(Element::Line { from: t, to: e });
+        c.moves_since = 0;
+        return Ok(());
+    };
+    if len(sub(e, s)) == 0.0 {
+        // No motion in the plane: the tool keeps its plane position.
+        let t = plane_of(&here, plane);
+        cx.straight(rapid, with_plane(end, plane, t), feed);
+        cx.st.rs274.comp.moves_since += 1;
+        return Ok(());
+    }
+    let dir = unit(sub(e, s));
+    let n = scale(left(dir), r * comp.sign());
+    let new = Element::Line { from: s, to: e };
+    corner(cx, s, dir, add(s, n), new, feed, span)?;
+    cx.straight(rapid, with_plane(end, plane, add(e, n)), feed);
+    let c = &mut cx.st.rs274.comp;
+    c.program = Some(e);
+    c.last = Some(new);
+    c.moves_since = 0;
+    Ok(())
+}
+
+/// An arc under compensation: programmed end `end`, programmed centre and turns in `planar`.
+pub(super) fn arc(
+    cx: &mut Ctx<'_>,
+    ccw: bool,
+    end: Pose,
+    planar: PlanarArc,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let plane = cx.st.plane;
+    let comp = cx.st.rs274.comp;
+    let r = comp.radius;
+    let here = cx.st.program_position();
+    let s = comp.program.unwrap_or_else(|| plane_of(&here, plane));
+    let e = plane_of(&end, plane);
+    let c = planar.centre;
+    let radius = len(sub(s, c));
+    // Inside when the tool's side is the arc's turning side.
+    let inside = (comp.side == 1) == ccw;
+    let tool_radius = if inside { radius - r } else { radius + r };
+    if tool_radius <= 0.0 {
+        return Err(err(
+            cx,
+            "rs274::comp-arc-radius",
+            "Tool radius not less than arc radius with comp",
+            span,
+        ));
+    }
+    let tool_end = add(c, scale(unit(sub(e, c)), tool_radius));
+    let mut new = Element::Arc {
+        centre: c,
+        ccw,
+        to: e,
+        tool_radius,
+        tool_from: [0.0; 2],
+    };
+    if comp.program.is_none() {
+        // Entry arc: through the current point, centre on the line C–E.
+        let t = plane_of(&here, plane);
+        let u = unit(sub(e, c));
+        let chord = sub(tool_end, t);
+        let k = dot(u, chord);
+        if k.abs() < 1e-12 {
+            return Err(err(
+                cx,
+                "rs274::comp-entry-arc",
+                "Cannot make the cutter compensation entry arc from here",
+                span,
+            ));
+        }
+        let rho = dot(chord, chord) / (2.0 * k);
+        let centre = sub(tool_end, scale(u, rho));
+        if let Element::Arc { tool_from, .. } = &mut new {
+            *tool_from = t;
+        }
+        cx.arc(
+            plane,
+            ccw,
+            with_plane(end, plane, tool_end),
+            PlanarArc {
+                centre,
+                turns: planar.turns,
+            },
+            feed,
+        );
+    } else {
+        let start_tool = add(c, scale(unit(sub(s, c)), tool_radius));
+        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
+        if let Element::Arc { tool_from, .. } = &mut new {
+            *tool_from = plane_of(&cx.st.program_position(), plane);
+        }
+        cx.arc(
+            plane,
+            ccw,
+            with_plane(end, plane, tool_end),
+            PlanarArc {
+                centre: c,
+                turns: planar.turns,
+            },
+            feed,
+        );
+    }
+    let cc = &mut cx.st.rs274.comp;
+    cc.program = Some(e);
+    cc.last = Some(new);
+    cc.moves_since = 0;
+    Ok(())
+}
+
+/// Joins the previous offset element to the new one at the programmed corner `s` (module doc).
+/// `dir` is the new element's start tangent, `start_tool` its offset start.
+fn corner(
+    cx: &mut Ctx<'_>,
+    s: [f64; 2],
+    dir: [f64; 2],
+    start_tool: [f64; 2],
+    new: Element,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let comp = cx.st.rs274.comp;
+    let Some(last) = comp.last else {
+        return Ok(());
+    };
+    let a = last.end_tangent();
+    let turn = cross(a, dir).atan2(dot(a, dir));
+    let plane = cx.st.plane;
+    if comp.sign() * turn < -CONCAVE_TOLERANCE {
+        // Convex: an arc about the corner.
+        let here = cx.st.program_position();
+        cx.arc(
+            plane,
+            comp.side == 2,
+            with_plane(here, plane, start_tool),
+            PlanarArc {
+                centre: s,
+                turns: 1,
+            },
+            feed,
+        );
+        return Ok(());
+    }
+    // Concave: where the two offset paths meet.
+    let r = comp.radius;
+    let prev_end = plane_of(&cx.st.program_position(), plane);
+    let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
+        cx.err(
+            "rs274::comp-gouge",
+            "Cutter gouging: the offset paths do not meet in this concave corner",
+            span,
+        )
+        .with_note(format!(
+            "tool radius {:.4} mm is too large for this corner",
+            r
+        ))
+    })?;
+    move_held_end(cx, p);
+    Ok(())
+}
+
+/// Offset line of a programmed line: a point and the direction.
+fn offset_line(from: [f64; 2], to: [f64; 2], off: f64) -> ([f64; 2], [f64; 2]) {
+    let d = unit(sub(to, from));
+    (add(from, scale(left(d), off)), d)
+}
+
+/// Intersections of a line (point p, unit direction d) with a circle.
+fn line_circle(p: [f64; 2], d: [f64; 2], c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
+    let f = sub(p, c);
+    let b = dot(f, d);
+    let disc = b * b - (dot(f, f) - r * r);
+    if disc < 0.0 {
+        return Vec::new();
+    }
+    let q = disc.sqrt();
+    vec![add(p, scale(d, -b - q)), add(p, scale(d, -b + q))]
+}
+
+fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64) -> Vec<[f64; 2]> {
+    let d = len(sub(c2, c1));
+    if d == 0.0 || d > r1 + r2 || d < (r1 - r2).abs() {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let u = unit(sub(c2, c1));
+    let m = add(c1, scale(u, a));
+    vec![add(m, scale(left(u), h)), add(m, scale(left(u), -h))]
+}
+
+/// Angle swept from `a` to `b` about `c` in the arc's sense, in [0, 2π).
+fn sweep(c: [f64; 2], a: [f64; 2], b: [f64; 2], ccw: bool) -> f64 {
+    let (u, v) = (sub(a, c), sub(b, c));
+    let mut t = cross(u, v).atan2(dot(u, v));
+    if !ccw {
+        t = -t;
+    }
+    if t < 0.0 {
+        t += std::f64::consts::TAU;
+    }
+    t
+}
+
+/// Where the offset of `last` meets the offset of `new` (signed offset `off`: + left).
+/// `prev_end` is the last element's offset end, `new_start` the new one's offset start.
+fn meet(
+    last: Element,
+    new: Element,
+    off: f64,
+    prev_end: [f64; 2],
+    new_start: [f64; 2],
+) -> Option<[f64; 2]> {
+    let candidates: Vec<[f64; 2]> = match (last, new) {
+        (Element::Line { from, to }, Element::Line { from: f2, to: t2 }) => {
+            let (p1, d1) = offset_line(from, to, off);
+            let (p2, d2) = offset_line(f2, t2, off);
+            let den = cross(d1, d2);
+            if den.abs() < 1e-12 {
+                return Some(new_start);
+            }
+            let t = cross(sub(p2, p1), d2) / den;
+            vec![add(p1, scale(d1, t))]
+        }
+        (
+            Element::Line { from, to },
+            Element::Arc {
+                centre,
+                tool_radius,
+                ..
+            },
+        ) => {
+            let (p, d) = offset_line(from, to, off);
+            line_circle(p, d, centre, tool_radius)
+        }
+        (
+            Element::Arc {
+                centre,
+                tool_radius,
+                ..
+            },
+            Element::Line { from, to },
+        ) => {
+            let (p, d) = offset_line(from, to, off);
+            line_circle(p, d, centre, tool_radius)
+        }
+        (
+            Element::Arc {
+                centre: c1,
+                tool_radius: r1,
+                ..
+            },
+            Element::Arc {
+                centre: c2,
+                tool_radius: r2,
+                ..
+            },
+        ) => circle_circle(c1, r1, c2, r2),
+    };
+    match last {
+        // After a line: the intersection nearest the line's offset end.
+        Element::Line { .. } => candidates
+            .into_iter()
+            .min_by(|a, b| len(sub(*a, prev_end)).total_cmp(&len(sub(*b, prev_end)))),
+        // After an arc: the one the tool reaches first along it.
+        Element::Arc {
+            centre,
+            ccw,
+            tool_from,
+            ..
+        } => candidates.into_iter().min_by(|a, b| {
+            sweep(centre, tool_from, *a, ccw).total_cmp(&sweep(centre, tool_from, *b, ccw))
+        }),
+    }
+}
+
+/// Moves the end of the held motion (and the plane position of the moves without plane motion
+/// after it) to `p` (plane coordinates, program frame).
+fn move_held_end(cx: &mut Ctx<'_>, p: [f64; 2]) {
+    let plane = cx.st.plane;
+    let frame = cx.st.frame;
+    let remap = |m: &Pose| -> Pose {
+        let prog = frame.to_program(m);
+        frame.to_machine(&with_plane(prog, plane, p))
+    };
+    let n = cx.st.rs274.comp.moves_since as usize + 1;
+    cx.out.edit_last_motions(n, |cmd, first| match cmd {
+        Canon::StraightFeed(l) | Canon::StraightTraverse(l) => {
+            if !first {
+                l.start = remap(&l.start);
+            }
+            l.end = remap(&l.end);
+        }
+        Canon::ArcFeed(a) => {
+            if !first {
+                a.start = remap(&a.start);
+            }
+            a.end = remap(&a.end);
+        }
+        _ => {}
+    });
+    let np = remap(&cx.st.position);
+    cx.st.position = np;
+}

@@ -9,6 +9,7 @@ set -uo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 stanok="$here/target/release/stanok"
 tbl="$here/crates/stanok/tests/linuxcnc-samples/sim.tbl"
+machine="$here/crates/stanok/tests/linuxcnc-samples/sim.toml"
 command -v rs274 >/dev/null || { echo "rs274 not found: install linuxcnc-uspace" >&2; exit 1; }
 [ -x "$stanok" ] || { echo "build first: cargo build --release" >&2; exit 1; }
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
@@ -19,7 +20,7 @@ for prog in "${progs[@]}"; do
   dir="$(dirname "$prog")"
   (cd "$tmp" && timeout 20 rs274 -t "$tbl" -g "$prog" lx.txt 2>lx.err </dev/null >/dev/null)
   cat "$tmp/lx.txt" "$tmp/lx.err" > "$tmp/linuxcnc.txt" 2>/dev/null
-  timeout 20 "$stanok" canon --dialect rs274ngc --tools "$tbl" --linuxcnc-units inch \
+  timeout 20 "$stanok" canon --dialect rs274ngc --machine "$machine" --tools "$tbl" --linuxcnc-units inch \
 "$prog" > "$tmp/stanok.txt" 2>&1
   verdict="$(python3 "$here/scripts/linuxcnc_compare.py" "$tmp/linuxcnc.txt" "$tmp/stanok.txt" "$prog")"
   case "$verdict" in

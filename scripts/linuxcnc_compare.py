@@ -12,7 +12,8 @@ import re
 import sys
 
 NUM = re.compile(r"-?\d+\.\d+(?:e[-+]?\d+)?")
-TOL = 1e-4
+# Numbers are printed with 4 decimals: two values a rounding apart differ by 1e-4 exactly.
+TOL = 1.0001e-4
 
 
 def read(path):

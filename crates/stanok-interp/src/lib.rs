@@ -30,6 +30,7 @@ mod ctx;
 mod flow;
 mod frame;
 mod params;
+mod predefined;
 mod rs274;
 mod state;
 mod words;

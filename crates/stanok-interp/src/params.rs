@@ -415,7 +415,7 @@ impl Evaluator<'_> {
     pub fn read(&self, p: &ParamRef, at: ExprId) -> Result<f64, Diagnostic> {
         match self.slot(p, at)? {
             Slot::Numbered(n) => Ok(self.read_numbered(n)),
-            Slot::Named { name, global } => self.params.named(&name, global).ok_or_else(|| {
+            Slot::Named { name, global } => self.params_named(&name, global).ok_or_else(|| {
                 Diagnostic::error(
                     "rs274::named-parameter-undefined",
                     format!("Named parameter #<{name}> not defined"),
@@ -427,6 +427,13 @@ impl Evaluator<'_> {
 
     /// A named parameter's value, if defined.
     pub fn params_named(&self, name: &str, global: bool) -> Option<f64> {
+        if global && name.starts_with('_') {
+            if let Some(v) =
+                crate::predefined::predefined(name, self.state, self.params, self.block.line)
+            {
+                return Some(v);
+            }
+        }
         self.params.named(name, global)
     }
 

@@ -118,6 +118,32 @@ impl Ctx<'_> {
         }
         let mut p = self.programmed_position().to_array();
         let mut given = [false; 9];
+        // LinuxCNC polar words: `@` radius, `^` angle (degrees) about the origin of the XY
+        // plane; under G91 they add to the current point's own radius and angle.
+        let radius = self.words.take(b'@');
+        let angle = self.words.take(b'^');
+        if radius.is_some() || angle.is_some() {
+            if let Some(w) = self.words.take(b'X').or_else(|| self.words.take(b'Y')) {
+                return Err(self.err(
+                    "rs274::polar-and-xy",
+                    "Cannot use polar coordinates with X or Y words",
+                    w.span,
+                ));
+            }
+            let (r0, t0) = (p[0].hypot(p[1]), p[1].atan2(p[0]));
+            let rw = radius.map(|w| self.mm(w.v));
+            let tw = angle.map(|w| w.v.to_radians());
+            let (r, t) = match self.st.distance {
+                DistanceMode::Absolute => (rw.unwrap_or(r0), tw.unwrap_or(t0)),
+                DistanceMode::Incremental => {
+                    (r0 + rw.unwrap_or(0.0), t0 + tw.unwrap_or(0.0))
+                }
+            };
+            p[0] = r * t.cos();
+            p[1] = r * t.sin();
+            given[0] = true;
+            given[1] = true;
+        }
         for (i, &l) in AXIS_WORDS.iter().enumerate() {
             let Some(val) = self.words.take(l) else {
                 continue;
@@ -161,7 +187,7 @@ impl Ctx<'_> {
 
     /// True if any axis word is present (not marking them used).
     pub fn has_axis_words(&self) -> bool {
-        self.words.any(&AXIS_WORDS)
+        self.words.any(&AXIS_WORDS) || self.words.any(&[b'@', b'^'])
     }
 
     /// Emits a straight move to `end` (program coordinates) and moves the state there.

@@ -27,7 +27,7 @@ pub struct Words {
     /// M codes, in written order.
     pub m: Vec<(u32, ColSpan)>,
     /// Single-letter words other than G, M (`letter[b'X' - b'A']`), valid where `present` has the bit.
-    letter: [Val; 26],
+    letter: [Val; 28],
     /// Letters written in this block (bit i = letter `A + i`).
     present: u32,
     /// Letters a function has consumed.
@@ -46,7 +46,7 @@ impl Default for Words {
             letter: [Val {
                 v: 0.0,
                 span: ColSpan::default(),
-            }; 26],
+            }; 28],
             present: 0,
             used: 0,
             indexed: Vec::new(),
@@ -55,8 +55,21 @@ impl Default for Words {
     }
 }
 
+/// Slot of a letter: A–Z, then LinuxCNC's polar words `@` (radius) and `^` (angle).
 fn idx(letter: u8) -> usize {
-    (letter.to_ascii_uppercase() - b'A') as usize
+    match letter {
+        b'@' => 26,
+        b'^' => 27,
+        l => (l.to_ascii_uppercase() - b'A') as usize,
+    }
+}
+
+fn letter_of(i: usize) -> u8 {
+    match i {
+        26 => b'@',
+        27 => b'^',
+        i => b'A' + i as u8,
+    }
 }
 
 impl Words {
@@ -126,7 +139,7 @@ impl Words {
                             }
                             self.m.push((code as u32, w.span));
                         }
-                        b'A'..=b'Z' => {
+                        b'A'..=b'Z' | b'@' | b'^' => {
                             let i = idx(l);
                             if self.present & (1 << i) != 0 {
                                 let prev = self.letter[i];
@@ -217,7 +230,7 @@ impl Words {
             return None;
         }
         let i = left.trailing_zeros() as usize;
-        Some((b'A' + i as u8, self.letter[i]))
+        Some((letter_of(i), self.letter[i]))
     }
 
     /// True if the letter was consumed already.

@@ -179,7 +179,7 @@ impl Rs<'_> {
                         start + 1,
                     );
                 }
-                b'a'..=b'z' | b'A'..=b'Z' | b'$' => self.word()?,
+                b'a'..=b'z' | b'A'..=b'Z' | b'$' | b'@' | b'^' => self.word()?,
                 b']' => {
                     let start = self.pos;
                     return self.fail(

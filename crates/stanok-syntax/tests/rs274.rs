@@ -351,7 +351,9 @@ fn expression_errors() {
     single_error("G1 X Y1", NGC, "syntax::missing-value", 4, "X");
     single_error("G1 X", NGC, "syntax::missing-value", 4, "X");
     single_error("G1 X-", NGC, "syntax::missing-value", 6, "");
-    single_error("G1 X1 @", NGC, "syntax::unexpected-character", 7, "@");
+    // `@` and `^` are LinuxCNC's polar words: they need a value like any other.
+    single_error("G1 X1 @", NGC, "syntax::missing-value", 7, "@");
+    single_error("G1 X1 ~", NGC, "syntax::unexpected-character", 7, "~");
     single_error("G1 X1-2", NGC, "syntax::unexpected-character", 6, "-");
     let b = single_error("G1 X1 Y[", NGC, "syntax::missing-value", 9, "");
     assert_eq!(words(&b).len(), 2, "words before the error are kept");

@@ -155,6 +155,18 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     };
     let aw = cx.words.take(AXIS_WORDS[a]).map(|w| cx.mm(w.v));
     let bw = cx.words.take(AXIS_WORDS[b]).map(|w| cx.mm(w.v));
+    // LinuxCNC's polar words in the XY plane: G90 places the hole at radius @, angle ^ about the
+    // origin (the current point's own where one is missing); G91 adds them once per repeat.
+    let radius = cx.words.take(b'@').map(|w| cx.mm(w.v));
+    let angle = cx.words.take(b'^').map(|w| w.v.to_radians());
+    let polar = (radius.is_some() || angle.is_some()).then_some((radius, angle));
+    if polar.is_some() && plane != Plane::XY {
+        return Err(cx.err(
+            "rs274::polar-plane",
+            "Polar coordinates only in the XY plane",
+            span,
+        ));
+    }
     let pos = cx.st.program_position().to_array();
     let il = if cx.st.rs274.cycle_il_set {
         cx.st.rs274.cycle_il
@@ -182,6 +194,17 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
             0.0,
         )
     };
+    let mut polar_step = (0.0, 0.0);
+    if let Some((radius, angle)) = polar {
+        let (r0, t0) = (aa.hypot(bb), bb.atan2(aa));
+        if incremental {
+            polar_step = (radius.unwrap_or(0.0), angle.unwrap_or(0.0));
+        } else {
+            let (rr, tt) = (radius.unwrap_or(r0), angle.unwrap_or(t0));
+            aa = rr * tt.cos();
+            bb = rr * tt.sin();
+        }
+    }
     if r < bottom {
         return Err(cx.err(
             "rs274::cycle-r-below-bottom",
@@ -265,6 +288,12 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     for _ in 0..repeats {
         aa += da;
         bb += db;
+        if polar_step != (0.0, 0.0) {
+            let (r0, t0) = (aa.hypot(bb), bb.atan2(aa));
+            let (rr, tt) = (r0 + polar_step.0, t0 + polar_step.1);
+            aa = rr * tt.cos();
+            bb = rr * tt.sin();
+        }
         traverse(cx, &f, aa, bb, travel);
         if travel != r {
             traverse(cx, &f, aa, bb, r);

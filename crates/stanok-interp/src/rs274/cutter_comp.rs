@@ -297,7 +297,8 @@ pub(super) fn straight(
         // Entry move.
         let t = plane_of(&here, plane);
         let d = len(sub(e, t));
-        if d <= r {
+        // LinuxCNC accepts an entry exactly as long as the radius.
+        if d < r {
             return Err(err(
                 cx,
                 "rs274::comp-entry-short",
@@ -352,7 +353,8 @@ pub(super) fn arc(
     // Inside when the tool's side is the arc's turning side.
     let inside = (comp.side == 1) == ccw;
     let tool_radius = if inside { radius - r } else { radius + r };
-    if tool_radius <= 0.0 {
+    // Zero is allowed: a circle of the tool's own size is cut with the tool standing at its centre.
+    if tool_radius < 0.0 {
         return Err(err(
             cx,
             "rs274::comp-arc-radius",
@@ -460,12 +462,12 @@ fn corner(
     let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
         cx.err(
             "rs274::comp-gouge",
-            "Cutter gouging: the offset paths do not meet in this concave corner",
+            // LinuxCNC words such a gouge at an arc as the arc's radius check.
+            "Tool radius not less than arc radius with comp",
             span,
         )
         .with_note(format!(
-            "tool radius {:.4} mm is too large for this corner",
-            r
+            "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
         ))
     })?;
     move_held_end(cx, p);
@@ -478,21 +480,39 @@ fn offset_line(from: [f64; 2], to: [f64; 2], off: f64) -> ([f64; 2], [f64; 2]) {
     (add(from, scale(left(d), off)), d)
 }
 
-/// Intersections of a line (point p, unit direction d) with a circle.
+/// How far apart (mm) elements may miss each other and still count as touching: offset paths
+/// that are tangent in exact arithmetic (a line running into an arc tangentially) miss by
+/// rounding only.
+const TANGENT_TOLERANCE: f64 = 1e-6;
+
+/// Intersections of a line (point p, unit direction d) with a circle (tangent within
+/// [`TANGENT_TOLERANCE`] counts as one double point).
 fn line_circle(p: [f64; 2], d: [f64; 2], c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
     let f = sub(p, c);
     let b = dot(f, d);
-    let disc = b * b - (dot(f, f) - r * r);
+    let mut disc = b * b - (dot(f, f) - r * r);
     if disc < 0.0 {
-        return Vec::new();
+        // The line misses the circle by δ where −disc = 2rδ + δ².
+        if -disc > TANGENT_TOLERANCE * (2.0 * r + TANGENT_TOLERANCE) {
+            return Vec::new();
+        }
+        disc = 0.0;
     }
     let q = disc.sqrt();
     vec![add(p, scale(d, -b - q)), add(p, scale(d, -b + q))]
 }
 
-fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64) -> Vec<[f64; 2]> {
+/// Intersections of two circles; `same` is returned when they coincide (an arc continued by an
+/// arc of the same circle: the corner point is where the new one starts).
+fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64, same: [f64; 2]) -> Vec<[f64; 2]> {
     let d = len(sub(c2, c1));
-    if d == 0.0 || d > r1 + r2 || d < (r1 - r2).abs() {
+    if d < TANGENT_TOLERANCE && (r1 - r2).abs() < TANGENT_TOLERANCE {
+        return vec![same];
+    }
+    if d == 0.0
+        || d > r1 + r2 + TANGENT_TOLERANCE
+        || d < (r1 - r2).abs() - TANGENT_TOLERANCE
+    {
         return Vec::new();
     }
     let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
@@ -568,7 +588,7 @@ fn meet(
                 tool_radius: r2,
                 ..
             },
-        ) => circle_circle(c1, r1, c2, r2),
+        ) => circle_circle(c1, r1, c2, r2, new_start),
     };
     match last {
         // After a line: the intersection nearest the line's offset end.

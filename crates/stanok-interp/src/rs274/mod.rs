@@ -513,6 +513,11 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     if m.tool_change {
         tools::change_tool(cx, params);
         cx.st.rs274.spindle_direction = None;
+        // LinuxCNC resynchronises its position after a tool change: a programmed point left
+        // over from cutter compensation is forgotten.
+        if !cx.st.rs274.comp.on() {
+            cx.st.rs274.comp.program = None;
+        }
     }
     if let Some(span) = m.set_tool {
         mcodes::set_tool_number(cx, params, span)?;

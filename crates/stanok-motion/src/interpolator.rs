@@ -10,6 +10,10 @@
 //! * acceleration_i = a·t_i + v²·κ_i
 //! * jerk_i = (j − v³/r²)·t_i + 3·v·a·κ_i (κ = d²p/ds², |κ| = 1/r on arcs, 0 on lines).
 //!
+//! A piece that ends at rest (an exact stop, a dwell, the end) is stretched to the next grid
+//! instant: the machine waits there, so the trace contains the stop point exactly, at rest, and
+//! the next piece starts on the grid. This costs less than one period per stop.
+//!
 //! [`Interpolator::finish`] emits one more setpoint at the first grid instant at or after the end
 //! of the last piece, exactly at that piece's end point and at rest. So the trace starts at t = 0,
 //! has one setpoint per period, and its duration is the planned time rounded up to a whole period.
@@ -186,7 +190,15 @@ impl Interpolator {
         } else {
             0.0
         };
-        let t_end = self.piece_start + duration;
+        let mut t_end = self.piece_start + duration;
+        if piece.v_exit == 0.0 {
+            // A stop: the machine stands at the exact end until the next servo instant, so that
+            // the trace holds the stop point itself (and the next piece starts on the grid).
+            let ticks = (t_end / self.period).ceil();
+            if ticks.is_finite() && ticks >= 0.0 {
+                t_end = ticks * self.period;
+            }
+        }
         loop {
             let t = self.tick as f64 * self.period;
             if t >= t_end {

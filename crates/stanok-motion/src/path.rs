@@ -147,8 +147,13 @@ impl PathBuilder {
     }
 
     fn push_segment(&mut self, seg: &PathSegment, out: &mut impl FnMut(Piece)) {
-        if !finite9(&seg.start) || !finite9(&seg.end) || !(seg.path_speed > 0.0) {
+        if !finite9(&seg.start) || !finite9(&seg.end) {
             return;
+        }
+        // The adapter always gives a positive finite speed; anything else runs at the maximum feed.
+        let mut seg_speed = seg.path_speed;
+        if !(seg_speed.is_finite() && seg_speed > 0.0) {
+            seg_speed = self.config.max_feed;
         }
         let tol = self.effective_tolerance(seg.path_mode);
         let chord_tol = match tol {
@@ -200,6 +205,11 @@ impl PathBuilder {
         let inner_rule = EndRule::Blend {
             tolerance: tol.unwrap_or(2.0 * INTERNAL_TOLERANCE),
         };
+        // The path is continuous whatever the caller says: the first chord starts where the
+        // machine is (the programmed start, unless a segment was dropped before this one).
+        if let Some(first) = points.first_mut() {
+            *first = self.position;
+        }
         let count = points.len();
         for k in 1..count {
             let rule = if k + 1 == count { end_rule } else { inner_rule };
@@ -207,6 +217,7 @@ impl PathBuilder {
                 &points[k - 1],
                 &points[k],
                 seg,
+                seg_speed,
                 this_chord_tol,
                 rule,
                 report_tol,
@@ -222,6 +233,7 @@ impl PathBuilder {
         a: &Point9,
         b: &Point9,
         seg: &PathSegment,
+        speed: f64,
         chord_tolerance: f64,
         end_rule: EndRule,
         tolerance: f64,
@@ -246,7 +258,7 @@ impl PathBuilder {
             dir,
             length,
             start_trim: 0.0,
-            speed: seg.path_speed,
+            speed,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
             chord_tolerance,

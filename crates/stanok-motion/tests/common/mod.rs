@@ -89,3 +89,41 @@ pub fn dist_to_polyline(q: &Point9, points: &[Point9]) -> f64 {
         .map(|w| dist_to_segment(q, &w[0], &w[1]))
         .fold(f64::INFINITY, f64::min)
 }
+
+/// Distance to a polyline for a point moving forward along it: searches the chords near the
+/// last closest one (the trace advances at most a few hundred fine chords per servo period).
+pub struct PathCursor<'a> {
+    points: &'a [Point9],
+    at: usize,
+}
+
+impl<'a> PathCursor<'a> {
+    pub fn new(points: &'a [Point9]) -> Self {
+        PathCursor { points, at: 0 }
+    }
+
+    pub fn distance(&mut self, q: &Point9) -> f64 {
+        let n = self.points.len();
+        if n < 2 {
+            return self.points.first().map_or(f64::INFINITY, |p| dist(q, p));
+        }
+        // Search forward in windows of 64 chords while the best one is at the window's far end.
+        let mut lo = self.at.saturating_sub(8);
+        let mut best = (f64::INFINITY, self.at);
+        loop {
+            let hi = (lo + 64).min(n - 1);
+            for k in lo..hi {
+                let d = dist_to_segment(q, &self.points[k], &self.points[k + 1]);
+                if d < best.0 {
+                    best = (d, k);
+                }
+            }
+            if best.1 + 1 < hi || hi == n - 1 {
+                break;
+            }
+            lo = hi;
+        }
+        self.at = best.1;
+        best.0
+    }
+}

@@ -187,8 +187,8 @@ impl PathBuilder {
                     let xyz = h.point_at(f);
                     let mut q = [0.0; 9];
                     q[..3].copy_from_slice(&xyz);
-                    for i in 3..9 {
-                        q[i] = seg.start[i] + (seg.end[i] - seg.start[i]) * f;
+                    for (i, qi) in q.iter_mut().enumerate().skip(3) {
+                        *qi = seg.start[i] + (seg.end[i] - seg.start[i]) * f;
                     }
                     points.push(q);
                 }
@@ -241,7 +241,7 @@ impl PathBuilder {
     ) {
         let delta = sub9(b, a);
         let length = norm9(&delta);
-        if !(length > 0.0) || !length.is_finite() {
+        if length.is_nan() || length <= 0.0 || !length.is_finite() {
             // Nothing to move; the rule of this end still applies to what follows.
             if let Some(p) = &mut self.pending {
                 if end_rule == EndRule::Stop {
@@ -350,7 +350,7 @@ impl PathBuilder {
     /// Emits a chord less its start trim and `end_trim`.
     fn emit_line(&self, c: &Chord, end_trim: f64, out: &mut impl FnMut(Piece)) {
         let length = c.length - c.start_trim - end_trim;
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             return;
         }
         let start: Point9 = std::array::from_fn(|i| c.start[i] + c.start_trim * c.dir[i]);

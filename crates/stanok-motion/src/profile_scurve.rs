@@ -135,7 +135,7 @@ fn sane(x: f64) -> f64 {
 pub fn reach(v: f64, length: f64, a: f64, j: f64) -> f64 {
     let (a, j) = (sane(a), sane(j));
     let v = v.max(0.0);
-    if !(length > 0.0) || !v.is_finite() {
+    if length.is_nan() || length <= 0.0 || !v.is_finite() {
         return v;
     }
     let dv_full = a * a / j;
@@ -155,7 +155,7 @@ pub fn reach(v: f64, length: f64, a: f64, j: f64) -> f64 {
         for _ in 0..8 {
             let f = j * x * x * x + 2.0 * v * x - length;
             let df = 3.0 * j * x * x + 2.0 * v;
-            if !(df > 0.0) {
+            if df.is_nan() || df <= 0.0 {
                 break;
             }
             x = (x - f / df).max(0.0);

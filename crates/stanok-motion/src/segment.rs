@@ -55,6 +55,7 @@ pub struct PathSegment {
 }
 
 /// What the planner receives.
+#[allow(clippy::large_enum_variant)] // one at a time, streamed: boxing would only add an allocation
 #[derive(Debug, Clone, PartialEq)]
 pub enum PlannerInput {
     /// A motion block.

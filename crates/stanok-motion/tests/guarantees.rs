@@ -111,7 +111,7 @@ proptest! {
 
     #[test]
     fn arcs_between_lines_keep_limits_and_tolerance(
-        r in 0.5f64..40.0, a0 in 0.0f64..6.28, sweep in 0.05f64..6.2, cw in any::<bool>(), dz in -5.0f64..5.0,
+        r in 0.5f64..40.0, a0 in 0.0f64..std::f64::consts::TAU, sweep in 0.05f64..6.2, cw in any::<bool>(), dz in -5.0f64..5.0,
         feed in 300.0f64..6000.0, mode in mode(), profile in profile(),
     ) {
         let cfg = mill();

@@ -47,7 +47,7 @@ impl Progress {
     pub fn command(&self, offset: u64) {
         let n = self.0.commands.get().wrapping_add(1);
         self.0.commands.set(n);
-        if n % 256 != 0 {
+        if n & 255 != 0 {
             return;
         }
         if !self.0.shown.get() && self.0.started.elapsed() > Duration::from_secs(1) {
@@ -63,7 +63,7 @@ impl Progress {
     pub fn setpoint(&self, t: f64) {
         let n = self.0.setpoints.get().wrapping_add(1);
         self.0.setpoints.set(n);
-        if n % 4096 == 0 && self.0.shown.get() {
+        if n & 4095 == 0 && self.0.shown.get() {
             self.0.bar.set_message(format!("{t:.1} s of machine time"));
         }
     }

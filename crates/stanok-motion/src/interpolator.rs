@@ -24,6 +24,7 @@
 //! * The profile never leaves the piece (s clamped to [0, length]); a piece's last point is its
 //!   exact `end`.
 
+use crate::hold::FeedHold;
 use crate::piece::Shape;
 use crate::planner::PlannedPiece;
 use crate::profile_scurve::SCurve;
@@ -142,6 +143,7 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    hold: FeedHold,
 }
 
 impl Interpolator {
@@ -153,6 +155,7 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            hold: FeedHold::default(),
         }
     }
 
@@ -181,34 +184,62 @@ impl Interpolator {
         self.period
     }
 
+    /// Requests a feed hold: from the first servo instant at or after `at` (s), the machine brakes
+    /// along the path at each piece's acceleration limit, stands still for `standstill` seconds,
+    /// then resumes (see [`crate::hold`]).
+    pub fn request_hold(&mut self, at: f64, standstill: f64) {
+        self.hold.request(at, standstill);
+    }
+
     /// Samples one piece: every grid instant in its time interval goes to `out`.
     pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
-        let profile = Profile::of(piece);
-        let duration = profile.duration();
-        let duration = if duration.is_finite() && duration >= 0.0 {
-            duration
-        } else {
-            0.0
-        };
-        let mut t_end = self.piece_start + duration;
-        if piece.v_exit == 0.0 {
-            // A stop: the machine stands at the exact end until the next servo instant, so that
-            // the trace holds the stop point itself (and the next piece starts on the grid).
-            let ticks = (t_end / self.period).ceil();
-            if ticks.is_finite() && ticks >= 0.0 {
-                t_end = ticks * self.period;
-            }
-        }
+        let mut phase = self.hold.first_phase(piece);
+        let mut phase_start = self.piece_start;
         loop {
-            let t = self.tick as f64 * self.period;
-            if t >= t_end {
-                break;
+            let duration = phase.duration();
+            let mut phase_end = phase_start + duration;
+            let last = phase.is_last(piece);
+            if last && phase.exit_speed(piece) == 0.0 {
+                // A stop: the machine stands at the exact end until the next servo instant, so
+                // that the trace holds the stop point itself (and the next piece starts on the
+                // grid).
+                let ticks = (phase_end / self.period).ceil();
+                if ticks.is_finite() && ticks >= 0.0 {
+                    phase_end = ticks * self.period;
+                }
             }
-            let k = profile.at(t - self.piece_start);
-            out(&sample(piece, k, t));
-            self.tick += 1;
+            let mut switched = None;
+            loop {
+                let t = self.tick as f64 * self.period;
+                if t >= phase_end {
+                    break;
+                }
+                let k = phase.at(t - phase_start);
+                if let Some(next) = self.hold.trigger(t, &phase, k, piece) {
+                    switched = Some((next, t));
+                    break;
+                }
+                let mut sp = sample(piece, k, t);
+                sp.soft &= phase.is_planned();
+                out(&sp);
+                self.tick += 1;
+            }
+            match switched {
+                Some((next, t)) => {
+                    phase = next;
+                    phase_start = t;
+                }
+                None if last => {
+                    self.hold.carry(&phase, piece);
+                    self.piece_start = phase_end;
+                    break;
+                }
+                None => {
+                    phase = self.hold.next_phase(&phase, phase_end, piece);
+                    phase_start = phase_end;
+                }
+            }
         }
-        self.piece_start = t_end;
         self.end = piece.piece.end;
         self.line = piece.piece.line;
     }

@@ -9,7 +9,7 @@
 //!   blends within the G64 tolerance, per-piece speed/acceleration/jerk limits from the axis limits.
 //! * [`planner`]: grbl-style reverse/forward passes over a bounded window.
 //! * [`profile_trapezoid`] (BRISK), [`profile_scurve`] (SOFT): one piece's time law.
-//! * [`interpolator`]: the servo-period grid; [`stage::MotionStage`] wires everything.
+//! * [`interpolator`]: the servo-period grid, with [`hold`] (feed hold and resume); [`stage::MotionStage`] wires everything.
 //! * [`nominal`]: length / feed, the lower bound the run report keeps beside the planned time.
 //!
 //! Guarantees (property-tested in `tests/` and over the corpus in the `stanok` crate): no setpoint
@@ -22,6 +22,7 @@
 #![deny(missing_docs)]
 
 pub mod adapter;
+pub mod hold;
 pub mod interpolator;
 pub mod limits;
 pub mod monitor;

@@ -156,7 +156,7 @@ pub fn arc_limits(
 ) -> (f64, f64, f64) {
     let (mut vb, mut ab, mut jb) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
     for i in 0..9 {
-        let rho = e1[i].hypot(e2[i]);
+        let rho = (e1[i] * e1[i] + e2[i] * e2[i]).sqrt();
         if rho > 0.0 {
             vb = vb.min(axes[i].velocity / rho);
             ab = ab.min(axes[i].acceleration / rho);

@@ -62,6 +62,11 @@ impl MotionStage {
         self.adapter.set_rapid_override(fraction);
     }
 
+    /// Feed hold at simulated time `at` (s): brake on the path, stand `standstill` s, resume.
+    pub fn feed_hold(&mut self, at: f64, standstill: f64) {
+        self.interpolator.request_hold(at, standstill);
+    }
+
     /// Pieces released so far, deviation statistics.
     pub fn stats(&self) -> StageStats {
         self.stats

@@ -4,7 +4,9 @@
 //!    straight pieces, where the path is C², see `stanok_motion::monitor`);
 //! 2. under G64 P the trace stays within P of the programmed path; under G60/G61 (exact stop) it
 //!    holds every block end exactly, at rest; under exact path it stays on the polyline;
-//! 3. the trace ends exactly at the last programmed point and lasts the cycle time.
+//! 3. the trace ends exactly at the last programmed point and lasts the cycle time;
+//!
+//! All of it also with a feed hold anywhere.
 
 mod common;
 use common::*;
@@ -150,6 +152,24 @@ proptest! {
             for q in [s, e] {
                 prop_assert!(trace.iter().any(|sp| dist(&sp.position, &q) <= 1e-9 && sp.velocity.iter().all(|v| v.abs() < 1e-9)));
             }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+
+    /// A feed hold anywhere keeps every guarantee: limits, tolerance, the end.
+    #[test]
+    fn a_feed_hold_anywhere_keeps_the_guarantees(points in path(), feed in 600.0f64..8000.0, tol in 0.005f64..0.5, at in 0.0f64..3.0, standstill in 0.0f64..0.5) {
+        let cfg = mill();
+        let mode = PathMode::Continuous { tolerance: tol };
+        let inputs: Vec<_> = points.windows(2).map(|w| line(w[0], w[1], feed, mode, AccelerationProfile::Brisk)).collect();
+        let (trace, mon, t) = run_with_hold(&cfg, points[0], inputs, at, standstill);
+        check_common(&trace, &mon, t, points.last().unwrap());
+        for sp in &trace {
+            let d = dist_to_polyline(&sp.position, &points);
+            prop_assert!(d <= tol * (1.0 + 1e-9) + 1e-9, "{d} > {tol} at t = {}", sp.t);
         }
     }
 }

@@ -101,3 +101,51 @@ fn g64_corner_is_blended_within_tolerance_and_faster() {
     );
     assert_eq!(trace.last().unwrap().position, c);
 }
+
+#[test]
+fn feed_hold_brakes_on_the_path_stands_and_resumes() {
+    let cfg = mill();
+    let (a, b) = (p3(0.0, 0.0, 0.0), p3(100.0, 0.0, 0.0));
+    // Hold at 0.5 s (cruising at 100 mm/s, s = 45 mm): 0.1 s of braking to s = 50 mm at 0.6 s,
+    // 1 s standing, then 50 mm from rest to rest: 0.5 + 0.1 s. Total 2.2 s.
+    let (trace, mon, t) = run_with_hold(&cfg, a, vec![line(a, b, 6000.0, G64, Brisk)], 0.5, 1.0);
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    assert!((t - 2.2).abs() < 2e-3, "{t}");
+    for sp in trace.iter().filter(|s| s.t > 0.601 && s.t < 1.599) {
+        assert!(
+            (sp.position[0] - 50.0).abs() < 1e-9 && sp.velocity[0] == 0.0,
+            "{sp:?}"
+        );
+    }
+    assert_eq!(trace.last().unwrap().position, b);
+}
+
+#[test]
+fn feed_hold_across_blended_corners_keeps_limits_and_tolerance() {
+    let cfg = mill();
+    let pts: Vec<_> = (0..40)
+        .map(|k| p3(2.0 * k as f64, if k % 2 == 0 { 0.0 } else { 1.5 }, 0.0))
+        .collect();
+    let inputs = pts
+        .windows(2)
+        .map(|w| line(w[0], w[1], 5000.0, G64, Brisk))
+        .collect();
+    let (_, _, t_free) = run(
+        &cfg,
+        pts[0],
+        pts.windows(2)
+            .map(|w| line(w[0], w[1], 5000.0, G64, Brisk))
+            .collect(),
+    );
+    let (trace, mon, t) = run_with_hold(&cfg, pts[0], inputs, 0.3, 0.5);
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    assert!(t > t_free + 0.5, "{t} vs {t_free}");
+    for sp in &trace {
+        assert!(dist_to_polyline(&sp.position, &pts) <= 0.05 + 1e-9);
+    }
+    // It did stop somewhere after 0.3 s, away from any vertex.
+    assert!(trace
+        .iter()
+        .any(|s| s.t > 0.3 && s.t < t - 0.5 && s.velocity.iter().all(|v| *v == 0.0)));
+    assert_eq!(trace.last().unwrap().position, *pts.last().unwrap());
+}

@@ -65,6 +65,30 @@ pub fn run(
     (trace, monitor, t)
 }
 
+/// As [`run`], with a feed hold at `at` s standing `standstill` s.
+pub fn run_with_hold(
+    config: &MotionConfig,
+    start: Point9,
+    inputs: Vec<PlannerInput>,
+    at: f64,
+    standstill: f64,
+) -> (Vec<Setpoint>, TraceMonitor, f64) {
+    let mut stage = MotionStage::new(config);
+    let mut trace = Vec::new();
+    let mut monitor = TraceMonitor::new(config.axes, config.servo_period);
+    let mut sink = |sp: &Setpoint| {
+        monitor.observe(sp);
+        trace.push(*sp);
+    };
+    stage.set_position(start, &mut sink);
+    stage.feed_hold(at, standstill);
+    for i in inputs {
+        stage.push_input(i, &mut sink);
+    }
+    let t = stage.finish(&mut sink);
+    (trace, monitor, t)
+}
+
 pub fn dist(a: &Point9, b: &Point9) -> f64 {
     (0..9).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
 }

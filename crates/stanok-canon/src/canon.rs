@@ -545,6 +545,9 @@ pub enum Canon {
     PalletShuttle,
     /// M2/M30 (AxiOMA also M99): the program is over.
     ProgramEnd,
+    /// The program text ended with its closing `%` without M2/M30 (LinuxCNC's FINISH): nothing
+    /// is reset, the run is over.
+    Finish,
 }
 
 impl Canon {

@@ -360,6 +360,7 @@ impl LinuxCncPrinter {
             ),
             Canon::PalletShuttle => self.line(n, "PALLET_SHUTTLE()".into()),
             Canon::ProgramEnd => self.line(n, "PROGRAM_END()".into()),
+            Canon::Finish => self.line(n, "FINISH()".into()),
         }
         &self.out
     }

@@ -135,9 +135,7 @@ impl Ctx<'_> {
             let tw = angle.map(|w| w.v.to_radians());
             let (r, t) = match self.st.distance {
                 DistanceMode::Absolute => (rw.unwrap_or(r0), tw.unwrap_or(t0)),
-                DistanceMode::Incremental => {
-                    (r0 + rw.unwrap_or(0.0), t0 + tw.unwrap_or(0.0))
-                }
+                DistanceMode::Incremental => (r0 + rw.unwrap_or(0.0), t0 + tw.unwrap_or(0.0)),
             };
             p[0] = r * t.cos();
             p[1] = r * t.sin();

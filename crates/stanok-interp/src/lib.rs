@@ -71,6 +71,9 @@ pub struct InterpOptions {
     pub max_blocks: u64,
     /// Skip erroneous blocks and go on (for `stanok check`).
     pub continue_after_error: bool,
+    /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
+    /// default, as in LinuxCNC (the operator turns it on).
+    pub block_delete: bool,
     /// With `continue_after_error`: stop after this many errors.
     pub max_errors: usize,
     /// Stored control data: tool table, offset tables, home positions, preset parameters.
@@ -104,6 +107,7 @@ impl InterpOptions {
             max_loop_iterations: 1_000_000,
             max_blocks: 200_000_000,
             continue_after_error: false,
+            block_delete: false,
             max_errors: 100,
             control: ControlData::default(),
             diameter_axes: [true, false, false, false, false, false, false, false, false],
@@ -333,6 +337,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 return Ok(false);
             }
             if self.percent_open && self.flow.skipping().is_none() {
+                // The closing `%` without a program end: LinuxCNC's FINISH.
+                self.queue
+                    .push_back(Spanned::new(self.block.span(), Canon::Finish));
                 return Ok(true);
             }
             return Ok(false);
@@ -387,7 +394,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 }
                 Some(FlowAction::Execute) => {}
             }
-            if self.block.block_delete {
+            if self.block.block_delete && self.opts.block_delete {
                 return Ok(false);
             }
         } else if let Some(e) = first_error {
@@ -473,18 +480,23 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     )
                 }) {
                     let text = self.block.slice(c.text);
-                    out.push(match c.kind {
-                        CommentKind::Msg => Canon::Message {
+                    let cmd = match c.kind {
+                        CommentKind::Msg => Some(Canon::Message {
                             text: text.to_string(),
-                        },
-                        CommentKind::Debug => Canon::Message {
+                        }),
+                        // #5599 = 0 silences (DEBUG,…) (LinuxCNC; 1 at start).
+                        CommentKind::Debug if self.params.get(5599) == 0.0 => None,
+                        CommentKind::Debug => Some(Canon::Message {
                             text: flow::substitute_parameters(text, &eval),
-                        },
+                        }),
                         // rs274 drops the blanks a comment starts with.
-                        _ => Canon::Comment {
+                        _ => Some(Canon::Comment {
                             text: text.trim_start().to_string(),
-                        },
-                    });
+                        }),
+                    };
+                    if let Some(cmd) = cmd {
+                        out.push(cmd);
+                    }
                 }
             }
         }

@@ -67,6 +67,8 @@ impl Default for Parameters {
     fn default() -> Self {
         let mut numbered = vec![0.0; MAX_PARAMETERS];
         numbered[5220] = 1.0;
+        // (DEBUG,…) messages on (LinuxCNC).
+        numbered[5599] = 1.0;
         Parameters {
             numbered,
             globals: HashMap::new(),

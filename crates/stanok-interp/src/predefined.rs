@@ -24,9 +24,21 @@ pub fn predefined(name: &str, st: &ModalState, params: &Parameters, line: u32) -
     let rs = &st.rs274;
     let units = st.units.mm_per_unit();
     let pos = st.program_position().to_array();
-    let axis = |i: usize| if matches!(i, 3..=5) { pos[i] } else { pos[i] / units };
+    let axis = |i: usize| {
+        if matches!(i, 3..=5) {
+            pos[i]
+        } else {
+            pos[i] / units
+        }
+    };
     let abs = st.position.to_array();
-    let abs_axis = |i: usize| if matches!(i, 3..=5) { abs[i] } else { abs[i] / units };
+    let abs_axis = |i: usize| {
+        if matches!(i, 3..=5) {
+            abs[i]
+        } else {
+            abs[i] / units
+        }
+    };
     Some(match name {
         "_vmajor" => VERSION.0,
         "_vminor" => VERSION.1,

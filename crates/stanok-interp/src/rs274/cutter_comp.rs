@@ -509,10 +509,7 @@ fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64, same: [f64; 2]) -
     if d < TANGENT_TOLERANCE && (r1 - r2).abs() < TANGENT_TOLERANCE {
         return vec![same];
     }
-    if d == 0.0
-        || d > r1 + r2 + TANGENT_TOLERANCE
-        || d < (r1 - r2).abs() - TANGENT_TOLERANCE
-    {
+    if d == 0.0 || d > r1 + r2 + TANGENT_TOLERANCE || d < (r1 - r2).abs() - TANGENT_TOLERANCE {
         return Vec::new();
     }
     let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);

@@ -349,6 +349,10 @@ impl SimMachine {
                 },
             ),
             Canon::PalletShuttle => self.log(line, "pallet shuttle"),
+            Canon::Finish => {
+                self.report.program_ended = true;
+                self.log(line, "% end of program text");
+            }
             Canon::ProgramEnd => {
                 self.report.program_ended = true;
                 self.log(line, "M2/M30 program end");

@@ -297,3 +297,50 @@ fn logs_m_functions_tools_and_messages_with_lines() {
     assert_eq!(r.bounding_box, None);
     assert_eq!(r.nominal_time_s, 0.0);
 }
+
+#[test]
+fn planned_cycle_time_and_axis_peaks() {
+    // 100 mm at F6000 with a = 1000 mm/s²: trapezoid 1 s + 0.1 s; the sim reports it and the peaks.
+    let o = p(0.0, 0.0, 0.0);
+    let cmds = [
+        at(1, init(o)),
+        at(2, Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 6000.0))),
+        at(3, Canon::Dwell { seconds: 0.5 }),
+        at(4, Canon::ProgramEnd),
+    ];
+    let mut sim = SimMachine::new(MachineData::default_mill());
+    for c in &cmds {
+        sim.apply(c).unwrap();
+    }
+    let r = sim.finish();
+    assert!((r.cycle_time_s - 1.6).abs() < 1e-9, "{}", r.cycle_time_s);
+    assert_eq!(r.setpoints, 1601);
+    assert_eq!(r.violation_count, 0, "{:?}", r.violations);
+    let x = &r.axes[0];
+    assert_eq!(x.axis, 'X');
+    assert!((x.peak_velocity - 100.0).abs() < 1e-9 && (x.peak_acceleration - 1000.0).abs() < 1e-9);
+    assert!(x.trace_peak_acceleration <= 1000.0 * (1.0 + 1e-6));
+    // A second finish changes nothing.
+    assert_eq!(sim.finish().setpoints, 1601);
+}
+
+#[test]
+fn feed_override_scales_the_planned_time() {
+    let o = p(0.0, 0.0, 0.0);
+    let cmds = [
+        at(1, init(o)),
+        at(2, Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 3000.0))),
+    ];
+    let options = SimOptions {
+        feed_override: 2.0,
+        ..SimOptions::default()
+    };
+    let mut sim = SimMachine::with_options(MachineData::default_mill(), options);
+    for c in &cmds {
+        sim.apply(c).unwrap();
+    }
+    // 200 % of F3000 = 100 mm/s: 1.1 s, as F6000 at 100 %.
+    let r = sim.finish();
+    assert!((r.cycle_time_s - 1.1).abs() < 1e-9, "{}", r.cycle_time_s);
+    assert_eq!(r.feed_override_percent, 200.0);
+}

@@ -1,0 +1,60 @@
+//! `stanok run` motion options: --trace, --feed-override, --servo-period, and the JSON fields.
+
+mod common;
+use common::*;
+
+fn program(tag: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("stanok-motion-cli-{}-{tag}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("p.ngc");
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
+}
+
+#[test]
+fn trace_file_has_one_line_per_period_and_ends_at_the_final_position() {
+    let prog = program("trace", "G21 G90 G61\nG1 X100 F3000\nM2\n");
+    let trace = std::path::Path::new(&prog).with_file_name("t.csv");
+    let (code, out, err) = stanok(&[
+        "run",
+        &prog,
+        "--json",
+        "--trace",
+        &trace.display().to_string(),
+        "--servo-period",
+        "2",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&out).unwrap();
+    // 100 mm at F3000 (50 mm/s), a = 1000: 100/50 + 50/1000 = 2.05 s; at 2 ms: 1026 setpoints.
+    assert!(
+        (r["cycle_time_s"].as_f64().unwrap() - 2.05).abs() < 1e-9,
+        "{}",
+        r["cycle_time_s"]
+    );
+    assert_eq!(r["setpoints"], 1026);
+    assert_eq!(r["violation_count"], 0);
+    assert_eq!(r["servo_period_s"].as_f64(), Some(0.002));
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "t,X,Y,Z");
+    assert_eq!(lines.len(), 1027);
+    assert_eq!(lines[1], "0.000000,0.000000,0.000000,0.000000");
+    assert_eq!(
+        *lines.last().unwrap(),
+        "2.050000,100.000000,0.000000,0.000000"
+    );
+}
+
+#[test]
+fn feed_override_and_text_report() {
+    let prog = program("override", "G21 G90\nG1 X100 F3000\nM2\n");
+    let (code, out, _) = stanok(&["run", &prog, "--feed-override", "200"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("Cycle time  1.100 s planned"), "{out}");
+    assert!(out.contains("feed override 200%"), "{out}");
+    assert!(out.contains("Limits      ok"), "{out}");
+    let (code, _, err) = stanok(&["run", &prog, "--feed-override", "0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--feed-override"), "{err}");
+}

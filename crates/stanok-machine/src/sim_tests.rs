@@ -300,11 +300,11 @@ fn logs_m_functions_tools_and_messages_with_lines() {
 
 #[test]
 fn planned_cycle_time_and_axis_peaks() {
-    // 100 mm at F6000 with a = 1000 mm/s²: trapezoid 1 s + 0.1 s; the sim reports it and the peaks.
+    // 100 mm at F3000 (50 mm/s) with a = 1000 mm/s²: 2 s + 0.05 s, then a 0.5 s dwell; peaks.
     let o = p(0.0, 0.0, 0.0);
     let cmds = [
         at(1, init(o)),
-        at(2, Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 6000.0))),
+        at(2, Canon::StraightFeed(line(o, p(100.0, 0.0, 0.0), 3000.0))),
         at(3, Canon::Dwell { seconds: 0.5 }),
         at(4, Canon::ProgramEnd),
     ];
@@ -313,15 +313,15 @@ fn planned_cycle_time_and_axis_peaks() {
         sim.apply(c).unwrap();
     }
     let r = sim.finish();
-    assert!((r.cycle_time_s - 1.6).abs() < 1e-9, "{}", r.cycle_time_s);
-    assert_eq!(r.setpoints, 1601);
+    assert!((r.cycle_time_s - 2.55).abs() < 1e-9, "{}", r.cycle_time_s);
+    assert_eq!(r.setpoints, 2551);
     assert_eq!(r.violation_count, 0, "{:?}", r.violations);
     let x = &r.axes[0];
     assert_eq!(x.axis, 'X');
-    assert!((x.peak_velocity - 100.0).abs() < 1e-9 && (x.peak_acceleration - 1000.0).abs() < 1e-9);
+    assert!((x.peak_velocity - 50.0).abs() < 1e-9 && (x.peak_acceleration - 1000.0).abs() < 1e-9);
     assert!(x.trace_peak_acceleration <= 1000.0 * (1.0 + 1e-6));
     // A second finish changes nothing.
-    assert_eq!(sim.finish().setpoints, 1601);
+    assert_eq!(sim.finish().setpoints, 2551);
 }
 
 #[test]

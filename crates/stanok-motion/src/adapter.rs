@@ -309,3 +309,129 @@ impl CanonAdapter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limits::AxisLimit;
+
+    fn adapter() -> CanonAdapter {
+        CanonAdapter::new(&MotionConfig::new(
+            [AxisLimit::UNLIMITED; 9],
+            10_000.0,
+            5_000.0,
+        ))
+    }
+
+    fn collect(a: &mut CanonAdapter, cmds: &[Canon]) -> Vec<PlannerInput> {
+        let mut out = Vec::new();
+        for c in cmds {
+            a.adapt(c, 1, &mut |i| out.push(i));
+        }
+        out
+    }
+
+    fn x(v: f64) -> Pose {
+        Pose { x: v, ..Pose::ZERO }
+    }
+
+    fn speeds(inputs: &[PlannerInput]) -> Vec<Option<f64>> {
+        inputs
+            .iter()
+            .map(|i| match i {
+                PlannerInput::Segment(s) => Some(s.path_speed),
+                PlannerInput::Stop { .. } => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn feeds_are_clamped_overridden_and_spindle_synchronised() {
+        let mut a = adapter();
+        let feed = |f| {
+            Canon::StraightFeed(LineMove {
+                start: x(0.0),
+                end: x(10.0),
+                feed: f,
+            })
+        };
+        // 1200 mm/min = 20 mm/s; 9000 is clamped to 5000 = 83.3 mm/s.
+        let got = speeds(&collect(
+            &mut a,
+            &[feed(1200.0), feed(9000.0), feed(f64::NAN)],
+        ));
+        assert_eq!(got[0], Some(20.0));
+        assert!((got[1].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
+        assert!((got[2].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
+        // 150 % override.
+        a.set_feed_override(1.5);
+        assert_eq!(speeds(&collect(&mut a, &[feed(1200.0)])), vec![Some(30.0)]);
+        // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, no override; stops
+        // before and after.
+        let got = speeds(&collect(
+            &mut a,
+            &[
+                Canon::SetSpindleSpeed {
+                    spindle: 0,
+                    rpm: 600.0,
+                },
+                Canon::StartSpindleSync {
+                    pitch: 1.5,
+                    velocity_mode: false,
+                },
+                feed(100.0),
+                Canon::StopSpindleSync,
+            ],
+        ));
+        assert_eq!(got, vec![None, Some(15.0), None]);
+    }
+
+    #[test]
+    fn modes_are_stamped_and_stops_forced() {
+        let mut a = adapter();
+        let got = collect(
+            &mut a,
+            &[
+                Canon::SetPathMode {
+                    mode: PathMode::ExactStop,
+                    naive_cam_tolerance: None,
+                },
+                Canon::SetAccelerationProfile {
+                    profile: AccelerationProfile::Soft,
+                },
+                Canon::StraightTraverse(LineMove {
+                    start: x(0.0),
+                    end: x(10.0),
+                    feed: 0.0,
+                }),
+                Canon::SetFeedMode {
+                    mode: FeedMode::InverseTime,
+                },
+                Canon::SetFeedMode {
+                    mode: FeedMode::InverseTime,
+                },
+                Canon::Dwell { seconds: 2.0 },
+                Canon::ProgramStop { optional: true },
+                Canon::ChangeTool { tool: 3 },
+                Canon::ProgramEnd,
+            ],
+        );
+        let PlannerInput::Segment(s) = &got[0] else {
+            panic!("{got:?}")
+        };
+        assert_eq!(
+            (s.path_mode, s.profile, s.rapid),
+            (PathMode::ExactStop, AccelerationProfile::Soft, true)
+        );
+        assert!((s.path_speed - 10_000.0 / 60.0).abs() < 1e-12);
+        // One stop for the feed-mode change (not for repeating it), the dwell, M1, M6, M2.
+        assert_eq!(got.len(), 6, "{got:?}");
+        assert_eq!(
+            got[2],
+            PlannerInput::Stop {
+                dwell_s: 2.0,
+                line: 1
+            }
+        );
+    }
+}

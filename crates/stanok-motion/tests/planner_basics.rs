@@ -149,3 +149,26 @@ fn feed_hold_across_blended_corners_keeps_limits_and_tolerance() {
         .any(|s| s.t > 0.3 && s.t < t - 0.5 && s.velocity.iter().all(|v| *v == 0.0)));
     assert_eq!(trace.last().unwrap().position, *pts.last().unwrap());
 }
+
+#[test]
+fn soft_line_is_an_s_curve_with_bounded_jerk() {
+    let cfg = mill();
+    let (a, b) = (p3(0.0, 0.0, 0.0), p3(100.0, 0.0, 0.0));
+    let (trace, mon, t) = run(&cfg, a, vec![line(a, b, 6000.0, PathMode::ExactStop, Soft)]);
+    // Ramp 0 → 100 mm/s with a = 1000, j = 20 000: 0.1 + 0.05 = 0.15 s over 7.5 mm, twice;
+    // cruise 85 mm at 100 mm/s: 0.85 s. Total 1.15 s.
+    assert!((t - 1.15).abs() < 1e-9, "{t}");
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    assert!(
+        (mon.peaks[0].jerk - 20_000.0).abs() < 1e-6,
+        "{}",
+        mon.peaks[0].jerk
+    );
+    // Finite differences at 1 ms see the same jerk (the path is C² here), within 1e-6.
+    assert!(
+        mon.peaks[0].fd_jerk <= 20_000.0 * (1.0 + 1e-6),
+        "{}",
+        mon.peaks[0].fd_jerk
+    );
+    assert_eq!(trace.last().unwrap().position, b);
+}

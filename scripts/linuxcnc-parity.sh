@@ -29,3 +29,14 @@ for prog in "${progs[@]}"; do
   esac
 done
 echo "parity: $same/$total"
+
+if [ "${1:-}" = "--update-goldens" ]; then
+  out="$here/crates/stanok/tests/linuxcnc-samples/expected"
+  rm -rf "$out"; mkdir -p "$out"
+  grep -v '^#' "$here/crates/stanok/tests/linuxcnc-samples/list.txt" | while read -r rel; do
+    name="$(echo "$rel" | tr '/' '_')"
+    (cd "$tmp" && timeout 20 rs274 -t "$tbl" -g "/$rel" lx.txt 2>lx.err </dev/null >/dev/null)
+    cat "$tmp/lx.txt" "$tmp/lx.err" > "$out/${name%.ngc}.canon.txt"
+  done
+  echo "goldens: $(ls "$out" | wc -l) written to $out"
+fi

@@ -39,7 +39,7 @@ def same(a, b):
     na, nb = NUM.findall(a), NUM.findall(b)
     if NUM.sub("#", a) != NUM.sub("#", b) or len(na) != len(nb):
         return False
-    return all(abs(float(x) - float(y)) <= TOL * max(1.0, abs(float(y))) for x, y in zip(na, nb))
+    return all(abs(float(x) - float(y)) <= TOL for x, y in zip(na, nb))
 
 
 def main():
@@ -62,6 +62,10 @@ def main():
         return 1
     if st_error is None:
         print(f"differs: linuxcnc stopped ({lx_error}), stanok ran it")
+        return 1
+    head = lx_error.split(":")[0]
+    if not st_error.strip().lstrip("×").strip().startswith(head):
+        print(f"differs: error {st_error.strip()!r}, LinuxCNC {lx_error!r}")
         return 1
     extra = [l for l in lx[len(st):] if "STRAIGHT_" in l or "ARC_FEED" in l or "NURBS" in l]
     if extra:

@@ -149,7 +149,7 @@ impl Ctx<'_> {
             if !self.opts.axes[i] {
                 return Err(self.err(
                     "interp::axis-not-configured",
-                    format!("{} axis is not configured on this machine", l as char),
+                    axis_not_configured(self.opts.dialect, l),
                     val.span,
                 ));
             }
@@ -321,5 +321,18 @@ impl Ctx<'_> {
             ));
         }
         Ok(r as u32)
+    }
+}
+
+/// The message for a word of an axis the machine lacks: LinuxCNC's wording for RS274/NGC (its
+/// reader does not know the letter), a plain one for AxiOMA.
+pub fn axis_not_configured(dialect: Dialect, letter: u8) -> String {
+    match dialect {
+        Dialect::Rs274ngc => format!(
+            "Bad character '{}' used ({} axis is not configured on this machine)",
+            (letter as char).to_ascii_lowercase(),
+            letter as char
+        ),
+        Dialect::Axioma => format!("{} axis is not configured on this machine", letter as char),
     }
 }

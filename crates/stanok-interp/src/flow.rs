@@ -499,8 +499,15 @@ impl Flow {
     /// The error for a construct still open at end of file, if any.
     pub fn unterminated(&self, last: &Block) -> Option<Diagnostic> {
         let msg = match &self.skip {
-            Some(Skip::FindSub { label, .. }) => format!("Unable to find subroutine o{label}"),
-            Some(Skip::Sub(l)) => format!("o{l} sub has no endsub"),
+            // LinuxCNC's wording (it also names the file and the calling line).
+            Some(Skip::FindSub { label, .. }) => {
+                format!("EOF in file seeking o-word: o{label} (the subroutine is not defined)")
+            }
+            // A definition without its endsub swallows the rest of the file; LinuxCNC then
+            // reports the missing program end.
+            Some(Skip::Sub(l)) => {
+                format!("File ended with no percent sign or program end (o{l} sub has no endsub)")
+            }
             Some(Skip::IfBranch(l)) | Some(Skip::ToEndIf(l)) => format!("o{l} if has no endif"),
             Some(Skip::LoopEnd(l)) => format!("o{l} loop has no end"),
             None => {

@@ -71,6 +71,10 @@ pub struct InterpOptions {
     pub max_blocks: u64,
     /// Skip erroneous blocks and go on (for `stanok check`).
     pub continue_after_error: bool,
+    /// RS274/NGC user M codes M100–M199: passed to the machine as auxiliary functions when true.
+    /// False (default) rejects them as "Unknown m code", as LinuxCNC does without an executable
+    /// of that name on its user M-code path (its standalone interpreter has none).
+    pub user_m_codes: bool,
     /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC (the operator turns it on).
     pub block_delete: bool,
@@ -108,6 +112,7 @@ impl InterpOptions {
             max_blocks: 200_000_000,
             continue_after_error: false,
             block_delete: false,
+            user_m_codes: false,
             max_errors: 100,
             control: ControlData::default(),
             diameter_axes: [true, false, false, false, false, false, false, false, false],

@@ -502,7 +502,17 @@ impl Rs<'_> {
                     self.semicolon_comment();
                     return Ok(());
                 }
-                Some(_) => return self.unexpected("only a comment after an O-word statement"),
+                Some(_) => {
+                    // LinuxCNC's wording.
+                    let start = self.pos;
+                    let end = char_end(self.b, start);
+                    return self.fail(
+                        "syntax::unexpected-character",
+                        "Unexpected character after O-word".to_string(),
+                        start,
+                        end,
+                    );
+                }
             }
         }
     }

@@ -145,8 +145,8 @@ fn group_of(code: u32) -> Option<Group> {
         | 722
         | 730
         | 740
-        | 760
-        | 800..=890 => Motion,
+        | 760 => Motion,
+        800..=890 if code % 10 == 0 => Motion,
         170 | 180 | 190 | 171 | 181 | 191 => Plane,
         900 | 910 => Distance,
         901 | 911 => ArcDistance,
@@ -312,7 +312,7 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                 m.n_coolant += 1;
                 false
             }
-            100..=199 => {
+            100..=199 if cx.opts.user_m_codes => {
                 m.user[m.n_user] = code;
                 m.n_user += 1;
                 false
@@ -334,6 +334,13 @@ fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                     cx,
                     &format!("M{code}"),
                     "RS274/NGC completeness",
+                    span,
+                ))
+            }
+            _ if code > 199 => {
+                return Err(cx.err(
+                    "rs274::unknown-m-code",
+                    format!("M-code greater than 199: M{code}"),
                     span,
                 ))
             }
@@ -790,7 +797,7 @@ fn axis_values(cx: &mut Ctx<'_>) -> Result<[Option<f64>; 9], Diagnostic> {
             if !cx.opts.axes[k] {
                 return Err(cx.err(
                     "interp::axis-not-configured",
-                    format!("{} axis is not configured on this machine", letter as char),
+                    crate::ctx::axis_not_configured(cx.opts.dialect, letter),
                     w.span,
                 ));
             }

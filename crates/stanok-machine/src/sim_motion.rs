@@ -34,6 +34,9 @@ pub struct SimOptions {
     pub rapid_override: f64,
     /// Planner look-ahead, pieces.
     pub lookahead: usize,
+    /// A feed hold: (machine time at which the operator presses it, s; seconds the machine then
+    /// stands before cycle start resumes it).
+    pub feed_hold: Option<(f64, f64)>,
 }
 
 impl Default for SimOptions {
@@ -43,6 +46,7 @@ impl Default for SimOptions {
             feed_override: 1.0,
             rapid_override: 1.0,
             lookahead: stanok_motion::limits::DEFAULT_LOOKAHEAD,
+            feed_hold: None,
         }
     }
 }
@@ -108,8 +112,12 @@ impl MotionRun {
         config.rapid_override = options.rapid_override;
         config.lookahead = options.lookahead;
         let config = config.sanitised();
+        let mut stage = MotionStage::new(&config);
+        if let Some((at, standstill)) = options.feed_hold {
+            stage.feed_hold(at, standstill);
+        }
         MotionRun {
-            stage: MotionStage::new(&config),
+            stage,
             monitor: TraceMonitor::new(limits, config.servo_period),
             travel,
             limits,

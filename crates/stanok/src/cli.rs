@@ -94,6 +94,10 @@ pub struct MotionArgs {
     /// Rapid override in percent (more than 0, at most 100).
     #[arg(long, value_name = "PERCENT", default_value_t = 100.0)]
     pub rapid_override: f64,
+    /// Feed hold: at machine time AT seconds the operator holds the feed; the machine brakes on
+    /// the path, stands SECONDS, then resumes (`--feed-hold 2.5:1`).
+    #[arg(long, value_name = "AT:SECONDS")]
+    pub feed_hold: Option<String>,
     /// Planner look-ahead window, path pieces (at least 2).
     #[arg(long, value_name = "PIECES", default_value_t = 1024)]
     pub lookahead: usize,

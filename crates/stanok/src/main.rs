@@ -384,11 +384,30 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
     if m.lookahead < 2 {
         return Err("--lookahead must be at least 2 pieces".into());
     }
+    let feed_hold = match &m.feed_hold {
+        None => None,
+        Some(text) => {
+            let parsed = text.split_once(':').and_then(|(a, b)| {
+                Some((a.trim().parse::<f64>().ok()?, b.trim().parse::<f64>().ok()?))
+            });
+            match parsed {
+                Some((at, s)) if at.is_finite() && at >= 0.0 && s.is_finite() && s >= 0.0 => {
+                    Some((at, s))
+                }
+                _ => {
+                    return Err(format!(
+                        "--feed-hold wants AT:SECONDS (two numbers ≥ 0), not {text}"
+                    ))
+                }
+            }
+        }
+    };
     Ok(SimOptions {
         servo_period_s: m.servo_period * 1e-3,
         feed_override: m.feed_override / 100.0,
         rapid_override: m.rapid_override / 100.0,
         lookahead: m.lookahead,
+        feed_hold,
     })
 }
 

@@ -58,3 +58,18 @@ fn feed_override_and_text_report() {
     assert_eq!(code, 2);
     assert!(err.contains("--feed-override"), "{err}");
 }
+
+#[test]
+fn feed_hold_adds_the_standstill_and_the_extra_ramps() {
+    // 100 mm at F3000 (50 mm/s): 2.05 s. Hold at 1 s (cruising, s = 1.25 + 50·0.95 = 48.75 mm):
+    // 0.05 s braking to s = 50 mm at 1.05 s, 2 s standing, then 50 mm from rest: 1 + 0.05 s.
+    // Total 4.1 s.
+    let prog = program("hold", "G21 G90\nG1 X100 F3000\nM2\n");
+    let (code, out, err) = stanok(&["run", &prog, "--json", "--feed-hold", "1:2"]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let t = r["cycle_time_s"].as_f64().unwrap();
+    assert!((t - 4.1).abs() < 1e-9, "{t}");
+    assert_eq!(r["violation_count"], 0);
+    assert_eq!(stanok(&["run", &prog, "--feed-hold", "x"]).0, 2);
+}

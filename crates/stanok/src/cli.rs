@@ -62,8 +62,9 @@ pub struct MachineArgs {
     /// [g30], [g92], [parameters], active_system).
     #[arg(long, value_name = "FILE")]
     pub offsets: Option<PathBuf>,
-    /// Length unit of LinuxCNC .tbl/.var files (default: the machine's `linuxcnc_units`).
-    #[arg(long, value_enum, value_name = "UNIT")]
+    /// LinuxCNC machine units: the unit of .tbl/.var files and of RS274/NGC length parameters
+    /// (default: the machine's `linuxcnc_units`). `inch` reproduces LinuxCNC's standalone `rs274`.
+    #[arg(long, visible_alias = "machine-units", value_enum, value_name = "UNIT")]
     pub linuxcnc_units: Option<UnitsArg>,
 }
 

@@ -162,7 +162,11 @@ impl LinuxCncPrinter {
                 constant_surface_speed,
                 max_rpm,
             } => {
-                let mode = if *constant_surface_speed { *max_rpm } else { 0.0 };
+                let mode = if *constant_surface_speed {
+                    *max_rpm
+                } else {
+                    0.0
+                };
                 self.line(n, format!("SET_SPINDLE_MODE({spindle} {mode:.4})"))
             }
             Canon::SplineFeed(s) => {

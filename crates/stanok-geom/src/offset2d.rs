@@ -229,7 +229,9 @@ impl Seg2 {
                 }
                 dot2(sub2(p, a), d) / l2
             }
-            Seg2::Arc { c, start, sweep, .. } => {
+            Seg2::Arc {
+                c, start, sweep, ..
+            } => {
                 if sweep.abs() < 1e-300 {
                     return t_hint;
                 }

@@ -34,6 +34,7 @@ mod rs274;
 mod state;
 mod words;
 
+pub use axioma::AxiomaMachineParams;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -87,6 +88,8 @@ pub struct InterpOptions {
     /// RS274/NGC: G92 offsets survive M2/M30 and the run (LinuxCNC's default); false is
     /// LinuxCNC's `DISABLE_G92_PERSISTENCE`: program end cancels them as G92.1 does.
     pub g92_persistence: bool,
+    /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
+    pub axioma: AxiomaMachineParams,
 }
 
 impl InterpOptions {
@@ -109,6 +112,7 @@ impl InterpOptions {
             coupled_coordinates: None,
             rs274_machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
+            axioma: AxiomaMachineParams::default(),
         }
     }
 }
@@ -139,6 +143,11 @@ pub struct Interpreter<R: BufRead + Seek> {
     params: Parameters,
     flow: Flow,
     queue: VecDeque<Spanned<Canon>>,
+    /// AxiOMA: commands of committed blocks held back until cutter compensation has placed the
+    /// motions among them (empty whenever no compensated motion is waiting).
+    held: VecDeque<Spanned<Canon>>,
+    /// AxiOMA: cutter compensation look-ahead, canned-cycle and output state (not `Copy`).
+    axioma: axioma::Extension,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -226,6 +235,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             params,
             flow: Flow::default(),
             queue: VecDeque::new(),
+            held: VecDeque::new(),
+            axioma: axioma::Extension::default(),
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -425,11 +436,18 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let dialect = self.opts.dialect;
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
-        let mark = self.queue.len();
+        // AxiOMA blocks write behind `held` (compensation may still insert motions among them);
+        // committed blocks are released to `queue` below.
+        let axioma_backup = (dialect == Dialect::Axioma).then(|| self.axioma.clone());
+        let target = match dialect {
+            Dialect::Axioma => &mut self.held,
+            Dialect::Rs274ngc => &mut self.queue,
+        };
+        let mark = target.len();
         let span = self.block.span();
         let number = self.block.number;
         let mut out = ctx::Emitter {
-            queue: &mut self.queue,
+            queue: target,
             span,
             number,
         };
@@ -481,6 +499,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 out,
                 opts: &self.opts,
                 warnings: &mut self.warnings,
+                axioma: &mut self.axioma,
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
@@ -491,7 +510,13 @@ impl<R: BufRead + Seek> Interpreter<R> {
             Ok(o) => o,
             Err(d) => {
                 // Nothing of a failing block leaves the interpreter.
-                self.queue.truncate(mark);
+                match axioma_backup {
+                    Some(b) => {
+                        self.held.truncate(mark);
+                        self.axioma = b;
+                    }
+                    None => self.queue.truncate(mark),
+                }
                 self.state = backup;
                 self.params.rollback();
                 return Err(d);
@@ -499,6 +524,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         // Commit.
         self.params.commit();
+        if dialect == Dialect::Axioma {
+            self.axioma.release(&mut self.held, &mut self.queue);
+        }
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
@@ -506,6 +534,15 @@ impl<R: BufRead + Seek> Interpreter<R> {
     }
 
     fn end_of_input(&mut self) -> Result<bool, Diagnostic> {
+        if self.opts.dialect == Dialect::Axioma {
+            // A fragment without M30 ends with compensation still looking ahead: finish its path.
+            self.axioma.finish(
+                &self.opts,
+                &mut self.held,
+                &mut self.queue,
+                &mut self.warnings,
+            )?;
+        }
         if let Some(d) = self.flow.unterminated(&self.block) {
             return Err(d);
         }

@@ -29,8 +29,8 @@
 use crate::data::{AxisData, AxisKind, MachineData};
 use serde::Serialize;
 use stanok_canon::{
-    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection, SplineMove,
-    AXIS_LETTERS,
+    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
+    SplineMove, AXIS_LETTERS,
 };
 use stanok_geom::{Helix, Nurbs};
 use stanok_motion::nominal::{self, AxisLimits};
@@ -199,9 +199,7 @@ impl SimMachine {
             Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
             Canon::ArcFeed(a) => self.apply_arc(a, span)?,
             Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
-            Canon::StraightProbe { motion, .. } => {
-                self.apply_line(motion, LineKind::Feed, span)?
-            }
+            Canon::StraightProbe { motion, .. } => self.apply_line(motion, LineKind::Feed, span)?,
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,
@@ -219,14 +217,18 @@ impl SimMachine {
             }
             Canon::OrientSpindle {
                 spindle, degrees, ..
-            } => self.log(line, format!("M19 spindle {spindle} orient to {degrees} deg")),
+            } => self.log(
+                line,
+                format!("M19 spindle {spindle} orient to {degrees} deg"),
+            ),
             Canon::DigitalOutput { index, on, .. } => self.log(
                 line,
                 format!("output {index} {}", if *on { "on" } else { "off" }),
             ),
-            Canon::WaitInput { index, timeout, .. } => {
-                self.log(line, format!("M66 wait for input {index} (timeout {timeout} s)"))
-            }
+            Canon::WaitInput { index, timeout, .. } => self.log(
+                line,
+                format!("M66 wait for input {index} (timeout {timeout} s)"),
+            ),
             Canon::Dwell { seconds } => {
                 let t = nominal::dwell_time(*seconds);
                 self.report.dwell_time_s += t;
@@ -469,13 +471,20 @@ impl SimMachine {
             }
         }
         self.check_move(&sp.start, &sp.end, &lo, &hi, span)?;
-        let length: f64 = pts.windows(2).map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0]))).sum();
+        let length: f64 = pts
+            .windows(2)
+            .map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0])))
+            .sum();
         let r = &mut self.report;
         r.feed_segments += 1;
         r.motion_segments += 1;
         r.feed_distance_mm += length;
         r.nominal_time_s += nominal::feed_time(length, clamp_feed(sp.feed, self.machine.max_feed));
-        BoundingBox::include(&mut r.bounding_box, [lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
+        BoundingBox::include(
+            &mut r.bounding_box,
+            [lo[0], lo[1], lo[2]],
+            [hi[0], hi[1], hi[2]],
+        );
         r.final_position = sp.end;
         Ok(())
     }

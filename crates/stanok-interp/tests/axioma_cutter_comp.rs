@@ -299,3 +299,372 @@ fn unlabelled_example_tangential_arc_approach_g42_in_a_block_without_motion() {
         ],
     );
 }
+
+/// Inner corner X = P + r·(n1 + n2)/(1 + n1·n2), right normals (G42), in (a1, a2).
+fn inner_right(p: [f64; 2], t1: [f64; 2], t2: [f64; 2], r: f64) -> [f64; 2] {
+    let unit = |t: [f64; 2]| {
+        let l = t[0].hypot(t[1]);
+        [t[0] / l, t[1] / l]
+    };
+    let (t1, t2) = (unit(t1), unit(t2));
+    let (n1, n2) = ([t1[1], -t1[0]], [t2[1], -t2[0]]);
+    let k = r / (1.0 + n1[0] * n2[0] + n1[1] * n2[1]);
+    [p[0] + k * (n1[0] + n2[0]), p[1] + k * (n1[1] + n2[1])]
+}
+
+fn run_turning(name: &str, r: f64, orientation: u8) -> Vec<Mv> {
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    let mut c = tools(r, ToolKind::Turning);
+    c.tools.tools.get_mut(&1).unwrap().edges[0].orientation = orientation;
+    opts.control = c;
+    let (cmds, err) = run_with(&fixture(name), opts);
+    assert!(err.is_none(), "{err:?}");
+    // G18: (a1, a2) = (Z, X).
+    moves_in(&cmds, 2, 0)
+}
+
+#[test]
+fn example_9_5_turning_entry_contour_exit() {
+    for r in [0.8, 2.0] {
+        let m = run_turning("s9_2_1-g42-turning-entry-exit-example-9_5.nc", r, 0);
+        let s2 = 0.5f64.sqrt();
+        let entry = inner_right([1.0, 20.0], [-29.0, -60.0], [-1.0, 0.0], r);
+        assert!((entry[0] - (1.0 - 0.627347 * r)).abs() < 1e-6 && (entry[1] - (20.0 + r)).abs() < 1e-9);
+        let exit = inner_right([-80.0, 50.0], [-1.0, 0.0], [110.0, 30.0], r);
+        assert!((exit[0] - (-80.0 + 7.4673 * r)).abs() < 1e-3 * r);
+        assert_path(
+            &m,
+            &[
+                (20, [30.0, 80.0], None),
+                (30, entry, None),
+                (40, [-20.0 + (2f64.sqrt() - 1.0) * r, 20.0 + r], None),
+                (50, [-30.0 + s2 * r, 30.0 + s2 * r], None),
+                (60, [-30.0, 30.0 + r], Some(([-30.0, 30.0], CCW))),
+                (60, [-50.0 + r, 30.0 + r], None),
+                (70, [-50.0 + r, 50.0], None),
+                (80, [-50.0, 50.0 + r], Some(([-50.0, 50.0], CCW))),
+                (80, exit, None),
+                (90, [30.0, 80.0], None),
+            ],
+        );
+    }
+}
+
+#[test]
+fn example_9_7_turning_contour() {
+    let r = 0.8;
+    let m = run_turning("s9_2_1-g42-turning-contour-example-9_7.nc", r, 0);
+    let entry = inner_right([1.0, 20.0], [-39.0, -60.0], [-1.0, 0.0], r);
+    assert!((entry[0] - (1.0 - 0.5427 * r)).abs() < 1e-4);
+    let exit = inner_right([-80.0, 50.0], [-1.0, 0.0], [120.0, 30.0], r);
+    assert!((exit[0] - (-80.0 + 8.1231 * r)).abs() < 1e-3);
+    let t = (2f64.sqrt() - 1.0) * r;
+    assert_path(
+        &m,
+        &[
+            (30, entry, None),
+            (40, [-20.0 + t, 20.0 + r], None),
+            (50, [-30.0 + r, 30.0 + t], None),
+            (60, [-30.0 + r, 40.0], None),
+            (70, [-30.0, 40.0 + r], Some(([-30.0, 40.0], CCW))),
+            (70, [-50.0 + r, 40.0 + r], None),
+            (80, [-50.0 + r, 50.0], None),
+            (90, [-50.0, 50.0 + r], Some(([-50.0, 50.0], CCW))),
+            (90, exit, None),
+            (100, [40.0, 80.0], None),
+        ],
+    );
+}
+
+#[test]
+fn turning_edge_position_shifts_the_path_by_r_times_v() {
+    // Edge position 3 = imaginary tip at (−Z, −X) of the nose centre (configurable table, A9):
+    // the compensated points move by r·(−1, −1); the programmed end points of G00 moves do not.
+    let r = 0.8;
+    let plain = run_turning("s9_2_1-g42-turning-entry-exit-example-9_5.nc", r, 0);
+    let tip = run_turning("s9_2_1-g42-turning-entry-exit-example-9_5.nc", r, 3);
+    assert_eq!(plain.len(), tip.len());
+    for (p, q) in plain.iter().zip(&tip) {
+        let n = p.n.unwrap();
+        let shift = if (30..=80).contains(&n) { -r } else { 0.0 };
+        assert!(close(q.end, [p.end[0] + shift, p.end[1] + shift]), "N{n}: {:?} vs {:?}", p.end, q.end);
+    }
+}
+
+/// Every sampled point of the tool path, with its block.
+fn samples(cmds: &[Spanned<Canon>], a: usize, b: usize) -> Vec<(Option<u32>, [f64; 2])> {
+    let mut out = Vec::new();
+    for c in cmds {
+        let Some(m) = c.value.motion() else { continue };
+        let (s, e) = (m.start().to_array(), m.end().to_array());
+        let (s, e) = ([s[a], s[b]], [e[a], e[b]]);
+        match &c.value {
+            Canon::ArcFeed(arc) => {
+                let n = 3 - a - b;
+                let cc = [arc.centre[a], arc.centre[b]];
+                let ccw = arc.axis[n] > 0.0;
+                let r = (s[0] - cc[0]).hypot(s[1] - cc[1]);
+                let a0 = (s[1] - cc[1]).atan2(s[0] - cc[0]);
+                let a1 = (e[1] - cc[1]).atan2(e[0] - cc[0]);
+                let tau = std::f64::consts::TAU;
+                let mut sw = if ccw { (a1 - a0).rem_euclid(tau) } else { -(a0 - a1).rem_euclid(tau) };
+                if sw.abs() < 1e-12 {
+                    sw = if ccw { tau } else { -tau };
+                }
+                for i in 0..=64 {
+                    let phi = a0 + sw * i as f64 / 64.0;
+                    out.push((c.block_number, [cc[0] + r * phi.cos(), cc[1] + r * phi.sin()]));
+                }
+            }
+            _ => {
+                for i in 0..=32 {
+                    let t = i as f64 / 32.0;
+                    out.push((c.block_number, [s[0] + t * (e[0] - s[0]), s[1] + t * (e[1] - s[1])]));
+                }
+            }
+        }
+    }
+    out
+}
+
+use stanok_geom::offset2d::Seg2;
+
+/// The programmed contour of a program: the same text run with a radius-0 tool (the equidistant
+/// at distance 0 is the contour), as segments, for the blocks in `blocks`.
+fn programmed(text: &str, blocks: std::ops::RangeInclusive<u32>) -> Vec<Seg2> {
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    let mut c = tools(0.0, ToolKind::Milling);
+    for t in c.tools.tools.values_mut() {
+        t.edges[0].radius = 0.0;
+    }
+    opts.control = c;
+    let (cmds, err) = run_with(text, opts);
+    assert!(err.is_none(), "{err:?}");
+    cmds.iter()
+        .filter(|c| c.block_number.is_some_and(|n| blocks.contains(&n)))
+        .filter_map(|c| match &c.value {
+            Canon::StraightFeed(m) | Canon::StraightTraverse(m) => Some(Seg2::Line {
+                a: [m.start.x, m.start.y],
+                b: [m.end.x, m.end.y],
+            }),
+            Canon::ArcFeed(a) => Some(Seg2::arc_through(
+                [a.centre[0], a.centre[1]],
+                [a.start.x, a.start.y],
+                [a.end.x, a.end.y],
+                a.axis[2] > 0.0,
+                true,
+            )),
+            _ => None,
+        })
+        .filter(|s| s.length() > 1e-9)
+        .collect()
+}
+
+fn min_distance(path: &[(Option<u32>, [f64; 2])], contour: &[Seg2]) -> f64 {
+    path.iter()
+        .map(|(_, p)| contour.iter().map(|s| s.distance_to(*p)).fold(f64::MAX, f64::min))
+        .fold(f64::MAX, f64::min)
+}
+
+/// Runs a bottle-neck fixture with tool T`t`; returns the moves and the closest approach of the
+/// tool centre to the programmed contour.
+fn bottleneck(name: &str, t: u32, contour_blocks: std::ops::RangeInclusive<u32>) -> (Vec<Mv>, f64) {
+    let text = fixture(name).replace("T3 M06", &format!("T{t} M06"));
+    let cmds = ok(&text, 5.0);
+    let d = min_distance(&samples(&cmds, 0, 1), &programmed(&text, contour_blocks));
+    (moves(&cmds), d)
+}
+
+const SQRT11: f64 = 3.3166247903554;
+
+#[test]
+fn example_9_16_bottle_neck_depth_3() {
+    let name = "s9_2_2-bottleneck-lookahead-3-example-9_16.nc";
+    // 12-mm cutter: the neck is bypassed at (100 + √11, 65); the recess is not entered.
+    let (m, d) = bottleneck(name, 3, 103..=112);
+    assert!(d >= 6.0 - TOL, "gouge: {d}");
+    assert_path(
+        &m,
+        &[
+            (102, [20.0 + 6.0 * (2f64.sqrt() - 1.0), 14.0], None),
+            (106, [106.0, 60.0], None),
+            (107, [100.0 + SQRT11, 65.0], Some(([100.0, 60.0], CCW))),
+            (108, [106.0, 70.0], Some(([100.0, 70.0], CCW))),
+            (108, [106.0, 84.0], None),
+        ],
+    );
+    // 8-mm cutter (T5): the tool enters the circular recess (offset radius 7.0711 − 4).
+    let (m, d) = bottleneck(name, 5, 103..=112);
+    assert!(d >= 4.0 - TOL, "gouge: {d}");
+    let rho = 50f64.sqrt() - 4.0;
+    let s2 = 0.5f64.sqrt();
+    assert_path(
+        &m,
+        &[
+            (106, [104.0, 60.0], None),
+            (107, [100.0 - 4.0 * s2, 60.0 + 4.0 * s2], Some(([100.0, 60.0], CCW))),
+            (107, [95.0 + rho * s2, 65.0 + rho * s2], Some(([95.0, 65.0], CW))),
+            (108, [104.0, 70.0], Some(([100.0, 70.0], CCW))),
+            (108, [104.0, 86.0], None),
+        ],
+    );
+    // 10-mm cutter (T4): the limiting diameter passes, touching both neck corners.
+    let (m, d) = bottleneck(name, 4, 103..=112);
+    assert!(d >= 5.0 - TOL, "gouge: {d}");
+    assert!(m.iter().any(|m| m.n == Some(107) && m.arc.is_some_and(|a| close(a.0, [95.0, 65.0]))));
+}
+
+#[test]
+fn example_9_17_bottle_neck_depth_5() {
+    let name = "s9_2_2-bottleneck-lookahead-5-example-9_17.nc";
+    let (m, d) = bottleneck(name, 3, 103..=114);
+    assert!(d >= 6.0 - TOL, "gouge: {d}");
+    assert_path(
+        &m,
+        &[
+            (106, [106.0, 60.0], None),
+            (107, [100.0 + SQRT11, 65.0], Some(([100.0, 60.0], CCW))),
+            (110, [106.0, 70.0], Some(([100.0, 70.0], CCW))),
+            (110, [106.0, 84.0], None),
+        ],
+    );
+    // N108, N109 emit no motion (bypassed).
+    assert!(!m.iter().any(|m| matches!(m.n, Some(108 | 109))));
+    // 8 mm: the slot is entered: (104,60) ⌒ (100,64) → (94,64) → (94,66) → (100,66) ⌒ (104,70).
+    let (m, d) = bottleneck(name, 5, 103..=114);
+    assert!(d >= 4.0 - TOL, "gouge: {d}");
+    assert_path(
+        &m,
+        &[
+            (106, [104.0, 60.0], None),
+            (107, [100.0, 64.0], Some(([100.0, 60.0], CCW))),
+            (107, [94.0, 64.0], None),
+            (108, [94.0, 66.0], None),
+            (109, [100.0, 66.0], None),
+            (110, [104.0, 70.0], Some(([100.0, 70.0], CCW))),
+            (110, [104.0, 86.0], None),
+        ],
+    );
+    // 10 mm: in and out on y = 65.
+    let (m, d) = bottleneck(name, 4, 103..=114);
+    assert!(d >= 5.0 - TOL, "gouge: {d}");
+    assert_path(
+        &m,
+        &[
+            (107, [100.0, 65.0], Some(([100.0, 60.0], CCW))),
+            (107, [95.0, 65.0], None),
+            (109, [100.0, 65.0], None),
+            (110, [105.0, 70.0], Some(([100.0, 70.0], CCW))),
+            (110, [105.0, 85.0], None),
+        ],
+    );
+}
+
+#[test]
+fn example_9_18_bottle_neck_depth_9_never_gouges() {
+    let name = "s9_2_2-bottleneck-lookahead-9-example-9_18.nc";
+    // A16: the 12-mm cutter must not gouge: the neck is bypassed (the proposal) — or stopped.
+    let (m, d) = bottleneck(name, 3, 103..=118);
+    assert!(d >= 6.0 - TOL, "gouge: {d}");
+    assert!(m.iter().any(|m| m.n == Some(107) && close(m.end, [100.0 + SQRT11, 65.0])));
+    assert!(!m.iter().any(|m| matches!(m.n, Some(108..=113))));
+    // 8 mm and 10 mm enter neck and chamber; the chamber's tool-centre rectangle.
+    for (t, r) in [(5, 4.0), (4, 5.0)] {
+        let (m, d) = bottleneck(name, t, 103..=118);
+        assert!(d >= r - TOL, "T{t} gouge: {d}");
+        let chamber = [
+            (108, [80.0 - r, 50.0 + r]),
+            (109, [60.0 + r, 50.0 + r]),
+            (110, [60.0 + r, 80.0 - r]),
+            (111, [80.0 - r, 80.0 - r]),
+        ];
+        for (n, p) in chamber {
+            assert!(m.iter().any(|m| m.n == Some(n) && close(m.end, p)), "T{t} N{n}: {p:?}");
+        }
+    }
+}
+
+#[test]
+fn a_depth_too_small_to_bypass_the_neck_stops_with_an_error_instead_of_gouging() {
+    // Example 9.17's slot with a 12-mm cutter and depth 3: the narrowing is seen (N107's offset
+    // would pass 4 mm from the slot's far wall N109) but the bypass needs 5 blocks: error.
+    let text = fixture("s9_2_2-bottleneck-lookahead-5-example-9_17.nc").replace("M905 H1=5", "M905 H1=3");
+    let (cmds, err) = run_r(&text, 5.0);
+    let err = err.expect("contour violation");
+    assert_eq!(err.code, DiagCode::Stanok("axioma::comp-contour-violation"), "{err}");
+    // Whatever was emitted keeps the distance.
+    let d = min_distance(&samples(&cmds, 0, 1), &programmed(&text, 103..=114));
+    assert!(d >= 6.0 - TOL, "{d}");
+}
+
+#[test]
+fn forbidden_words_while_compensation_is_active() {
+    let head = "T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\n";
+    let cases = [
+        ("T2 M06\n", "axioma::forbidden-under-compensation"),
+        ("G18\n", "axioma::forbidden-under-compensation"),
+        ("G54\n", "axioma::forbidden-under-compensation"),
+        ("G159\n", "axioma::forbidden-under-compensation"),
+        ("G194 X1\n", "axioma::forbidden-under-compensation"),
+        ("G42 X10\n", "axioma::comp-side-change"),
+        ("M905 N1=5\n", "axioma::m905-in-contour"),
+        ("G81 Q3=100 Q5=-1 X5\n", "axioma::cycle-under-compensation"),
+        ("G28\n", "axioma::forbidden-under-compensation"),
+    ];
+    for (bad, code) in cases {
+        let text = format!("{head}{bad}X10\nG40 X20 Y0\nM30\n");
+        let (_, err) = run_r(&text, 5.0);
+        let err = err.unwrap_or_else(|| panic!("{bad}: no error"));
+        assert_eq!(err.code, DiagCode::Stanok(code), "{bad}: {err}");
+        assert_eq!(err.span.line, 5, "{bad}");
+    }
+    // G144: no arcs; G143: no arcs (A11); entry and exit must be linear.
+    for (text, code) in [
+        ("T1 M06\nG01 G144 X10 F100\nG02 X20 Y0 I5 J0\n", "axioma::comp-arc"),
+        ("T1 M06\nG01 G143 X10 F100\nG02 X20 Y0 I5 J0\n", "axioma::comp-arc"),
+        ("T1 M06\nG01 X-20 F100\nG41 G02 X0 Y-20 I20 J0\n", "axioma::comp-arc"),
+        ("T1 M06\nG01 X-20 F100\nG41 X0\nY10\nG40 G02 X10 Y0 I0 J-10\n", "axioma::comp-arc"),
+        ("T1 M06\nG01 X-20 Y-20 F100\nG41 X0 Y0\nG03 X4 Y0 I2 J0\nG40 X10 Y-10\n", "axioma::comp-radius"),
+    ] {
+        let (_, err) = run_r(text, 5.0);
+        assert_eq!(err.unwrap().code, DiagCode::Stanok(code), "{text}");
+    }
+    // Entry closer than r to its start.
+    let (_, err) = run_r("T1 M06\nG01 X-3 F100\nG41 X0\nY10\nG40 X-3\n", 5.0);
+    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::comp-entry-too-close"));
+    // A negative radius.
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    opts.control = tools(-1.0, ToolKind::Milling);
+    let (_, err) = run_with("T1 M06\nG01 X-10 F100\nG41 X0\n", opts);
+    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::comp-negative-radius"));
+    // T0 M06 suspends compensation (A5): allowed, the contour continues with r = 0.
+    let m = moves(&ok("T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\nT0 M06\nX10\nG40 X20\nM30\n", 5.0));
+    assert!(m.iter().any(|m| m.n.is_none() || close(m.end, [10.0, 10.0])));
+}
+
+#[test]
+fn a_failing_block_inside_the_look_ahead_emits_nothing_and_leaves_the_window_intact() {
+    // Line 5 fails (plane change); with continue_after_error the run goes on from the same state
+    // and produces exactly the path of the program without that line.
+    let good = "T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\nX10\nY0\nG40 X20 Y-10\nM30\n";
+    let bad = "T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\nG18 X99\nX10\nY0\nG40 X20 Y-10\nM30\n";
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    opts.control = tools(5.0, ToolKind::Milling);
+    opts.continue_after_error = true;
+    let mut cmds = Vec::new();
+    let mut errors = 0;
+    for item in stanok_interp::Interpreter::from_text(bad, opts) {
+        match item {
+            Ok(c) => cmds.push(c),
+            Err(_) => errors += 1,
+        }
+    }
+    assert_eq!(errors, 1);
+    assert!(cmds.iter().all(|c| c.span.line != 5));
+    let want = moves(&ok(good, 5.0));
+    let got = moves(&cmds);
+    assert_eq!(want.len(), got.len());
+    for (w, g) in want.iter().zip(&got) {
+        assert!(close(w.end, g.end), "{:?} vs {:?}", w.end, g.end);
+    }
+}

@@ -288,6 +288,10 @@ pub fn finalise(window: &[Elem], head: &Head) -> Result<Finalised, ContourError>
                 if ts <= PARAM_EPS * 10.0 || s.seg.length() * ts <= LEN_EPS * 10.0 {
                     continue;
                 }
+                // A tangential touch is not a crossing: the tool just fits (limiting diameter).
+                if cross2(s.seg.tangent(ts), l.seg.tangent(tl)).abs() < 1e-7 {
+                    continue;
+                }
                 let better = match cut {
                     None => true,
                     Some((_, t, lj, _, _)) => ts < t - 1e-9 || (ts <= t + 1e-9 && li > lj),
@@ -329,13 +333,65 @@ pub fn finalise(window: &[Elem], head: &Head) -> Result<Finalised, ContourError>
     })
 }
 
+/// The front element's path may be emitted: nothing in it is reversed, and no point of it comes
+/// closer than |d| to a programmed contour element of the window (a narrowing seen in the window
+/// but not removed by a cut). Entry and exit lines are the programmer's (§4.3 rule 3).
 fn check(path: &[PathSeg], window: &[Elem]) -> Result<(), ContourError> {
-    match path.iter().find(|s| s.reversed) {
-        Some(s) => Err(ContourError::TooNarrow {
-            span: window[s.owner].tag.span,
-        }),
-        None => Ok(()),
+    let fail = |s: &PathSeg| ContourError::TooNarrow {
+        span: window[s.owner].tag.span,
+    };
+    if let Some(s) = path.iter().find(|s| s.reversed) {
+        return Err(fail(s));
     }
+    for s in path {
+        let own = &window[s.owner];
+        if own.kind != Kind::Contour {
+            continue;
+        }
+        let r = own.d.abs();
+        for e in window.iter().filter(|e| e.kind == Kind::Contour) {
+            if min_distance(&s.seg, &e.seg) < r - GOUGE_TOL {
+                return Err(fail(s));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Gouge tolerance, mm.
+const GOUGE_TOL: f64 = 1e-6;
+
+/// Smallest distance between a path segment and a programmed segment: sampled along the path
+/// segment (64 pieces) and at both segments' ends, then refined by a golden-section search on the
+/// best piece — exact for lines and accurate to ~1e-9 mm for arcs of the sizes in a program.
+fn min_distance(path: &Seg2, contour: &Seg2) -> f64 {
+    const N: usize = 64;
+    let f = |t: f64| contour.distance_to(path.point(t));
+    let mut best = (f(0.0), 0usize);
+    for i in 1..=N {
+        let d = f(i as f64 / N as f64);
+        if d < best.0 {
+            best = (d, i);
+        }
+    }
+    let (mut lo, mut hi) = (
+        (best.1.saturating_sub(1)) as f64 / N as f64,
+        ((best.1 + 1).min(N)) as f64 / N as f64,
+    );
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..60 {
+        let (a, b) = (hi - g * (hi - lo), lo + g * (hi - lo));
+        if f(a) < f(b) {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    let ends = [contour.start(), contour.end()]
+        .iter()
+        .map(|p| path.distance_to(*p))
+        .fold(f64::MAX, f64::min);
+    best.0.min(f((lo + hi) / 2.0)).min(ends)
 }
 
 /// The offset direction at the end of an element: `d·nL(t_end)` (G41/G42 → G143/G144 switch).

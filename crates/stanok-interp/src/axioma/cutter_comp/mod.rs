@@ -365,13 +365,6 @@ impl Comp {
         } else {
             Kind::Contour
         };
-        let seg = match kind {
-            Kind::Exit => Seg2::Line {
-                a: s,
-                b: [e[0] - tip[0], e[1] - tip[1]],
-            },
-            _ => seg,
-        };
         let mut elem = Elem {
             seg,
             kind,

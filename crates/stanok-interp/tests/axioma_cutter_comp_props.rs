@@ -160,9 +160,9 @@ fn star() -> impl Strategy<Value = (Vec<P2>, Vec<f64>)> {
         })
         .prop_map(|(jitter, radii, bulge, straight)| {
             let n = jitter.len();
-            // Angles at least 30° apart (360/n − jitter), counter-clockwise.
+            // Angles 30° … 150° apart, counter-clockwise: the origin stays inside (a star polygon).
             let slot = 360.0 / n as f64;
-            let spread = (slot - 30.0).max(0.0);
+            let spread = (slot - 30.0).min(150.0 - slot).max(0.0);
             let v: Vec<P2> = (0..n)
                 .map(|i| {
                     let a = (i as f64 * slot + jitter[i] * spread).to_radians();

@@ -142,8 +142,9 @@ impl<'a> Nurbs<'a> {
                 } else {
                     0.0
                 };
-                for c in 0..4 {
-                    d[j][c] = (1.0 - alpha) * d[j - 1][c] + alpha * d[j][c];
+                let prev = d[j - 1];
+                for (c, value) in d[j].iter_mut().enumerate() {
+                    *value = (1.0 - alpha) * prev[c] + alpha * *value;
                 }
             }
         }

@@ -94,7 +94,10 @@ type Want = (u32, [f64; 2], Option<([f64; 2], bool)>);
 
 #[track_caller]
 fn assert_path(got: &[Mv], want: &[Want]) {
-    let got: Vec<&Mv> = got.iter().filter(|m| m.n.is_some_and(|n| want.iter().any(|w| w.0 == n))).collect();
+    let got: Vec<&Mv> = got
+        .iter()
+        .filter(|m| m.n.is_some_and(|n| want.iter().any(|w| w.0 == n)))
+        .collect();
     let ok = got.len() == want.len()
         && got.iter().zip(want).all(|(g, w)| {
             g.n == Some(w.0)
@@ -105,7 +108,11 @@ fn assert_path(got: &[Mv], want: &[Want]) {
                     _ => false,
                 }
         });
-    assert!(ok, "\n got {:#?}\nwant {want:?}", got.iter().map(|m| (m.n, m.end, m.arc)).collect::<Vec<_>>());
+    assert!(
+        ok,
+        "\n got {:#?}\nwant {want:?}",
+        got.iter().map(|m| (m.n, m.end, m.arc)).collect::<Vec<_>>()
+    );
 }
 
 const CW: bool = false;
@@ -113,7 +120,10 @@ const CCW: bool = true;
 
 #[test]
 fn example_9_3_entry_outer_corner_and_exit_removing_both_offsets() {
-    let m = moves(&ok(&fixture("s9_2_1-g41-select-and-cancel-example-9_3.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g41-select-and-cancel-example-9_3.nc"),
+        5.0,
+    ));
     assert_path(
         &m,
         &[
@@ -127,7 +137,10 @@ fn example_9_3_entry_outer_corner_and_exit_removing_both_offsets() {
 
 #[test]
 fn example_9_4_oblique_entry_inner_corner() {
-    let m = moves(&ok(&fixture("s9_2_1-g41-entry-from-outside-point-example-9_4.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g41-entry-from-outside-point-example-9_4.nc"),
+        5.0,
+    ));
     let y = 5.0 * (5f64.sqrt() - 1.0) / 2.0;
     assert!((y - 3.0902).abs() < 1e-4);
     assert_path(
@@ -145,7 +158,10 @@ fn example_9_4_oblique_entry_inner_corner() {
 
 #[test]
 fn example_9_6_square_with_oblique_entry_and_exit() {
-    let m = moves(&ok(&fixture("s9_2_1-g41-square-contour-example-9_6.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g41-square-contour-example-9_6.nc"),
+        5.0,
+    ));
     let t = 5.0 * (22.5f64).to_radians().tan();
     assert!((t - 2.0711).abs() < 1e-4);
     assert_path(
@@ -166,7 +182,10 @@ fn example_9_6_square_with_oblique_entry_and_exit() {
 
 #[test]
 fn example_9_9_z_move_inside_the_contour_and_g40_without_plane_motion() {
-    let text = format!("T1 M06\n{}", fixture("s9_2_1-g41-cancel-with-z-move-example-9_9.nc"));
+    let text = format!(
+        "T1 M06\n{}",
+        fixture("s9_2_1-g41-cancel-with-z-move-example-9_9.nc")
+    );
     let cmds = ok(&text, 5.0);
     let m = moves(&cmds);
     assert_path(
@@ -198,18 +217,30 @@ fn example_9_9_z_move_inside_the_contour_and_g40_without_plane_motion() {
 
 #[test]
 fn example_9_8_g143_and_g40_per_axis() {
-    let text = format!("T1 M06\n{}", fixture("s9_2_1-g143-cancel-by-g40-per-axis-example-9_8.nc"));
+    let text = format!(
+        "T1 M06\n{}",
+        fixture("s9_2_1-g143-cancel-by-g40-per-axis-example-9_8.nc")
+    );
     let m = moves(&ok(&text, 5.0));
     assert_path(
         &m,
-        &[(1, [5.0, 0.0], None), (2, [5.0, 15.0], None), (3, [5.0, 15.0], None), (5, [5.0, 10.0], None), (6, [10.0, 10.0], None)],
+        &[
+            (1, [5.0, 0.0], None),
+            (2, [5.0, 15.0], None),
+            (3, [5.0, 15.0], None),
+            (5, [5.0, 10.0], None),
+            (6, [10.0, 10.0], None),
+        ],
     );
     assert!(m.iter().any(|m| m.n == Some(3) && (m.z + 10.0).abs() < TOL));
 }
 
 #[test]
 fn example_9_10_g143_g144_square() {
-    let m = moves(&ok(&fixture("s9_2_1-g143-g144-square-outside-example-9_10.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g143-g144-square-outside-example-9_10.nc"),
+        5.0,
+    ));
     let want: Vec<Want> = [
         (2, [-20.0, 0.0]),
         (3, [-5.0, 0.0]),
@@ -228,7 +259,10 @@ fn example_9_10_g143_g144_square() {
 
 #[test]
 fn example_9_11_g143_then_g42_full_circle() {
-    let m = moves(&ok(&fixture("s9_2_1-g143-g42-full-circle-inside-example-9_11.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g143-g42-full-circle-inside-example-9_11.nc"),
+        5.0,
+    ));
     assert_path(
         &m,
         &[
@@ -241,7 +275,10 @@ fn example_9_11_g143_then_g42_full_circle() {
 
 #[test]
 fn example_9_12_incremental_bore_three_depths() {
-    let m = moves(&ok(&fixture("s9_2_1-g143-g41-incremental-bore-example-9_12.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g143-g41-incremental-bore-example-9_12.nc"),
+        5.0,
+    ));
     for (k, base) in [0u32, 100, 200].into_iter().enumerate() {
         let z = -2.0 * k as f64;
         assert_path(
@@ -262,7 +299,10 @@ fn example_9_12_incremental_bore_three_depths() {
 
 #[test]
 fn example_9_13_g143_then_g41_rectangle_incremental() {
-    let m = moves(&ok(&fixture("s9_2_1-g143-g41-rectangle-incremental-example-9_13.nc"), 5.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g143-g41-rectangle-incremental-example-9_13.nc"),
+        5.0,
+    ));
     assert_path(
         &m,
         &[
@@ -283,7 +323,10 @@ fn example_9_13_g143_then_g41_rectangle_incremental() {
 
 #[test]
 fn unlabelled_example_tangential_arc_approach_g42_in_a_block_without_motion() {
-    let m = moves(&ok(&fixture("s9_2_1-g143-g42-tangential-arc-approach-unlabelled-example.nc"), 6.0));
+    let m = moves(&ok(
+        &fixture("s9_2_1-g143-g42-tangential-arc-approach-unlabelled-example.nc"),
+        6.0,
+    ));
     assert_path(
         &m,
         &[
@@ -329,7 +372,9 @@ fn example_9_5_turning_entry_contour_exit() {
         let m = run_turning("s9_2_1-g42-turning-entry-exit-example-9_5.nc", r, 0);
         let s2 = 0.5f64.sqrt();
         let entry = inner_right([1.0, 20.0], [-29.0, -60.0], [-1.0, 0.0], r);
-        assert!((entry[0] - (1.0 - 0.627347 * r)).abs() < 1e-6 && (entry[1] - (20.0 + r)).abs() < 1e-9);
+        assert!(
+            (entry[0] - (1.0 - 0.627347 * r)).abs() < 1e-6 && (entry[1] - (20.0 + r)).abs() < 1e-9
+        );
         let exit = inner_right([-80.0, 50.0], [-1.0, 0.0], [110.0, 30.0], r);
         assert!((exit[0] - (-80.0 + 7.4673 * r)).abs() < 1e-3 * r);
         assert_path(
@@ -387,7 +432,12 @@ fn turning_edge_position_shifts_the_path_by_r_times_v() {
     for (p, q) in plain.iter().zip(&tip) {
         let n = p.n.unwrap();
         let shift = if (30..=80).contains(&n) { -r } else { 0.0 };
-        assert!(close(q.end, [p.end[0] + shift, p.end[1] + shift]), "N{n}: {:?} vs {:?}", p.end, q.end);
+        assert!(
+            close(q.end, [p.end[0] + shift, p.end[1] + shift]),
+            "N{n}: {:?} vs {:?}",
+            p.end,
+            q.end
+        );
     }
 }
 
@@ -407,19 +457,29 @@ fn samples(cmds: &[Spanned<Canon>], a: usize, b: usize) -> Vec<(Option<u32>, [f6
                 let a0 = (s[1] - cc[1]).atan2(s[0] - cc[0]);
                 let a1 = (e[1] - cc[1]).atan2(e[0] - cc[0]);
                 let tau = std::f64::consts::TAU;
-                let mut sw = if ccw { (a1 - a0).rem_euclid(tau) } else { -(a0 - a1).rem_euclid(tau) };
+                let mut sw = if ccw {
+                    (a1 - a0).rem_euclid(tau)
+                } else {
+                    -(a0 - a1).rem_euclid(tau)
+                };
                 if sw.abs() < 1e-12 {
                     sw = if ccw { tau } else { -tau };
                 }
                 for i in 0..=64 {
                     let phi = a0 + sw * i as f64 / 64.0;
-                    out.push((c.block_number, [cc[0] + r * phi.cos(), cc[1] + r * phi.sin()]));
+                    out.push((
+                        c.block_number,
+                        [cc[0] + r * phi.cos(), cc[1] + r * phi.sin()],
+                    ));
                 }
             }
             _ => {
                 for i in 0..=32 {
                     let t = i as f64 / 32.0;
-                    out.push((c.block_number, [s[0] + t * (e[0] - s[0]), s[1] + t * (e[1] - s[1])]));
+                    out.push((
+                        c.block_number,
+                        [s[0] + t * (e[0] - s[0]), s[1] + t * (e[1] - s[1])],
+                    ));
                 }
             }
         }
@@ -462,7 +522,12 @@ fn programmed(text: &str, blocks: std::ops::RangeInclusive<u32>) -> Vec<Seg2> {
 
 fn min_distance(path: &[(Option<u32>, [f64; 2])], contour: &[Seg2]) -> f64 {
     path.iter()
-        .map(|(_, p)| contour.iter().map(|s| s.distance_to(*p)).fold(f64::MAX, f64::min))
+        .map(|(_, p)| {
+            contour
+                .iter()
+                .map(|s| s.distance_to(*p))
+                .fold(f64::MAX, f64::min)
+        })
         .fold(f64::MAX, f64::min)
 }
 
@@ -502,8 +567,16 @@ fn example_9_16_bottle_neck_depth_3() {
         &m,
         &[
             (106, [104.0, 60.0], None),
-            (107, [100.0 - 4.0 * s2, 60.0 + 4.0 * s2], Some(([100.0, 60.0], CCW))),
-            (107, [95.0 + rho * s2, 65.0 + rho * s2], Some(([95.0, 65.0], CW))),
+            (
+                107,
+                [100.0 - 4.0 * s2, 60.0 + 4.0 * s2],
+                Some(([100.0, 60.0], CCW)),
+            ),
+            (
+                107,
+                [95.0 + rho * s2, 65.0 + rho * s2],
+                Some(([95.0, 65.0], CW)),
+            ),
             (108, [104.0, 70.0], Some(([100.0, 70.0], CCW))),
             (108, [104.0, 86.0], None),
         ],
@@ -511,7 +584,9 @@ fn example_9_16_bottle_neck_depth_3() {
     // 10-mm cutter (T4): the limiting diameter passes, touching both neck corners.
     let (m, d) = bottleneck(name, 4, 103..=112);
     assert!(d >= 5.0 - TOL, "gouge: {d}");
-    assert!(m.iter().any(|m| m.n == Some(107) && m.arc.is_some_and(|a| close(a.0, [95.0, 65.0]))));
+    assert!(m
+        .iter()
+        .any(|m| m.n == Some(107) && m.arc.is_some_and(|a| close(a.0, [95.0, 65.0]))));
 }
 
 #[test]
@@ -566,7 +641,9 @@ fn example_9_18_bottle_neck_depth_9_never_gouges() {
     // A16: the 12-mm cutter must not gouge: the neck is bypassed (the proposal) — or stopped.
     let (m, d) = bottleneck(name, 3, 103..=118);
     assert!(d >= 6.0 - TOL, "gouge: {d}");
-    assert!(m.iter().any(|m| m.n == Some(107) && close(m.end, [100.0 + SQRT11, 65.0])));
+    assert!(m
+        .iter()
+        .any(|m| m.n == Some(107) && close(m.end, [100.0 + SQRT11, 65.0])));
     assert!(!m.iter().any(|m| matches!(m.n, Some(108..=113))));
     // 8 mm and 10 mm enter neck and chamber; the chamber's tool-centre rectangle.
     for (t, r) in [(5, 4.0), (4, 5.0)] {
@@ -579,7 +656,10 @@ fn example_9_18_bottle_neck_depth_9_never_gouges() {
             (111, [80.0 - r, 80.0 - r]),
         ];
         for (n, p) in chamber {
-            assert!(m.iter().any(|m| m.n == Some(n) && close(m.end, p)), "T{t} N{n}: {p:?}");
+            assert!(
+                m.iter().any(|m| m.n == Some(n) && close(m.end, p)),
+                "T{t} N{n}: {p:?}"
+            );
         }
     }
 }
@@ -588,10 +668,15 @@ fn example_9_18_bottle_neck_depth_9_never_gouges() {
 fn a_depth_too_small_to_bypass_the_neck_stops_with_an_error_instead_of_gouging() {
     // Example 9.17's slot with a 12-mm cutter and depth 3: the narrowing is seen (N107's offset
     // would pass 4 mm from the slot's far wall N109) but the bypass needs 5 blocks: error.
-    let text = fixture("s9_2_2-bottleneck-lookahead-5-example-9_17.nc").replace("M905 H1=5", "M905 H1=3");
+    let text =
+        fixture("s9_2_2-bottleneck-lookahead-5-example-9_17.nc").replace("M905 H1=5", "M905 H1=3");
     let (cmds, err) = run_r(&text, 5.0);
     let err = err.expect("contour violation");
-    assert_eq!(err.code, DiagCode::Stanok("axioma::comp-contour-violation"), "{err}");
+    assert_eq!(
+        err.code,
+        DiagCode::Stanok("axioma::comp-contour-violation"),
+        "{err}"
+    );
     // Whatever was emitted keeps the distance.
     let d = min_distance(&samples(&cmds, 0, 1), &programmed(&text, 103..=114));
     assert!(d >= 6.0 - TOL, "{d}");
@@ -620,26 +705,52 @@ fn forbidden_words_while_compensation_is_active() {
     }
     // G144: no arcs; G143: no arcs (A11); entry and exit must be linear.
     for (text, code) in [
-        ("T1 M06\nG01 G144 X10 F100\nG02 X20 Y0 I5 J0\n", "axioma::comp-arc"),
-        ("T1 M06\nG01 G143 X10 F100\nG02 X20 Y0 I5 J0\n", "axioma::comp-arc"),
-        ("T1 M06\nG01 X-20 F100\nG41 G02 X0 Y-20 I20 J0\n", "axioma::comp-arc"),
-        ("T1 M06\nG01 X-20 F100\nG41 X0\nY10\nG40 G02 X10 Y0 I0 J-10\n", "axioma::comp-arc"),
-        ("T1 M06\nG01 X-20 Y-20 F100\nG41 X0 Y0\nG03 X4 Y0 I2 J0\nG40 X10 Y-10\n", "axioma::comp-radius"),
+        (
+            "T1 M06\nG01 G144 X10 F100\nG02 X20 Y0 I5 J0\n",
+            "axioma::comp-arc",
+        ),
+        (
+            "T1 M06\nG01 G143 X10 F100\nG02 X20 Y0 I5 J0\n",
+            "axioma::comp-arc",
+        ),
+        (
+            "T1 M06\nG01 X-20 F100\nG41 G02 X0 Y-20 I20 J0\n",
+            "axioma::comp-arc",
+        ),
+        (
+            "T1 M06\nG01 X-20 F100\nG41 X0\nY10\nG40 G02 X10 Y0 I0 J-10\n",
+            "axioma::comp-arc",
+        ),
+        (
+            "T1 M06\nG01 X-20 Y-20 F100\nG41 X0 Y0\nG03 X4 Y0 I2 J0\nG40 X10 Y-10\n",
+            "axioma::comp-radius",
+        ),
     ] {
         let (_, err) = run_r(text, 5.0);
         assert_eq!(err.unwrap().code, DiagCode::Stanok(code), "{text}");
     }
     // Entry closer than r to its start.
     let (_, err) = run_r("T1 M06\nG01 X-3 F100\nG41 X0\nY10\nG40 X-3\n", 5.0);
-    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::comp-entry-too-close"));
+    assert_eq!(
+        err.unwrap().code,
+        DiagCode::Stanok("axioma::comp-entry-too-close")
+    );
     // A negative radius.
     let mut opts = InterpOptions::new(Dialect::Axioma);
     opts.control = tools(-1.0, ToolKind::Milling);
     let (_, err) = run_with("T1 M06\nG01 X-10 F100\nG41 X0\n", opts);
-    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::comp-negative-radius"));
+    assert_eq!(
+        err.unwrap().code,
+        DiagCode::Stanok("axioma::comp-negative-radius")
+    );
     // T0 M06 suspends compensation (A5): allowed, the contour continues with r = 0.
-    let m = moves(&ok("T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\nT0 M06\nX10\nG40 X20\nM30\n", 5.0));
-    assert!(m.iter().any(|m| m.n.is_none() || close(m.end, [10.0, 10.0])));
+    let m = moves(&ok(
+        "T1 M06\nG01 X-10 Y0 F100\nG41 X0 Y0\nY10\nT0 M06\nX10\nG40 X20\nM30\n",
+        5.0,
+    ));
+    assert!(m
+        .iter()
+        .any(|m| m.n.is_none() || close(m.end, [10.0, 10.0])));
 }
 
 #[test]

@@ -35,8 +35,14 @@ fn program(vertices: &[P2], bulges: &[f64], r: f64, left: bool) -> (String, Vec<
     };
     // Outward normal: right of travel for a CCW contour (G42), left for a CW one (G41).
     let out = if left { [-t[1], t[0]] } else { [t[1], -t[0]] };
-    let s = [m[0] + (3.0 * r + 5.0) * out[0], m[1] + (3.0 * r + 5.0) * out[1]];
-    let mut edges: Vec<Edge> = vec![Edge { end: p1, bulge: 0.0 }];
+    let s = [
+        m[0] + (3.0 * r + 5.0) * out[0],
+        m[1] + (3.0 * r + 5.0) * out[1],
+    ];
+    let mut edges: Vec<Edge> = vec![Edge {
+        end: p1,
+        bulge: 0.0,
+    }];
     for i in 1..n {
         edges.push(Edge {
             end: vertices[(i + 1) % n],
@@ -69,7 +75,10 @@ fn program(vertices: &[P2], bulges: &[f64], r: f64, left: bool) -> (String, Vec<
             let side = if e.bulge > 0.0 { 1.0 } else { -1.0 };
             // The arc bulges to `side`·right; its centre lies on the other side at R − h.
             let mid = [(at[0] + e.end[0]) / 2.0, (at[1] + e.end[1]) / 2.0];
-            let centre = [mid[0] - side * right[0] * (radius - h), mid[1] - side * right[1] * (radius - h)];
+            let centre = [
+                mid[0] - side * right[0] * (radius - h),
+                mid[1] - side * right[1] * (radius - h),
+            ];
             // The centre is on the left of travel when the arc bulges to the right: counter-clockwise.
             let ccw = e.bulge > 0.0;
             text += &format!(
@@ -96,7 +105,13 @@ fn points(cmds: &[stanok_canon::Spanned<Canon>]) -> Vec<(u32, P2)> {
             Canon::StraightFeed(m) | Canon::StraightTraverse(m) => {
                 for i in 0..=16 {
                     let t = i as f64 / 16.0;
-                    out.push((n, [m.start.x + t * (m.end.x - m.start.x), m.start.y + t * (m.end.y - m.start.y)]));
+                    out.push((
+                        n,
+                        [
+                            m.start.x + t * (m.end.x - m.start.x),
+                            m.start.y + t * (m.end.y - m.start.y),
+                        ],
+                    ));
                 }
             }
             Canon::ArcFeed(a) => {
@@ -126,7 +141,9 @@ fn inside(p: P2, contour: &[Seg2]) -> bool {
     let mut c = false;
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-        if (a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+        {
             c = !c;
         }
     }
@@ -140,7 +157,10 @@ fn options(r: f64) -> InterpOptions {
         1,
         Tool {
             number: 1,
-            edges: vec![ToolEdge { radius: r, ..Default::default() }],
+            edges: vec![ToolEdge {
+                radius: r,
+                ..Default::default()
+            }],
             ..Default::default()
         },
     );
@@ -170,7 +190,13 @@ fn star() -> impl Strategy<Value = (Vec<P2>, Vec<f64>)> {
                 })
                 .collect();
             let b: Vec<f64> = (0..n)
-                .map(|i| if straight[i] || bulge[i].abs() < 0.01 { 0.0 } else { bulge[i] })
+                .map(|i| {
+                    if straight[i] || bulge[i].abs() < 0.01 {
+                        0.0
+                    } else {
+                        bulge[i]
+                    }
+                })
                 .collect();
             (v, b)
         })

@@ -37,7 +37,11 @@ fn steps(cmds: &[Spanned<Canon>], n: u32) -> Vec<Step> {
             Canon::StraightTraverse(m) => Some(Step::R(m.end.xyz())),
             Canon::StraightFeed(m) => Some(Step::F(m.end.xyz(), m.feed)),
             Canon::Dwell { seconds } => Some(Step::D(*seconds)),
-            Canon::ArcFeed(a) => Some(Step::A(a.end.xyz(), a.centre, a.axis[2] > 0.0 || a.axis[1] > 0.0)),
+            Canon::ArcFeed(a) => Some(Step::A(
+                a.end.xyz(),
+                a.centre,
+                a.axis[2] > 0.0 || a.axis[1] > 0.0,
+            )),
             Canon::StartSpindleSync { pitch, .. } => Some(Step::Sync(*pitch)),
             Canon::StopSpindleSync => Some(Step::Unsync),
             _ => None,
@@ -91,7 +95,11 @@ fn g81(x: f64, d: f64) -> Vec<Step> {
 
 /// G83 of Example 11.6 at (x, 0).
 fn g83(x: f64) -> Vec<Step> {
-    let mut v = vec![R([x, 0.0, 20.0]), R([x, 0.0, 5.0]), F([x, 0.0, -5.0], 500.0)];
+    let mut v = vec![
+        R([x, 0.0, 20.0]),
+        R([x, 0.0, 5.0]),
+        F([x, 0.0, -5.0], 500.0),
+    ];
     for k in 2..=6 {
         let k = k as f64;
         v.push(R([x, 0.0, 5.0]));
@@ -143,11 +151,17 @@ fn example_11_3_g01_cancels_and_f_is_kept() {
 #[test]
 fn example_11_4_g80_restores_g02() {
     let cmds = run_ok(&fixture("s11_3-cycle-cancel-by-g80-example-11_4.nc"));
-    assert_steps(&steps(&cmds, 20), &[A([0.0, 0.0, 20.0], [20.0, 0.0, 20.0], false)]);
+    assert_steps(
+        &steps(&cmds, 20),
+        &[A([0.0, 0.0, 20.0], [20.0, 0.0, 20.0], false)],
+    );
     assert_steps(&steps(&cmds, 30), &g81(10.0, -30.0));
     assert_steps(&steps(&cmds, 40), &g81(30.0, -30.0));
     assert!(steps(&cmds, 50).is_empty());
-    assert_steps(&steps(&cmds, 60), &[A([30.0, 0.0, 20.0], [10.0, 0.0, 20.0], false)]);
+    assert_steps(
+        &steps(&cmds, 60),
+        &[A([30.0, 0.0, 20.0], [10.0, 0.0, 20.0], false)],
+    );
 }
 
 #[test]
@@ -155,25 +169,35 @@ fn g99_returns_to_safety_distance_2_and_positive_depth_drills_upwards() {
     let cmds = run_ok("G99\nN10 Z20\nN20 G81 X0 Y0 Z0 Q2=3 Q3=100 Q5=-10\nM30\n");
     assert_steps(
         &steps(&cmds, 20),
-        &[R([0.0, 0.0, 5.0]), F([0.0, 0.0, -10.0], 100.0), R([0.0, 0.0, 5.0]), R([0.0, 0.0, 3.0])],
+        &[
+            R([0.0, 0.0, 5.0]),
+            F([0.0, 0.0, -10.0], 100.0),
+            R([0.0, 0.0, 5.0]),
+            R([0.0, 0.0, 3.0]),
+        ],
     );
     // Q5 > 0: from below, the safety distance is measured downwards (surface Z0 → Z−5).
     let cmds = run_ok("N10 Z-20\nN20 G81 X0 Y0 Z0 Q3=100 Q5=10 Q4=300\nM30\n");
     assert_steps(
         &steps(&cmds, 20),
-        &[R([0.0, 0.0, -5.0]), F([0.0, 0.0, 10.0], 100.0), F([0.0, 0.0, -5.0], 300.0), R([0.0, 0.0, -20.0])],
+        &[
+            R([0.0, 0.0, -5.0]),
+            F([0.0, 0.0, 10.0], 100.0),
+            F([0.0, 0.0, -5.0], 300.0),
+            R([0.0, 0.0, -20.0]),
+        ],
     );
 }
 
 #[test]
 fn invalid_parameters_give_603_at_the_call_and_nothing_moves() {
     let cases = [
-        "G81 Q3=500 X1",             // Q5 missing
-        "G81 Q3=500 Q5=-3 Q1=0 X1",  // Q1 < 0.1
-        "G83 Q3=500 Q5=-3 X1",       // Q7 missing
-        "G83 Q3=500 Q5=-3 Q7=4 X1",  // Q7 > |Q5|
-        "G81 Q5=-3 X1",              // no Q3 and no F
-        "G288 Q3=5 Q5=-3 Q6=10 Q7=4 Q9=4 X1", // overlap ≥ width
+        "G81 Q3=500 X1",                                   // Q5 missing
+        "G81 Q3=500 Q5=-3 Q1=0 X1",                        // Q1 < 0.1
+        "G83 Q3=500 Q5=-3 X1",                             // Q7 missing
+        "G83 Q3=500 Q5=-3 Q7=4 X1",                        // Q7 > |Q5|
+        "G81 Q5=-3 X1",                                    // no Q3 and no F
+        "G288 Q3=5 Q5=-3 Q6=10 Q7=4 Q9=4 X1",              // overlap ≥ width
         "G387 Q3=5 Q5=-3 Q6=1 Q7=20 Q8=20 Q10=5 Q13=1 X1", // no tool selected
     ];
     for text in cases {
@@ -184,9 +208,15 @@ fn invalid_parameters_give_603_at_the_call_and_nothing_moves() {
     }
     // A20 and Q words without a cycle.
     let (_, err) = run("G01 G81 Q5=-3 X1 F100\n", Dialect::Axioma);
-    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::cycle-and-interpolation"));
+    assert_eq!(
+        err.unwrap().code,
+        DiagCode::Stanok("axioma::cycle-and-interpolation")
+    );
     let (_, err) = run("Q5=-3\n", Dialect::Axioma);
-    assert_eq!(err.unwrap().code, DiagCode::Stanok("axioma::q-without-cycle"));
+    assert_eq!(
+        err.unwrap().code,
+        DiagCode::Stanok("axioma::q-without-cycle")
+    );
     // Huge pass counts are bounded.
     let (_, err) = run("Z20\nG83 X0 Q3=100 Q5=-100000 Q7=0.001\n", Dialect::Axioma);
     assert_eq!(err.unwrap().code, DiagCode::Manual(603));
@@ -237,8 +267,7 @@ fn example_11_8_g281_longitudinal_recess() {
         }
     }
     want.extend([R([35.0, 0.0, 25.0]), R([50.0, 0.0, 25.0])]);
-    // Step 1 (RAPID along Z to the start) is a zero move here: the tool is at Z80 already? No:
-    // N10 X50 leaves Z at 0, so the first rapid goes to Z80.
+    // N10 X50 leaves Z at 0: step 1 is the rapid to Z80 (at X50).
     assert_steps(&steps(&cmds, 20), &want);
 }
 
@@ -259,7 +288,13 @@ fn example_11_9_g282_face_recess() {
     assert_steps(&steps(&cmds, 20), &want);
 }
 
-fn groove(cmds: &[Spanned<Canon>], depth_axis: usize, positions: &[f64], start: [f64; 3], ret: f64) {
+fn groove(
+    cmds: &[Spanned<Canon>],
+    depth_axis: usize,
+    positions: &[f64],
+    start: [f64; 3],
+    ret: f64,
+) {
     let along = 2 - depth_axis;
     let at = |d: f64, l: f64| {
         let mut p = [0.0; 3];
@@ -267,8 +302,8 @@ fn groove(cmds: &[Spanned<Canon>], depth_axis: usize, positions: &[f64], start: 
         p[along] = l;
         p
     };
-    let (surface, bottom, safe) = if depth_axis == 0 { (30.0, 20.0, 35.0) } else { (30.0, 20.0, 35.0) };
-    let _ = surface;
+    // Surface 30, depth 10 towards −, Q1 = 5: plunges to 20 from 35 (both grooves).
+    let (bottom, safe) = (20.0, 35.0);
     let mut want = vec![R(start), R(at(safe, positions[0]))];
     for (j, &l) in positions.iter().enumerate() {
         if j > 0 {
@@ -282,10 +317,24 @@ fn groove(cmds: &[Spanned<Canon>], depth_axis: usize, positions: &[f64], start: 
 
 #[test]
 fn example_11_10_g288_and_11_11_g289_grooves() {
-    let cmds = run_ok(&fixture("s11_7_4-g288-longitudinal-groove-example-11_10.nc"));
-    groove(&cmds, 0, &[80.0, 71.0, 62.0, 53.0, 44.0, 35.0, 30.0], [50.0, 0.0, 80.0], 50.0);
+    let cmds = run_ok(&fixture(
+        "s11_7_4-g288-longitudinal-groove-example-11_10.nc",
+    ));
+    groove(
+        &cmds,
+        0,
+        &[80.0, 71.0, 62.0, 53.0, 44.0, 35.0, 30.0],
+        [50.0, 0.0, 80.0],
+        50.0,
+    );
     let cmds = run_ok(&fixture("s11_7_5-g289-face-groove-example-11_11.nc"));
-    groove(&cmds, 2, &[10.0, 19.0, 28.0, 37.0, 46.0, 55.0, 60.0], [10.0, 0.0, 50.0], 50.0);
+    groove(
+        &cmds,
+        2,
+        &[10.0, 19.0, 28.0, 37.0, 46.0, 55.0, 60.0],
+        [10.0, 0.0, 50.0],
+        50.0,
+    );
 }
 
 /// Tool T1 with radius `r` selected before the fixture's program.
@@ -304,7 +353,11 @@ fn with_tool(text: &str, r: f64) -> Vec<Spanned<Canon>> {
         },
     );
     opts.control = c;
-    let text = if text.contains("T1") { text.to_string() } else { format!("T1 M6\n{text}") };
+    let text = if text.contains("T1") {
+        text.to_string()
+    } else {
+        format!("T1 M6\n{text}")
+    };
     let (cmds, err) = run_with(&text, opts);
     assert!(err.is_none(), "{err:?}");
     cmds
@@ -334,7 +387,10 @@ fn path_points(cmds: &[Spanned<Canon>], n: u32) -> Vec<[f64; 2]> {
             Canon::StraightFeed(m) => {
                 for i in 0..=20 {
                     let t = i as f64 / 20.0;
-                    pts.push([m.start.x + t * (m.end.x - m.start.x), m.start.y + t * (m.end.y - m.start.y)]);
+                    pts.push([
+                        m.start.x + t * (m.end.x - m.start.x),
+                        m.start.y + t * (m.end.y - m.start.y),
+                    ]);
                 }
             }
             Canon::ArcFeed(a) => {
@@ -342,9 +398,17 @@ fn path_points(cmds: &[Spanned<Canon>], n: u32) -> Vec<[f64; 2]> {
                 let a0 = (a.start.y - a.centre[1]).atan2(a.start.x - a.centre[0]);
                 let a1 = (a.end.y - a.centre[1]).atan2(a.end.x - a.centre[0]);
                 let ccw = a.axis[2] > 0.0;
-                let mut sweep = if ccw { (a1 - a0).rem_euclid(std::f64::consts::TAU) } else { -(a0 - a1).rem_euclid(std::f64::consts::TAU) };
+                let mut sweep = if ccw {
+                    (a1 - a0).rem_euclid(std::f64::consts::TAU)
+                } else {
+                    -(a0 - a1).rem_euclid(std::f64::consts::TAU)
+                };
                 if sweep.abs() < 1e-12 {
-                    sweep = if ccw { std::f64::consts::TAU } else { -std::f64::consts::TAU };
+                    sweep = if ccw {
+                        std::f64::consts::TAU
+                    } else {
+                        -std::f64::consts::TAU
+                    };
                 }
                 for i in 0..=72 {
                     let phi = a0 + sweep * i as f64 / 72.0;
@@ -359,9 +423,15 @@ fn path_points(cmds: &[Spanned<Canon>], n: u32) -> Vec<[f64; 2]> {
 
 #[test]
 fn example_11_12_g387_pocket_layers_contour_and_stepover() {
-    let cmds = with_tool(&fixture("s11_8_1-g387-rectangular-pocket-example-11_12.nc"), 3.0);
+    let cmds = with_tool(
+        &fixture("s11_8_1-g387-rectangular-pocket-example-11_12.nc"),
+        3.0,
+    );
     let s = steps(&cmds, 40);
-    assert!(same(&s[0], &R([30.0, 0.0, 60.0])) && same(&s[1], &R([30.0, 0.0, 5.0])), "{s:?}");
+    assert!(
+        same(&s[0], &R([30.0, 0.0, 60.0])) && same(&s[1], &R([30.0, 0.0, 5.0])),
+        "{s:?}"
+    );
     assert!(same(s.last().unwrap(), &R([30.0, 0.0, 60.0])));
     assert_eq!(layers(&cmds, 40), vec![-2.0, -4.0, -6.0, -8.0, -10.0]);
     // Final tool-centre contour: 32 × 22 about (30,0), corner radius 6, rotated 30° → every point
@@ -381,8 +451,14 @@ fn example_11_12_g387_pocket_layers_contour_and_stepover() {
         }
     };
     let pts = path_points(&cmds, 40);
-    let worst = pts.iter().map(|p| inside(local(*p))).fold(f64::MIN, f64::max);
-    assert!(worst.abs() < 1e-6, "the outermost path must be the final contour: {worst}");
+    let worst = pts
+        .iter()
+        .map(|p| inside(local(*p)))
+        .fold(f64::MIN, f64::max);
+    assert!(
+        worst.abs() < 1e-6,
+        "the outermost path must be the final contour: {worst}"
+    );
     // Stepover: every point of the pocket's tool-centre area is within e/2 = 3.5 of the path
     // (neighbouring paths ≤ e = 7 apart, corners included).
     let mut gap: f64 = 0.0;
@@ -435,13 +511,20 @@ fn example_11_13_g388_slot() {
     // The last racetrack ends at its cap apex behind P2 (3.5 beyond it along the slot axis);
     // there the tool retracts (Q4 = rapid) and returns to the initial Z60.
     let apex = [p2[0] + 3.5 * u[0], p2[1] + 3.5 * u[1]];
-    assert!(same(&s[s.len() - 2], &R([apex[0], apex[1], 5.0])), "{:?}", &s[s.len() - 2..]);
+    assert!(
+        same(&s[s.len() - 2], &R([apex[0], apex[1], 5.0])),
+        "{:?}",
+        &s[s.len() - 2..]
+    );
     assert!(same(s.last().unwrap(), &R([apex[0], apex[1], 60.0])));
 }
 
 #[test]
 fn example_11_14_g389_circular_pocket() {
-    let cmds = with_tool(&fixture("s11_8_3-g389-circular-pocket-example-11_14.nc"), 4.0);
+    let cmds = with_tool(
+        &fixture("s11_8_3-g389-circular-pocket-example-11_14.nc"),
+        4.0,
+    );
     assert_eq!(layers(&cmds, 30), vec![-2.0, -4.0, -6.0, -8.0, -10.0]);
     // Circles of radius 16/3, 32/3, 16 about (30,0), counter-clockwise, in every layer.
     let s = steps(&cmds, 30);
@@ -462,7 +545,10 @@ fn example_11_14_g389_circular_pocket() {
 #[test]
 fn mirror_reverses_the_pocket_direction() {
     // G73 X-1 mirrors X: the CCW circles come out clockwise in machine coordinates.
-    let cmds = with_tool("Z60\nG73 X-1\nN30 G389 Q3=500 Q5=-2 Q6=2 Q7=40 Q12=4 Q13=1 X30 Y0 Z0\nM30\n", 4.0);
+    let cmds = with_tool(
+        "Z60\nG73 X-1\nN30 G389 Q3=500 Q5=-2 Q6=2 Q7=40 Q12=4 Q13=1 X30 Y0 Z0\nM30\n",
+        4.0,
+    );
     let arcs: Vec<bool> = steps(&cmds, 30)
         .iter()
         .filter_map(|x| match x {

@@ -60,7 +60,14 @@ fn example_10_2_outputs_with_rapid_moves() {
         .filter(|c| c.block_number == Some(20))
         .map(|c| &c.value)
         .collect();
-    assert!(matches!(n20[0], Canon::DigitalOutput { index: 26, on: false, .. }));
+    assert!(matches!(
+        n20[0],
+        Canon::DigitalOutput {
+            index: 26,
+            on: false,
+            ..
+        }
+    ));
     assert!(matches!(n20[1], Canon::StraightTraverse(m) if (m.end.x - 160.0).abs() < 1e-9));
     let last = cmds.iter().rev().find_map(|c| c.value.motion()).unwrap();
     let end = last.end();
@@ -77,7 +84,14 @@ fn example_10_3_outputs_with_feed_moves_and_arcs() {
         .filter(|c| c.block_number == Some(40))
         .map(|c| &c.value)
         .collect();
-    assert!(matches!(n40[0], Canon::DigitalOutput { index: 5, on: true, synchronised: true }));
+    assert!(matches!(
+        n40[0],
+        Canon::DigitalOutput {
+            index: 5,
+            on: true,
+            synchronised: true
+        }
+    ));
     assert!(matches!(n40[1], Canon::ArcFeed(a) if a.end.x.abs() < 1e-9 && a.end.y.abs() < 1e-9));
     assert!(!cmds
         .iter()
@@ -98,7 +112,10 @@ fn example_10_4_alternating_blocks() {
 fn fragment_with_offset_in_a_second_n_word() {
     // Index = 8·offset + address: the bit number from the machine parameter's base (spec §5.3).
     let (image, _) = outputs(&run_ok("s10_1_1-g110-set-outputs-fragment.nc"));
-    assert_eq!(on_off(&image), (vec![256000 * 8 + 6, 256000 * 8 + 7], vec![]));
+    assert_eq!(
+        on_off(&image),
+        (vec![256000 * 8 + 6, 256000 * 8 + 7], vec![])
+    );
     let (cmds, err) = run("G110 H2 Q1=3\nM30\n", Dialect::Axioma);
     assert!(err.is_none());
     assert_eq!(on_off(&outputs(&cmds).0), (vec![19], vec![]));
@@ -118,7 +135,9 @@ fn invalid_output_words_are_errors_and_emit_nothing() {
         let (cmds, err) = run(&format!("G01 X1 F100\n{text}M30\n"), Dialect::Axioma);
         let err = err.unwrap_or_else(|| panic!("{text}: no error"));
         assert_eq!(err.code, DiagCode::Stanok(code), "{text}: {err}");
-        assert!(!cmds.iter().any(|c| matches!(c.value, Canon::DigitalOutput { .. })));
+        assert!(!cmds
+            .iter()
+            .any(|c| matches!(c.value, Canon::DigitalOutput { .. })));
         assert!(cmds.iter().all(|c| c.span.line != 2), "{text}");
     }
     // The configured number of outputs bounds the addresses (Example 10.4: 40 outputs).

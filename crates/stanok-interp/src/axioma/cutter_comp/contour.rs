@@ -83,9 +83,10 @@ pub struct PathSeg {
 }
 
 /// How the front element starts.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub enum Head {
     /// Entry element, or the first element after G143/G144 (starts at its own offset start).
+    #[default]
     Own,
     /// After the finalised element `prev` (the junction decides the lead).
     After(Box<Elem>),

@@ -48,12 +48,6 @@ pub enum CompMode {
     Inside,
 }
 
-impl Default for Head {
-    fn default() -> Self {
-        Head::Own
-    }
-}
-
 /// Compensation state (part of `Extension`, restored on a failing block).
 #[derive(Debug, Clone, Default)]
 pub struct Comp {
@@ -251,7 +245,6 @@ impl Comp {
         let (s, e) = ([p0[a], p0[b]], [p1[a], p1[b]]);
         let in_plane = dist2(s, e) > 1e-12;
         let tag = Self::tag(cx);
-        let span = cx.block.span();
         let fallback_feed = if rapid { cx.st.feed } else { feed };
         if cx.axioma.comp.contour() {
             let (r, tip) = Self::radius(cx, at)?;
@@ -269,7 +262,6 @@ impl Comp {
             );
             cx.axioma.comp = c;
             result?;
-            let _ = span;
         } else {
             // G143/G144 per-axis offsets, or what G40 has not removed yet (§4.7).
             let (r, _) = Self::radius(cx, at)?;

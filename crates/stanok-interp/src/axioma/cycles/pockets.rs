@@ -117,9 +117,8 @@ fn common(c: &mut Call<'_, '_>) -> Result<Milling, Diagnostic> {
     })
 }
 
-/// Plane point → pose at the current a3.
-fn at(c: &Call<'_, '_>, m: &Milling, pt: [f64; 2]) -> Vec<(usize, f64)> {
-    let _ = c;
+/// A plane point as the axis targets of a move (a3 unchanged).
+fn at(m: &Milling, pt: [f64; 2]) -> Vec<(usize, f64)> {
     vec![(m.a, pt[0]), (m.b, pt[1])]
 }
 
@@ -140,7 +139,7 @@ fn arc_to(c: &mut Call<'_, '_>, m: &Milling, centre: [f64; 2], end: [f64; 2], cc
 
 fn start_and_layer(c: &mut Call<'_, '_>, m: &Milling, k: usize) {
     if k == 1 {
-        c.rapid(&at(c, m, m.centre));
+        c.rapid(&at(m, m.centre));
         c.rapid(&[(m.n, m.w - m.s * m.q1)]);
     }
     let d = (k as f64 * m.q6).min(m.depth);
@@ -149,21 +148,29 @@ fn start_and_layer(c: &mut Call<'_, '_>, m: &Milling, k: usize) {
 
 fn end_layer(c: &mut Call<'_, '_>, m: &Milling) {
     c.idle(&[(m.n, m.w - m.s * m.q1)]);
-    c.idle(&at(c, m, m.centre));
+    c.idle(&at(m, m.centre));
 }
 
-/// A closed rounded rectangle in the local frame (u along `dir`, v left of it) about `o`, started
-/// at the middle of the side v = −hb and run once in the given direction.
-fn ring(
-    c: &mut Call<'_, '_>,
-    m: &Milling,
+/// A rounded rectangle about `o`: local u along `dir`, v to its left, half-extents `ha` × `hb`,
+/// corner radius `rho`.
+struct RoundedRect {
     o: [f64; 2],
     dir: [f64; 2],
     ha: f64,
     hb: f64,
     rho: f64,
-    ccw: bool,
-) {
+}
+
+/// Runs a rounded rectangle once in the given direction, started (and ended) at the middle of
+/// its side v = −hb.
+fn ring(c: &mut Call<'_, '_>, m: &Milling, rect: &RoundedRect, ccw: bool) {
+    let RoundedRect {
+        o,
+        dir,
+        ha,
+        hb,
+        rho,
+    } = *rect;
     let to = |u: f64, v: f64| {
         [
             o[0] + u * dir[0] - v * dir[1],
@@ -171,7 +178,7 @@ fn ring(
         ]
     };
     let rho = rho.clamp(0.0, ha.min(hb));
-    c.cut(&at(c, m, to(0.0, -hb)));
+    c.cut(&at(m, to(0.0, -hb)));
     // Corners CCW from the bottom right: (sign u, sign v).
     let corners = [(1.0, -1.0), (1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0)];
     // CCW: bottom → right → top → left; CW runs the same corners in reverse.
@@ -190,13 +197,13 @@ fn ring(
         } else {
             (to(su * (ha - rho), sv * hb), to(su * ha, sv * (hb - rho)))
         };
-        c.cut(&at(c, m, p_in));
+        c.cut(&at(m, p_in));
         if rho > 1e-9 {
             let centre = to(su * (ha - rho), sv * (hb - rho));
             arc_to(c, m, centre, p_out, ccw);
         }
     }
-    c.cut(&at(c, m, to(0.0, -hb)));
+    c.cut(&at(m, to(0.0, -hb)));
 }
 
 /// G387.
@@ -247,22 +254,20 @@ pub(super) fn rectangular(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
                     o[1] + s * (du * dir[1] + dv * dir[0]),
                 ]
             };
-            c.cut(&at(c, &m, p(1.0)));
-            c.cut(&at(c, &m, p(-1.0)));
-            c.cut(&at(c, &m, m.centre));
+            c.cut(&at(&m, p(1.0)));
+            c.cut(&at(&m, p(-1.0)));
+            c.cut(&at(&m, m.centre));
         }
         for j in 1..=n {
             let shrink = (n - j) as f64 * delta;
-            ring(
-                c,
-                &m,
-                m.centre,
+            let rect = RoundedRect {
+                o: m.centre,
                 dir,
-                ha - shrink,
-                hb - shrink,
-                (rho_f - shrink).max(0.0),
-                m.ccw,
-            );
+                ha: ha - shrink,
+                hb: hb - shrink,
+                rho: (rho_f - shrink).max(0.0),
+            };
+            ring(c, &m, &rect, m.ccw);
         }
         end_layer(c, &m);
     }
@@ -294,7 +299,7 @@ pub(super) fn circular(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
         for j in 1..=n {
             let rho = j as f64 * rf / n as f64;
             let p = [m.centre[0] + rho, m.centre[1]];
-            c.cut(&at(c, &m, p));
+            c.cut(&at(&m, p));
             arc_to(c, &m, m.centre, p, m.ccw);
         }
         end_layer(c, &m);
@@ -337,7 +342,7 @@ pub(super) fn slot(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
     for k in 1..=m.layers {
         start_and_layer(c, &m, k);
         here = if k % 2 == 1 { p2 } else { p1 };
-        c.cut(&at(c, &m, here));
+        c.cut(&at(&m, here));
     }
     // Racetracks about the segment, started at the cap apex behind the end the tool is at.
     let (e, other) = if here == p2 { (p2, p1) } else { (p1, p2) };
@@ -349,14 +354,14 @@ pub(super) fn slot(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
     for j in 1..=loops {
         let w = (j as f64 * q13).min(half);
         let to = |a: f64, v: f64| [e[0] + a * u[0] - v * u[1], e[1] + a * u[1] + v * u[0]];
-        c.cut(&at(c, &m, to(-w, 0.0)));
+        c.cut(&at(&m, to(-w, 0.0)));
         let far = [e[0] + lc * u[0], e[1] + lc * u[1]];
         let s = if m.ccw { 1.0 } else { -1.0 };
         // Quarter about E to the side, the long side, half turn about the far centre, back.
         arc_to(c, &m, e, to(0.0, -s * w), m.ccw);
-        c.cut(&at(c, &m, to(lc, -s * w)));
+        c.cut(&at(&m, to(lc, -s * w)));
         arc_to(c, &m, far, to(lc, s * w), m.ccw);
-        c.cut(&at(c, &m, to(0.0, s * w)));
+        c.cut(&at(&m, to(0.0, s * w)));
         arc_to(c, &m, e, to(-w, 0.0), m.ccw);
     }
     c.idle(&[(m.n, m.w - m.s * m.q1)]);

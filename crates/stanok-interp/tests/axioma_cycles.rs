@@ -246,6 +246,24 @@ fn example_11_7_g276_threading_passes_and_2301() {
     let (cmds, err) = run_with(&text, opts);
     assert_eq!(err.unwrap().code, DiagCode::Manual(2301));
     assert!(steps(&cmds, 50).is_empty());
+    // S1000 is below the recommended 60·0.05/(1·0.001) = 3000 rpm: no warning; S4000 warns.
+    let mut it = stanok_interp::Interpreter::from_text(&text, InterpOptions::new(Dialect::Axioma));
+    for c in it.by_ref() {
+        c.unwrap();
+    }
+    assert!(!it
+        .warnings()
+        .iter()
+        .any(|w| w.code == DiagCode::Stanok("axioma::thread-speed")));
+    let fast = text.replace("S1000", "S4000");
+    let mut it = stanok_interp::Interpreter::from_text(&fast, InterpOptions::new(Dialect::Axioma));
+    for c in it.by_ref() {
+        c.unwrap();
+    }
+    assert!(it
+        .warnings()
+        .iter()
+        .any(|w| w.code == DiagCode::Stanok("axioma::thread-speed")));
     // A thread feed above the channel maximum stops the program.
     let mut opts = InterpOptions::new(Dialect::Axioma);
     opts.axioma.max_feed = Some(900.0);

@@ -22,12 +22,15 @@
 //! with offsets G40 has not removed yet → error (A11). Errors have no manual number (§4.10).
 
 pub mod contour;
+mod emit;
+mod touch;
 
 use crate::arc::PlanarArc;
 use crate::ctx::Ctx;
 use contour::{ContourError, Elem, Event, Head, Kind, Tag};
+use emit::{arc_canon, line_canon, with_non_plane};
 use stanok_canon::setup::ToolKind;
-use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span, Spanned};
+use stanok_canon::{Canon, Diagnostic, Pose, Span, Spanned};
 use stanok_geom::offset2d::{dist2, Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 use std::collections::VecDeque;
@@ -56,9 +59,9 @@ pub struct Comp {
     /// M905 N1= look-ahead depth (None = the machine parameter).
     pub depth: Option<usize>,
     /// Per-axis plane offset of G143/G144 that G40 has not removed yet (tool − programmed).
-    offset: [f64; 2],
+    pub(super) offset: [f64; 2],
     /// The tool-centre position when it differs from the programmed point (program coordinates).
-    tool: Option<Pose>,
+    pub(super) tool: Option<Pose>,
     entry_pending: bool,
     free_start: bool,
     exit_pending: bool,
@@ -69,6 +72,9 @@ pub struct Comp {
     tip: P2,
     ready: Vec<(u64, Spanned<Canon>)>,
 }
+
+/// Most non-plane blocks held between two compensated elements.
+const MAX_EVENTS: usize = 10_000;
 
 fn diag(code: &'static str, msg: impl Into<String>, span: Span) -> Diagnostic {
     Diagnostic::error(code, msg, span)
@@ -163,9 +169,10 @@ impl Comp {
                     // The last element ends at its perpendicular point; its offset is kept per axis.
                     let span = cx.block.span();
                     c.flush(span)?;
-                    if let Some(last) = &c.last {
-                        c.offset = contour::end_offset(last);
+                    if let Some(last) = c.last.take() {
+                        c.offset = contour::end_offset(&last);
                     }
+                    c.head = Head::Own;
                     c.entry_pending = false;
                     c.free_start = false;
                 }
@@ -263,42 +270,8 @@ impl Comp {
             cx.axioma.comp = c;
             result?;
         } else {
-            // G143/G144 per-axis offsets, or what G40 has not removed yet (§4.7).
             let (r, _) = Self::radius(cx, at)?;
-            let c = &mut cx.axioma.comp;
-            let written = [
-                cx.words.is_used(crate::ctx::AXIS_WORDS[a]),
-                cx.words.is_used(crate::ctx::AXIS_WORDS[b]),
-            ];
-            let delta = [e[0] - s[0], e[1] - s[1]];
-            let len = delta[0].hypot(delta[1]);
-            for k in 0..2 {
-                if !written[k] {
-                    continue;
-                }
-                match c.mode {
-                    CompMode::Outside | CompMode::Inside
-                        if len > 1e-12 && delta[k].abs() > 1e-12 =>
-                    {
-                        let sign = if c.mode == CompMode::Outside {
-                            -1.0
-                        } else {
-                            1.0
-                        };
-                        c.offset[k] = sign * r * delta[k] / len;
-                    }
-                    CompMode::Off => c.offset[k] = 0.0,
-                    _ => {}
-                }
-            }
-            let from = c.tool.unwrap_or_else(|| cx.st.program_position());
-            let mut target = p1;
-            target[a] += c.offset[0];
-            target[b] += c.offset[1];
-            let target = Pose::from_array(target);
-            c.tool = (c.offset != [0.0, 0.0]).then_some(target);
-            cx.out
-                .push(line_canon(&tag, from, target, rapid, feed).value);
+            touch::line(cx, r, rapid, end, feed, tag);
         }
         cx.st.position = cx.st.frame.to_machine(&end);
         Ok(())
@@ -335,6 +308,14 @@ impl Comp {
                 self.tool = self.tool.map(|_| to);
                 cx.out.push(line_canon(&tag, from, to, rapid, feed).value);
             } else if let Some(last) = self.window.back_mut() {
+                // A18: any number of blocks without plane motion — bounded, so memory is too.
+                if last.events.len() >= MAX_EVENTS {
+                    return Err(cx.err(
+                        "axioma::comp-too-many-events",
+                        format!("more than {MAX_EVENTS} blocks without motion in the plane between two compensated elements"),
+                        at,
+                    ));
+                }
                 last.events.push(ev);
             }
             return Ok(());
@@ -386,6 +367,9 @@ impl Comp {
             self.flush(cx.block.span())?;
             self.exit_pending = false;
             self.tool = None;
+            // Nothing of the finished contour is needed any more (keeps the per-block backup small).
+            self.last = None;
+            self.head = Head::Own;
         } else {
             self.advance(cx.block.span(), cx.opts.axioma.comp_depth)?;
         }
@@ -652,59 +636,4 @@ impl Comp {
         };
         Ok(())
     }
-}
-
-/// `from` with the non-plane axes of `end`.
-fn with_non_plane(from: Pose, end: Pose, plane: stanok_canon::Plane) -> Pose {
-    let (a, b, _) = plane.axes();
-    let mut to = end.to_array();
-    let f = from.to_array();
-    to[a] = f[a];
-    to[b] = f[b];
-    Pose::from_array(to)
-}
-
-fn spanned(tag: &Tag, value: Canon) -> Spanned<Canon> {
-    Spanned {
-        span: tag.span,
-        block_number: tag.number,
-        value,
-    }
-}
-
-fn line_canon(tag: &Tag, from: Pose, to: Pose, rapid: bool, feed: f64) -> Spanned<Canon> {
-    let m = LineMove {
-        start: tag.frame.to_machine(&from),
-        end: tag.frame.to_machine(&to),
-        feed: if rapid { 0.0 } else { feed },
-    };
-    spanned(
-        tag,
-        if rapid {
-            Canon::StraightTraverse(m)
-        } else {
-            Canon::StraightFeed(m)
-        },
-    )
-}
-
-fn arc_canon(tag: &Tag, from: Pose, to: Pose, centre: P2, ccw: bool, feed: f64) -> Spanned<Canon> {
-    let (a, b, n) = tag.plane.axes();
-    let mut c = from.to_array();
-    c[a] = centre[0];
-    c[b] = centre[1];
-    let mut normal = [0.0; 3];
-    normal[n] = if ccw { 1.0 } else { -1.0 };
-    spanned(
-        tag,
-        Canon::ArcFeed(ArcMove {
-            start: tag.frame.to_machine(&from),
-            end: tag.frame.to_machine(&to),
-            centre: tag.frame.to_machine(&Pose::from_array(c)).xyz(),
-            axis: tag.frame.arc_axis_to_machine(normal),
-            turns: 1,
-            plane: tag.plane,
-            feed,
-        }),
-    )
 }

@@ -161,12 +161,24 @@ pub(super) fn thread(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
         |v| v > 0.0 && v <= dt,
         "the cut Q10 must be > 0 and ≤ |Q8|",
     )?;
-    c.q(
+    let q11 = c.q(
         11,
         0.0,
         |v| v > 0.0 && v < q7,
         "the thread tolerance Q11 must be > 0 and < Q7",
     )?;
+    // Manual (3): S = 60·E/(P·T) with a 1 ms drive cycle — faster spindles may delay the passes.
+    let s_max = 60.0 * q11 / (q7 * 0.001);
+    if speed > s_max {
+        c.cx.warnings.push(
+            Diagnostic::warning(
+                "axioma::thread-speed",
+                format!("S{speed} is above the recommended {s_max:.0} rpm for the thread tolerance Q11 = {q11} mm"),
+                c.cx.block.span(),
+            )
+            .with_note("the start of the 2nd and later passes may be delayed (spec axioma-3 §8.1 (3), T = 1 ms)"),
+        );
+    }
     let q12 = c.q(12, 2.0, |v| v > 0.0, "the retraction Q12 must be > 0")?;
     let q13 = c.q(
         13,

@@ -779,3 +779,21 @@ fn a_failing_block_inside_the_look_ahead_emits_nothing_and_leaves_the_window_int
         assert!(close(w.end, g.end), "{:?} vs {:?}", w.end, g.end);
     }
 }
+
+#[test]
+fn g143_then_g41_then_g40_without_a_contour_element_returns_to_the_programmed_point() {
+    // G143 leaves the tool 5 short of X10; G41 then G40 with its exit line: the tool ends at the
+    // programmed point and later moves are uncompensated.
+    let m = moves(&ok(
+        "T1 M06\nN1 G01 G143 X10 F100\nN2 G41\nN3 G40 X20 Y10\nN4 X30\nM30\n",
+        5.0,
+    ));
+    assert_path(
+        &m,
+        &[
+            (1, [5.0, 0.0], None),
+            (3, [20.0, 10.0], None),
+            (4, [30.0, 10.0], None),
+        ],
+    );
+}

@@ -320,6 +320,7 @@ impl Comp {
             }
             return Ok(());
         }
+        self.tip = tip;
         let seg = Seg2::Line { a: s, b: e };
         let kind = if self.entry_pending {
             let from = self.tool_pose(cx).to_array();
@@ -357,7 +358,6 @@ impl Comp {
             }
             self.offset = [0.0, 0.0];
         }
-        self.tip = tip;
         if self.tool.is_none() {
             self.tool = Some(self.tool_pose(cx));
         }
@@ -367,6 +367,7 @@ impl Comp {
             self.flush(cx.block.span())?;
             self.exit_pending = false;
             self.tool = None;
+            self.offset = [0.0, 0.0];
             // Nothing of the finished contour is needed any more (keeps the per-block backup small).
             self.last = None;
             self.head = Head::Own;
@@ -450,6 +451,7 @@ impl Comp {
         };
         let mut c = std::mem::take(&mut cx.axioma.comp);
         let result = (|| {
+            c.tip = tip;
             if c.free_start {
                 c.free_start = false;
                 c.head = Head::Own;
@@ -459,7 +461,6 @@ impl Comp {
                 }
                 c.offset = [0.0, 0.0];
             }
-            c.tip = tip;
             if c.tool.is_none() {
                 c.tool = Some(c.tool_pose(cx));
             }

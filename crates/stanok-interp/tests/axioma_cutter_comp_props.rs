@@ -259,3 +259,73 @@ proptest! {
         }
     }
 }
+
+/// Block soup over the words of this part (compensation, cycles, outputs, arcs, planes): the
+/// interpreter never panics and never loops, whatever the order, and its moves form one
+/// continuous path.
+fn soup_block() -> impl Strategy<Value = String> {
+    let word = prop_oneof![
+        Just("G40".to_string()),
+        Just("G41".to_string()),
+        Just("G42".to_string()),
+        Just("G143".to_string()),
+        Just("G144".to_string()),
+        Just("G00".to_string()),
+        Just("G01".to_string()),
+        Just("G02".to_string()),
+        Just("G03".to_string()),
+        Just("G17".to_string()),
+        Just("G18".to_string()),
+        Just("G80".to_string()),
+        Just("G81".to_string()),
+        Just("G83".to_string()),
+        Just("G276".to_string()),
+        Just("G281".to_string()),
+        Just("G288".to_string()),
+        Just("G387".to_string()),
+        Just("G388".to_string()),
+        Just("G389".to_string()),
+        Just("G99".to_string()),
+        Just("G110".to_string()),
+        Just("G111".to_string()),
+        Just("M905".to_string()),
+        Just("M3 S500".to_string()),
+        Just("T1 M6".to_string()),
+        Just("T0 M6".to_string()),
+        Just("F300".to_string()),
+        (1u8..17, -20.0f64..20.0).prop_map(|(i, v)| format!("Q{i}={v:.2}")),
+        (0usize..6, -60.0f64..60.0)
+            .prop_map(|(a, v)| format!("{}{v:.2}", ["X", "Y", "Z", "I", "J", "R"][a])),
+        (1u32..10).prop_map(|n| format!("N1={n}")),
+    ];
+    proptest::collection::vec(word, 1..5).prop_map(|w| w.join(" "))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
+
+    #[test]
+    fn block_soup_never_panics(blocks in proptest::collection::vec(soup_block(), 1..25)) {
+        let text = blocks.join("\n") + "\nM30\n";
+        let mut opts = options(3.0);
+        opts.continue_after_error = true;
+        opts.max_errors = 1000;
+        let mut n = 0usize;
+        let mut at: Option<[f64; 9]> = None;
+        for item in stanok_interp::Interpreter::from_text(&text, opts) {
+            n += 1;
+            prop_assert!(n < 2_000_000, "runaway output");
+            if let Ok(c) = item {
+                if let Some(m) = c.value.motion() {
+                    let (s, e) = (m.start().to_array(), m.end().to_array());
+                    prop_assert!(e.iter().all(|v| v.is_finite()), "{text}");
+                    // The stream is continuous: every move starts where the previous one ended.
+                    if let Some(p) = at {
+                        prop_assert!((0..9).all(|k| (p[k] - s[k]).abs() < 1e-6), "jump {p:?} → {s:?} at line {}\n{text}", c.span.line);
+                    }
+                    at = Some(e);
+                }
+            }
+        }
+    }
+}

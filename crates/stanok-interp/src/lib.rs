@@ -145,7 +145,7 @@ pub struct Interpreter<R: BufRead + Seek> {
     queue: VecDeque<Spanned<Canon>>,
     /// AxiOMA: commands of committed blocks held back until cutter compensation has placed the
     /// motions among them (empty whenever no compensated motion is waiting).
-    held: VecDeque<Spanned<Canon>>,
+    axioma_held: VecDeque<Spanned<Canon>>,
     /// AxiOMA: cutter compensation look-ahead, canned-cycle and output state (not `Copy`).
     axioma: axioma::Extension,
     warnings: Vec<Diagnostic>,
@@ -235,7 +235,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             params,
             flow: Flow::default(),
             queue: VecDeque::new(),
-            held: VecDeque::new(),
+            axioma_held: VecDeque::new(),
             axioma: axioma::Extension::default(),
             warnings: Vec::new(),
             syntax: Vec::new(),
@@ -436,11 +436,11 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let dialect = self.opts.dialect;
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
-        // AxiOMA blocks write behind `held` (compensation may still insert motions among them);
-        // committed blocks are released to `queue` below.
+        // AxiOMA blocks write behind `axioma_held` (compensation may still insert motions among
+        // them); committed blocks are released to `queue` below.
         let axioma_backup = (dialect == Dialect::Axioma).then(|| self.axioma.clone());
         let target = match dialect {
-            Dialect::Axioma => &mut self.held,
+            Dialect::Axioma => &mut self.axioma_held,
             Dialect::Rs274ngc => &mut self.queue,
         };
         let mark = target.len();
@@ -512,7 +512,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 // Nothing of a failing block leaves the interpreter.
                 match axioma_backup {
                     Some(b) => {
-                        self.held.truncate(mark);
+                        self.axioma_held.truncate(mark);
                         self.axioma = b;
                     }
                     None => self.queue.truncate(mark),
@@ -525,7 +525,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         // Commit.
         self.params.commit();
         if dialect == Dialect::Axioma {
-            self.axioma.release(&mut self.held, &mut self.queue);
+            self.axioma.release(&mut self.axioma_held, &mut self.queue);
         }
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
@@ -538,7 +538,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             // A fragment without M30 ends with compensation still looking ahead: finish its path.
             self.axioma.finish(
                 &self.opts,
-                &mut self.held,
+                &mut self.axioma_held,
                 &mut self.queue,
                 &mut self.warnings,
             )?;

@@ -17,11 +17,10 @@ pub(super) fn with_non_plane(from: Pose, end: Pose, plane: stanok_canon::Plane) 
 }
 
 fn spanned(tag: &Tag, value: Canon) -> Spanned<Canon> {
-    Spanned {
-        span: tag.span,
-        block_number: tag.number,
-        value,
-    }
+    // Built through `new` (not a literal): later fields of `Spanned` keep their defaults.
+    let mut s = Spanned::new(tag.span, value);
+    s.block_number = tag.number;
+    s
 }
 
 pub(super) fn line_canon(

@@ -579,3 +579,21 @@ fn mirror_reverses_the_pocket_direction() {
         .collect();
     assert!(!arcs.is_empty() && arcs.iter().all(|c| !c));
 }
+
+#[test]
+fn incremental_calls_are_relative_to_the_real_end_of_the_previous_cycle() {
+    // A22: after a cycle the tool is at the call point in the plane and at the return level
+    // (Z20) on the tool axis; under G91 the next call point is relative to that.
+    let cmds = run_ok("N1 Z20\nN2 G91 G81 X10 Z-20 Q3=100 Q5=-5\nN3 X10 Z-20\nM30\n");
+    let hole = |x: f64| {
+        vec![
+            R([x, 0.0, 20.0]),
+            R([x, 0.0, 5.0]),
+            F([x, 0.0, -5.0], 100.0),
+            R([x, 0.0, 5.0]),
+            R([x, 0.0, 20.0]),
+        ]
+    };
+    assert_steps(&steps(&cmds, 2), &hole(10.0));
+    assert_steps(&steps(&cmds, 3), &hole(20.0));
+}

@@ -13,13 +13,14 @@
 //!
 //! Splines: every spline of both controls is handed over as a rational B-spline ([`Nurbs`]).
 //!
-//! Planned here later: lines and arcs in the plane with offsets and intersections (cutter
-//! compensation), Akima and cubic spline construction.
+//! Cutter compensation: planar lines and arcs with offsets and intersections ([`offset2d`]).
+//! Planned here later: Akima and cubic spline construction.
 #![deny(missing_docs)]
 
 mod arc2d;
 mod helix;
 mod nurbs;
+pub mod offset2d;
 mod vec3;
 
 pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};

@@ -142,8 +142,9 @@ impl<'a> Nurbs<'a> {
                 } else {
                     0.0
                 };
-                for c in 0..4 {
-                    d[j][c] = (1.0 - alpha) * d[j - 1][c] + alpha * d[j][c];
+                let prev = d[j - 1];
+                for (c, value) in d[j].iter_mut().enumerate() {
+                    *value = (1.0 - alpha) * prev[c] + alpha * *value;
                 }
             }
         }
@@ -159,7 +160,10 @@ impl<'a> Nurbs<'a> {
                 let f = if u.is_nan() { 0.0 } else { u.clamp(0.0, 1.0) } * (n - 1) as f64;
                 let i = (f.floor() as usize).min(n - 2);
                 let t = f - i as f64;
-                add(self.points[i], scale(sub(self.points[i + 1], self.points[i]), t))
+                add(
+                    self.points[i],
+                    scale(sub(self.points[i + 1], self.points[i]), t),
+                )
             }
         }
     }
@@ -189,12 +193,25 @@ impl<'a> Nurbs<'a> {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn subdivide(&self, a: f64, pa: Vec3, b: f64, pb: Vec3, tol: f64, depth: u32, out: &mut Vec<Vec3>) {
+    fn subdivide(
+        &self,
+        a: f64,
+        pa: Vec3,
+        b: f64,
+        pb: Vec3,
+        tol: f64,
+        depth: u32,
+        out: &mut Vec<Vec3>,
+    ) {
         let m = 0.5 * (a + b);
         let pm = self.point_at(m);
         let flat = depth >= 2
             && [0.25, 0.5, 0.75].iter().all(|f| {
-                let q = if *f == 0.5 { pm } else { self.point_at(a + f * (b - a)) };
+                let q = if *f == 0.5 {
+                    pm
+                } else {
+                    self.point_at(a + f * (b - a))
+                };
                 distance_to_segment(q, pa, pb) <= tol
             });
         if flat || depth >= 24 {
@@ -253,7 +270,12 @@ mod tests {
     #[test]
     fn cubic_bezier_of_the_g5_example() {
         // rs274ngc corpus g05-cubic-spline-example-1: P0 (0,0) P1 (0,3) P2 (1,-2) P3 (1,1).
-        let pts = [[0.0, 0.0, 0.0], [0.0, 3.0, 0.0], [1.0, -2.0, 0.0], [1.0, 1.0, 0.0]];
+        let pts = [
+            [0.0, 0.0, 0.0],
+            [0.0, 3.0, 0.0],
+            [1.0, -2.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
         let w = [1.0; 4];
         let k = bezier_knots(3);
         let c = Nurbs::new(3, &pts, &w, &k);

@@ -78,6 +78,8 @@ pub struct Ctx<'a> {
     pub opts: &'a InterpOptions,
     /// Warnings (reported whether or not the block commits).
     pub warnings: &'a mut Vec<Diagnostic>,
+    /// AxiOMA compensation, cycle and output state (restored with the block's backup on failure).
+    pub axioma: &'a mut crate::axioma::Extension,
 }
 
 impl Ctx<'_> {

@@ -35,6 +35,7 @@ mod rs274;
 mod state;
 mod words;
 
+pub use axioma::AxiomaMachineParams;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -95,6 +96,8 @@ pub struct InterpOptions {
     /// RS274/NGC: G92 offsets survive M2/M30 and the run (LinuxCNC's default); false is
     /// LinuxCNC's `DISABLE_G92_PERSISTENCE`: program end cancels them as G92.1 does.
     pub g92_persistence: bool,
+    /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
+    pub axioma: AxiomaMachineParams,
 }
 
 impl InterpOptions {
@@ -119,6 +122,7 @@ impl InterpOptions {
             coupled_coordinates: None,
             rs274_machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
+            axioma: AxiomaMachineParams::default(),
         }
     }
 }
@@ -149,6 +153,11 @@ pub struct Interpreter<R: BufRead + Seek> {
     params: Parameters,
     flow: Flow,
     queue: VecDeque<Spanned<Canon>>,
+    /// AxiOMA: commands of committed blocks held back until cutter compensation has placed the
+    /// motions among them (empty whenever no compensated motion is waiting).
+    axioma_held: VecDeque<Spanned<Canon>>,
+    /// AxiOMA: cutter compensation look-ahead, canned-cycle and output state (not `Copy`).
+    axioma: axioma::Extension,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -237,6 +246,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             params,
             flow: Flow::default(),
             queue: VecDeque::new(),
+            axioma_held: VecDeque::new(),
+            axioma: axioma::Extension::default(),
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -439,12 +450,23 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let dialect = self.opts.dialect;
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
-        let mark = self.queue.len();
-        // Commands held for cutter compensation may be edited by this block: keep copies.
-        let held_backup: Vec<Spanned<Canon>> = {
-            let h = self.held().min(mark);
-            self.queue.iter().skip(mark - h).cloned().collect()
+        // AxiOMA blocks write behind `axioma_held` (compensation may still insert motions among
+        // them); committed blocks are released to `queue` below.
+        let axioma_backup = (dialect == Dialect::Axioma).then(|| self.axioma.clone());
+        // RS274/NGC: commands held for cutter compensation may be edited by this block: keep
+        // copies to restore if it fails.
+        let held_backup: Vec<Spanned<Canon>> = if dialect == Dialect::Rs274ngc {
+            let len = self.queue.len();
+            let h = self.held().min(len);
+            self.queue.iter().skip(len - h).cloned().collect()
+        } else {
+            Vec::new()
         };
+        let target = match dialect {
+            Dialect::Axioma => &mut self.axioma_held,
+            Dialect::Rs274ngc => &mut self.queue,
+        };
+        let mark = target.len();
         let span = self.block.span();
         let number = self.block.number;
         let label_digits = self.block.number_span.map_or(0, |s| {
@@ -456,7 +478,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 .min(9) as u8
         });
         let mut out = ctx::Emitter {
-            queue: &mut self.queue,
+            queue: target,
             span,
             number,
             label_digits,
@@ -515,6 +537,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 out,
                 opts: &self.opts,
                 warnings: &mut self.warnings,
+                axioma: &mut self.axioma,
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
@@ -525,8 +548,16 @@ impl<R: BufRead + Seek> Interpreter<R> {
             Ok(o) => o,
             Err(d) => {
                 // Nothing of a failing block leaves the interpreter.
-                self.queue.truncate(mark - held_backup.len());
-                self.queue.extend(held_backup);
+                match axioma_backup {
+                    Some(b) => {
+                        self.axioma_held.truncate(mark);
+                        self.axioma = b;
+                    }
+                    None => {
+                        self.queue.truncate(mark - held_backup.len());
+                        self.queue.extend(held_backup);
+                    }
+                }
                 self.state = backup;
                 self.params.rollback();
                 return Err(d);
@@ -534,6 +565,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         // Commit.
         self.params.commit();
+        if dialect == Dialect::Axioma {
+            self.axioma.release(&mut self.axioma_held, &mut self.queue);
+        }
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
@@ -560,6 +594,15 @@ impl<R: BufRead + Seek> Interpreter<R> {
     }
 
     fn end_of_input(&mut self) -> Result<bool, Diagnostic> {
+        if self.opts.dialect == Dialect::Axioma {
+            // A fragment without M30 ends with compensation still looking ahead: finish its path.
+            self.axioma.finish(
+                &self.opts,
+                &mut self.axioma_held,
+                &mut self.queue,
+                &mut self.warnings,
+            )?;
+        }
         if let Some(d) = self.flow.unterminated(&self.block) {
             return Err(d);
         }

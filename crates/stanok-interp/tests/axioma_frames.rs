@@ -203,19 +203,56 @@ fn s4_3_3_relative_rotation_table() {
 }
 
 #[test]
-fn s4_3_3_rotation_loop_needs_compensation_and_the_high_level_language() {
-    // The slots are cut with G143/G42 compensation (issue "AxiOMA cutter compensation") inside an HLL
-    // loop (`int ii=0; for(…){…}`, issue "AxiOMA parametric programming"). Until both land the program
-    // must stop at the first of them (G143 on line 28) with a clear diagnostic, before any slot.
-    let (cmds, err) = run(
-        &fixture("s4_3_3-rotation-loop-slots-example-4_6.nc"),
-        Dialect::Axioma,
+fn s4_3_3_rotation_loop_compensated_first_slot_then_stops_at_the_high_level_language() {
+    // The slots are cut with G143/G42 compensation inside an HLL loop (`int ii=0; for(…){…}`,
+    // issue "AxiOMA parametric programming"). The first slot (angle 0) is machined; the program
+    // stops at the first HLL statement (line 37) with a clear diagnostic, before the loop.
+    let mut opts = InterpOptions::new(Dialect::Axioma);
+    let mut tools = ControlData::default();
+    tools.tools.tools.insert(
+        2,
+        stanok_canon::setup::Tool {
+            number: 2,
+            edges: vec![stanok_canon::setup::ToolEdge {
+                radius: 5.0,
+                ..Default::default()
+            }],
+            ..Default::default()
+        },
     );
-    let err = err.expect("unsupported");
-    assert_eq!(err.code, DiagCode::Stanok("interp::unsupported"), "{err}");
-    assert_eq!(err.span.line, 28);
-    assert!(err.message.contains("G143"), "{err}");
-    assert!(cmds.iter().all(|c| c.span.line < 28));
+    opts.control = tools;
+    let mut cmds = Vec::new();
+    let mut err = None;
+    for item in Interpreter::from_text(&fixture("s4_3_3-rotation-loop-slots-example-4_6.nc"), opts)
+    {
+        match item {
+            Ok(c) => cmds.push(c),
+            Err(d) => {
+                err = Some(d);
+                break;
+            }
+        }
+    }
+    let err = err.expect("high-level language");
+    assert_eq!(
+        err.code,
+        DiagCode::Stanok("syntax::hll-not-supported"),
+        "{err}"
+    );
+    assert_eq!(err.span.line, 37);
+    // r = 5, tool inside the clockwise obround (G42 + G02: concave, ρ = 20 − 5).
+    let mvs = moves(&cmds);
+    assert_ends(
+        &mvs,
+        &[(40, [80.0, 15.0]), (70, [80.0, -15.0]), (100, [80.0, 0.0])],
+    );
+    let arcs: Vec<&Move> = mvs.iter().filter(|m| m.2.is_some()).collect();
+    assert_eq!(arcs.len(), 2);
+    for (m, centre) in arcs.iter().zip([[180.0, 0.0], [80.0, 0.0]]) {
+        let (c, ccw) = m.2.unwrap();
+        assert!(!ccw && (c[0] - centre[0]).abs() < TOL && c[1].abs() < TOL);
+        assert!(((m.1[0] - c[0]).hypot(m.1[1] - c[1]) - 15.0).abs() < TOL);
+    }
 }
 
 #[test]

@@ -58,6 +58,14 @@ enum GAction {
     LengthComp(u32),
     /// G28 (true) / G29 (false).
     Home(bool),
+    /// G40 / G41 / G42 / G143 / G144 (the code ×10).
+    Radius(u32),
+    /// G110 (true, set) / G111 (false, reset).
+    Output(bool),
+    /// G80.
+    CycleCancel,
+    /// G81 … G389.
+    Cycle(cycles::CycleKind),
     /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
     Default(&'static str),
     /// Known, not yet implemented: the issue that adds it.
@@ -90,7 +98,9 @@ fn g_action(code: u32) -> Option<GAction> {
         990 => Retract(false),
         150 => Polar(false),
         160 => Polar(true),
-        400 => Default("EqCorrect"),
+        400 | 410 | 420 | 1430 | 1440 => Radius(code),
+        1100 => Output(true),
+        1110 => Output(false),
         430 | 440 | 450 | 490 => LengthComp(code),
         530 => ZeroOffset(None),
         540..=590 if code.is_multiple_of(10) => ZeroOffset(Some((code / 10 - 53) as u8)),
@@ -100,14 +110,15 @@ fn g_action(code: u32) -> Option<GAction> {
         1730 => Scale(true),
         2720 => Rotate(false),
         2730 => Rotate(true),
-        800 => Default("CannedCycle"),
+        800 => CycleCancel,
         970 => Default("Dimension2"),
         1530 => Workpiece(None),
         1540..=1590 if code.is_multiple_of(10) => Workpiece(Some((code / 10 - 153) as u8)),
         1930 | 1940 | 1950 => Shift(code),
         100 => Diameter,
-        410 | 420 | 1430 | 1440 | 1100 | 1110 | 810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890
-        | 3870 | 3880 | 3890 => Later("AxiOMA cutter compensation, cycles and PLC outputs"),
+        810 | 830 | 2760 | 2810 | 2820 | 2880 | 2890 | 3870 | 3880 | 3890 => {
+            Cycle(cycles::CycleKind::from_code(code)?)
+        }
         280 => Home(true),
         290 => Home(false),
         750 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
@@ -137,16 +148,26 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::Polar(_) => 17,
         GAction::LengthComp(_) => 18,
         GAction::Home(_) => 1,
+        GAction::Radius(_) => 19,
+        GAction::Output(_) => 20,
+        GAction::CycleCancel | GAction::Cycle(_) => 21,
         GAction::Default(_) | GAction::Later(_) => 1000 + code,
     }
 }
 
+pub mod cutter_comp;
+pub mod cycles;
+mod extension;
 mod frames;
 mod home;
 mod mfunc;
 mod motion;
+mod outputs;
 mod polar;
 mod tools;
+
+use cutter_comp::Comp;
+pub use extension::{AxiomaMachineParams, Extension};
 
 use mfunc::{m_function, run_m, set_speed, MAction, MFunction};
 use motion::{dwell_block, motion};
@@ -213,8 +234,15 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let mut indexed_speeds: Vec<(u8, f64)> = Vec::new();
     let mut spindle_tools: Vec<(u8, Val)> = Vec::new();
     let mut spindle_edges: Vec<(u8, Val)> = Vec::new();
+    // `Q<i>=`: G110/G111 outputs or cycle parameters; `N1=`/`H1=`: the M905 depth (A15).
+    let mut q_words: Vec<(u8, Val)> = Vec::new();
+    let mut m905_depth: Option<Val> = None;
     for &(letter, index, val) in &cx.words.indexed {
         match letter {
+            b'Q' => q_words.push((index, val)),
+            b'N' | b'H' if index == 1 && cx.words.m.iter().any(|m| m.0 == 905) => {
+                m905_depth = Some(val)
+            }
             b'S' if (1..=4).contains(&index) => indexed_speeds.push((index - 1, val.v)),
             // `T2=10`, `D3=2`: tool and edge of spindle 2…4 (spec axioma-2 §3.9–§3.10).
             b'T' if (2..=4).contains(&index) => spindle_tools.push((index - 1, val)),
@@ -243,6 +271,21 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         if let GAction::Later(issue) = a {
             return Err(unsupported(cx, &g_name(code), issue, span));
         }
+        if let (GAction::Output(_), Some((_, prev, _))) = (
+            a,
+            actions
+                .iter()
+                .find(|(b, _, _)| matches!(b, GAction::Output(_))),
+        ) {
+            return Err(cx.err(
+                "axioma::outputs-twice",
+                format!(
+                    "only one of G110/G111 per block ({} is already programmed)",
+                    g_name(*prev)
+                ),
+                span,
+            ));
+        }
         let key = group_key(a, code);
         if let Some(pos) = actions
             .iter()
@@ -262,6 +305,26 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         actions.push((a, code, span));
     }
 
+    let has_cycle_g = actions
+        .iter()
+        .any(|(a, _, _)| matches!(a, GAction::Cycle(_)));
+    if let (true, Some((_, code, span))) = (
+        has_cycle_g,
+        actions
+            .iter()
+            .find(|(a, _, _)| matches!(a, GAction::Motion(_))),
+    ) {
+        return Err(cx.err(
+            "axioma::cycle-and-interpolation",
+            format!(
+                "{} and a canned cycle in one block: the cycle would be activated and cancelled at once",
+                g_name(*code)
+            ),
+            *span,
+        ));
+    }
+    let comp_active = cx.axioma.comp.is_active();
+
     // 1. Message.
     if let Some(text) = cx.block.message {
         let text = cx.block.slice(text).to_string();
@@ -275,6 +338,13 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             GAction::Motion(m) => motion_code = Some((m, span)),
             GAction::Dwell => dwell = Some(span),
             GAction::Plane(p) if cx.st.plane != p => {
+                if comp_active {
+                    return Err(forbidden_under_comp(
+                        cx,
+                        "a plane change (G17/G18/G19)",
+                        span,
+                    ));
+                }
                 cx.out.push(Canon::SelectPlane { plane: p });
                 cx.st.plane = p;
                 polar::on_plane_change(cx);
@@ -312,9 +382,46 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 }
             }
             GAction::Retract(initial) => cx.st.retract_to_initial = initial,
+            GAction::Radius(code) => Comp::select(cx, code, span)?,
+            GAction::CycleCancel => cx.axioma.cycle.active = None,
+            GAction::Cycle(kind) => cycles::activate(cx, kind),
+            GAction::ZeroOffset(_)
+            | GAction::Workpiece(_)
+            | GAction::Shift(1940 | 1950)
+            | GAction::Mirror(_)
+            | GAction::Scale(_)
+            | GAction::Rotate(_)
+                if comp_active =>
+            {
+                return Err(forbidden_under_comp(cx, &g_name(_code), span));
+            }
             _ => {}
         }
     }
+    // An interpolation code cancels the cycle (§6.3); Q words go to G110/G111 or the cycle.
+    if motion_code.is_some() {
+        cx.axioma.cycle.active = None;
+    }
+    let output = actions.iter().find_map(|&(a, _, span)| match a {
+        GAction::Output(on) => Some((on, span)),
+        _ => None,
+    });
+    if output.is_none() && !q_words.is_empty() {
+        if cx.axioma.cycle.active.is_none() {
+            let (i, v) = q_words[0];
+            return Err(cx
+                .err(
+                    "axioma::q-without-cycle",
+                    format!("Q{i}= has no meaning here: no canned cycle is active"),
+                    v.span,
+                )
+                .with_note(
+                    "cycle parameters follow a cycle G code (G81 … G389); outputs need G110/G111",
+                ));
+        }
+        cycles::set_params(cx, &q_words)?;
+    }
+
     // 2b. Frames and offsets, in the manual's fixed order whatever the order of the words. A block
     // that programs mirror, scale, rotation, a shift or G10 takes its X/Y/Z as parameters: no motion.
     let mut parameter_block = false;
@@ -406,6 +513,17 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         Some(t) => Some(cx.non_negative_integer(t, "tool number T")?),
         None => None,
     };
+    if let (Some(t), true) = (tool, comp_active) {
+        // A5: T0 (with M06) suspends compensation and is allowed; another tool is not.
+        if t != 0 {
+            let at = t_word.map(|v| v.span).unwrap_or_else(|| cx.whole());
+            return Err(forbidden_under_comp(cx, "a T word (new tool radius)", at));
+        }
+    }
+    if let Some(&(_, span)) = cx.words.m.iter().find(|m| m.0 == 905) {
+        let depth = m905_depth.map(|v| v.v);
+        Comp::set_depth(cx, depth, m905_depth.map(|v| v.span).unwrap_or(span))?;
+    }
     let has_spindle_m = ms
         .iter()
         .any(|(f, _)| matches!(f.action, MAction::Spindle { spindle: 0, .. }));
@@ -455,8 +573,18 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         GAction::Home(to) => Some((to, span)),
         _ => None,
     });
+    if let Some((on, span)) = output {
+        outputs::switch(cx, on, &q_words, span)?;
+    }
     if let Some(span) = dwell {
         dwell_block(cx, span)?;
+    } else if let (Some((_, span)), true) = (home, comp_active) {
+        return Err(forbidden_under_comp(cx, "G28/G29", span));
+    } else if cx.axioma.cycle.active.is_some() && cx.has_axis_words() && !parameter_block {
+        if let Some((m, _)) = motion_code {
+            cx.st.motion = m;
+        }
+        cycles::call(cx, cx.whole())?;
     } else if let Some((to_home, span)) = home {
         if to_home {
             home::g28(cx, span)?;
@@ -505,6 +633,8 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     cx.st.flood = false;
                     cx.out.push(Canon::Flood { on: false });
                 }
+                let end_span = cx.block.span();
+                cx.axioma.comp.end_of_program(end_span, cx.warnings)?;
                 cx.out.push(Canon::ProgramEnd);
                 outcome = Outcome::End;
             }
@@ -516,4 +646,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         set_speed(cx, 0, s.v)?;
     }
     Ok(outcome)
+}
+
+/// A word the manual forbids while radius compensation is active (spec axioma-3 §4.4).
+fn forbidden_under_comp(cx: &Ctx<'_>, what: &str, at: ColSpan) -> Diagnostic {
+    cx.err(
+        "axioma::forbidden-under-compensation",
+        format!("{what} is not allowed while radius compensation (G41/G42/G143/G144) is active"),
+        at,
+    )
+    .with_note("switch compensation off with G40 (and its exit block) first")
 }

@@ -1,5 +1,6 @@
 //! AxiOMA motion blocks: G04 dwell, G00/G01 and the arcs G02/G03 in their centre, R and CR= forms.
 
+use super::cutter_comp::Comp;
 use crate::arc::{self, ArcError};
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::state::{DistanceMode, MotionMode};
@@ -92,6 +93,9 @@ pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result
             }
             let (end, _) = cx.end_point()?;
             if mode == MotionMode::Rapid {
+                if cx.axioma.comp.is_active() {
+                    return Comp::line(cx, true, end, 0.0, span);
+                }
                 cx.straight(true, end, 0.0);
             } else {
                 let length = {
@@ -100,6 +104,9 @@ pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result
                     (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt()
                 };
                 let feed = feed_check(cx, span, length)?;
+                if cx.axioma.comp.is_active() {
+                    return Comp::line(cx, false, end, feed, span);
+                }
                 cx.straight(false, end, feed);
             }
             Ok(())
@@ -117,6 +124,13 @@ fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), 
             "axioma::polar-cr",
             "CR= has no meaning in polar mode: a polar arc runs about the pole or its I/J/K centre",
             v.span,
+        ));
+    }
+    if cx.axioma.comp.is_active() {
+        return Err(cx.err(
+            "axioma::comp-polar",
+            "polar motion (G16) cannot be radius-compensated",
+            span,
         ));
     }
     let start = cx.st.program_position();
@@ -270,6 +284,9 @@ fn arc_move(cx: &mut Ctx<'_>, ccw: bool, span: ColSpan, cr: Option<Val>) -> Resu
     })?;
     let length = crate::rs274::helix_length(start, end, plane, planar.centre, ccw, planar.turns);
     let feed = feed_check(cx, span, length)?;
+    if cx.axioma.comp.is_active() {
+        return Comp::arc(cx, ccw, start, end, planar, feed, span);
+    }
     emit_arc(cx, plane, ccw, start, end, planar, feed, span)?;
     Ok(())
 }

@@ -8,7 +8,10 @@ use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
 
 fn hilbert(c: &mut Criterion) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/hilbert-recursive.ngc");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/hilbert-recursive.ngc"
+    );
     let text = std::fs::read_to_string(path)
         .expect("examples/hilbert-recursive.ngc")
         .replace("#<_order> = 8", "#<_order> = 7");

@@ -187,7 +187,7 @@ impl Ctx<'_> {
 
     /// True if any axis word is present (not marking them used).
     pub fn has_axis_words(&self) -> bool {
-        self.words.any(&AXIS_WORDS) || self.words.any(&[b'@', b'^'])
+        self.words.any(&AXIS_WORDS) || self.words.any(b"@^")
     }
 
     /// Emits a straight move to `end` (program coordinates) and moves the state there.

@@ -87,14 +87,14 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     if cx.st.feed_mode == FeedMode::UnitsPerMinute && cx.st.feed <= 0.0 {
         return Err(cx.err("rs274::zero-feed", "Cannot feed with zero feed rate", span));
     }
-    for k in 3..9 {
-        if let Some(w) = cx.words.take(AXIS_WORDS[k]) {
+    for (k, &letter) in AXIS_WORDS.iter().enumerate().skip(3) {
+        if let Some(w) = cx.words.take(letter) {
             return Err(cx.err(
                 "rs274::cycle-axis",
                 format!(
                     "Cannot put a{} {} in canned cycle",
                     if k == 3 || k == 6 { "n" } else { "" },
-                    (AXIS_WORDS[k] as char).to_ascii_lowercase()
+                    (letter as char).to_ascii_lowercase()
                 ),
                 w.span,
             ));

@@ -146,7 +146,7 @@ fn group_of(code: u32) -> Option<Group> {
         | 730
         | 740
         | 760 => Motion,
-        800..=890 if code % 10 == 0 => Motion,
+        800..=890 if code.is_multiple_of(10) => Motion,
         170 | 180 | 190 | 171 | 181 | 191 => Plane,
         900 | 910 => Distance,
         901 | 911 => ArcDistance,

@@ -47,12 +47,12 @@ pub(super) fn straight_probe(
             span,
         ));
     }
-    for k in 3..6 {
-        if let Some(v) = cx.words.take(AXIS_WORDS[k]) {
+    for (k, &letter) in AXIS_WORDS.iter().enumerate().take(6).skip(3) {
+        if let Some(v) = cx.words.take(letter) {
             if cx.opts.axes[k] {
                 return Err(cx.err(
                     "rs274::probe-rotary",
-                    format!("Cannot move rotary axes during probing"),
+                    "Cannot move rotary axes during probing".to_string(),
                     v.span,
                 ));
             }

@@ -35,11 +35,11 @@ fn check_plane_and_axes(cx: &mut Ctx<'_>, name: &str, span: ColSpan) -> Result<(
             span,
         ));
     }
-    for k in 2..9 {
-        if let Some(v) = cx.words.take(AXIS_WORDS[k]) {
+    for &letter in AXIS_WORDS.iter().skip(2) {
+        if let Some(v) = cx.words.take(letter) {
             return Err(cx.err(
                 "rs274::spline-axis",
-                format!("{name} accepts only X and Y, not {}", AXIS_WORDS[k] as char),
+                format!("{name} accepts only X and Y, not {}", letter as char),
                 v.span,
             ));
         }

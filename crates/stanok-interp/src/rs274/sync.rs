@@ -181,7 +181,8 @@ fn pass_depths(w: &ThreadWords) -> Option<Vec<f64>> {
     let mut n = 1.0f64;
     loop {
         let d = w.i.abs() + w.j * n.powf(1.0 / w.degression);
-        if !(d < full) {
+        // (NaN stops too.)
+        if d >= full || d.is_nan() {
             break;
         }
         depths.push(d);

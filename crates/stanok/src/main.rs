@@ -472,6 +472,38 @@ fn canon(
     Ok(ExitCode::SUCCESS)
 }
 
+/// The programmed contour of a program that uses cutter radius compensation: the same program run
+/// with every tool radius 0 (compensation then offsets by nothing). Empty when it moves exactly as
+/// the compensated run does (no compensation) or cannot be run.
+fn programmed_contour(
+    file: &Path,
+    dialect: Option<Dialect>,
+    machine: &MachineData,
+    compensated: &[Spanned<Canon>],
+) -> Vec<Spanned<Canon>> {
+    let mut zero = machine.clone();
+    for tool in zero.control.tools.tools.values_mut() {
+        for edge in &mut tool.edges {
+            edge.radius = 0.0;
+            edge.radius_wear = 0.0;
+        }
+    }
+    let Ok((interp, _)) = interpreter(file, dialect, &zero, false) else {
+        return Vec::new();
+    };
+    let reference: Vec<Spanned<Canon>> = interp.map_while(Result::ok).collect();
+    let moves = |cmds: &[Spanned<Canon>]| -> Vec<Canon> {
+        cmds.iter()
+            .filter(|c| c.value.motion().is_some())
+            .map(|c| c.value.clone())
+            .collect()
+    };
+    if moves(&reference) == moves(compensated) {
+        return Vec::new();
+    }
+    reference
+}
+
 fn plot(
     file: &Path,
     dialect: Option<Dialect>,
@@ -500,6 +532,7 @@ fn plot(
         .unwrap_or_default();
     let options = stanok_plot::PlotOptions {
         title,
+        reference: programmed_contour(file, dialect, &machine, &commands),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

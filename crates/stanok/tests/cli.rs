@@ -132,6 +132,30 @@ fn plot_writes_four_views() {
 }
 
 #[test]
+fn plot_of_a_compensated_contour_draws_the_programmed_one_too() {
+    // Example 9.6: a 100 mm square under G41 with T1 (radius 3 mm in the example machine data).
+    let file = corpus("axioma/s9_2_1-g41-square-contour-example-9_6.nc");
+    let machine = repo("machines/example-offsets-tools.toml");
+    let out = temp("comp.svg", "");
+    let (code, _, err) = stanok(&["plot", &file, "--machine", &machine, "-o", &out]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains(r#"class="programmed""#),
+        "programmed contour missing"
+    );
+    assert!(svg.contains(">programmed</text>"), "legend entry missing");
+    // Without compensation there is nothing extra to draw.
+    let plain = corpus("axioma/s4_8_1-absolute-centre-turning-example-4_18.nc");
+    let out2 = temp("plain.svg", "");
+    let (code, _, err) = stanok(&["plot", &plain, "-o", &out2]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!std::fs::read_to_string(&out2)
+        .unwrap()
+        .contains("programmed"));
+}
+
+#[test]
 fn bad_machine_file_gives_a_located_diagnostic() {
     let m = temp("m.toml", "name = \"x\"\nrapid_rate = \"fast\"\n");
     let prog = corpus("axioma/s5_1-rapid-positioning-milling-example-5_1.nc");

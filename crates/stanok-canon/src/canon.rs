@@ -239,12 +239,14 @@ pub enum ProbeKind {
     Away,
 }
 
-/// How consecutive moves are joined (LinuxCNC G61/G61.1/G64, AxiOMA G60/G64).
+/// How consecutive moves are joined (LinuxCNC G61/G61.1/G64, AxiOMA G60/G64). LinuxCNC's own
+/// naming: G61 is CANON_EXACT_PATH, G61.1 CANON_EXACT_STOP (its `rs274` trace says so).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum PathMode {
-    /// G61 / AxiOMA G60: stop exactly at every block end.
+    /// LinuxCNC G61.1 / AxiOMA G60: stop exactly at every block end.
     ExactStop,
-    /// G61.1: follow the path exactly (no blending) but without stopping where the path is smooth.
+    /// LinuxCNC G61: follow the path exactly (no blending) but without stopping where the path is
+    /// smooth.
     ExactPath,
     /// G64: blend corners, staying within `tolerance` mm of the path (0 = as fast as possible, no
     /// tolerance given).

@@ -163,7 +163,10 @@ impl Flow {
                         format!("{name} endsub/return outside a subroutine call"),
                     ));
                 };
-                if frame.label != label {
+                // `return` may carry the label of the if or loop it sits in (LinuxCNC's
+                // retval.ngc: `o1010 return` inside `o1010 if`); `endsub` must name the sub.
+                let is_return = matches!(o.kind, OKind::Return(_));
+                if frame.label != label && !is_return {
                     self.calls.push(frame);
                     return Err(flow_err(
                         block,

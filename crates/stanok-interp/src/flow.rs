@@ -21,7 +21,7 @@ use stanok_syntax::{Block, OKind, OLabel, SourcePos};
 use std::collections::HashMap;
 
 /// What the driver does with the current line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FlowAction {
     /// An ordinary block: execute it.
     Execute,
@@ -31,6 +31,16 @@ pub enum FlowAction {
     Handled,
     /// Continue reading at this position.
     Seek(SourcePos),
+    /// Call a subroutine kept in its own file (`o<name> call` with `name.ngc` on the subroutine
+    /// path): the driver opens it and reads the body after its `o<name> sub` line.
+    CallFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The label as written in the file's `sub` line (normalised, with `<>`).
+        label: String,
+    },
+    /// Return from a subroutine file: close it and continue in the caller at this position.
+    ReturnFromFile(SourcePos),
 }
 
 /// A parameter operation requested by a call or return.
@@ -61,6 +71,8 @@ enum Skip {
 struct CallFrame {
     label: String,
     return_pos: SourcePos,
+    /// The subroutine is a file of its own (the driver reads it with a reader of its own).
+    file: bool,
     saved: [f64; 30],
     loops: usize,
     ifs: usize,
@@ -91,6 +103,35 @@ pub struct Flow {
     ifs: Vec<String>,
     skip: Option<Skip>,
     ops: Vec<(ParamOp, f64)>,
+    /// Which file lines come from: 0 = the program, n = the n-th nested subroutine file. Keys of
+    /// `subs` carry it, so positions of one file are never used in another.
+    source: usize,
+}
+
+/// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
+fn subroutine_file(label: &str, opts: &InterpOptions) -> Option<std::path::PathBuf> {
+    let name = label.strip_prefix('<')?.strip_suffix('>')?;
+    opts.subroutine_path
+        .iter()
+        .map(|dir| dir.join(format!("{name}.ngc")))
+        .find(|p| p.is_file())
+}
+
+impl Flow {
+    /// The driver switched to reading file `source` (0 = the program).
+    pub fn set_source(&mut self, source: usize) {
+        self.source = source;
+    }
+
+    /// Key of a label in `subs`: the file it belongs to and the label.
+    fn sub_key(&self, label: &str) -> String {
+        format!("{}:{label}", self.source)
+    }
+}
+
+/// The normalised text of a label (`<name>` or the number), as `FlowAction::CallFile` names it.
+pub fn label_text(block: &Block, l: &OLabel) -> String {
+    label_key(block, l)
 }
 
 fn label_key(block: &Block, l: &OLabel) -> String {
@@ -147,7 +188,7 @@ impl Flow {
         }
         match &o.kind {
             OKind::Sub => {
-                self.subs.insert(label.clone(), next);
+                self.subs.insert(self.sub_key(&label), next);
                 self.skip = Some(Skip::Sub(label));
                 Ok(FlowAction::Skip)
             }
@@ -195,7 +236,11 @@ impl Flow {
                     }),
                     if returned { 1.0 } else { 0.0 },
                 ));
-                Ok(FlowAction::Seek(frame.return_pos))
+                if frame.file {
+                    Ok(FlowAction::ReturnFromFile(frame.return_pos))
+                } else {
+                    Ok(FlowAction::Seek(frame.return_pos))
+                }
             }
             OKind::Call(args) => {
                 let mut values = Vec::with_capacity(args.len());
@@ -209,9 +254,12 @@ impl Flow {
                         format!("{name} call has more than 30 arguments"),
                     ));
                 }
-                if let Some(&pos) = self.subs.get(&label) {
-                    self.enter(block, eval, label, values, next, opts)?;
+                if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
+                    self.enter(block, eval, label, values, next, opts, false)?;
                     Ok(FlowAction::Seek(pos))
+                } else if let Some(path) = subroutine_file(&label, opts) {
+                    self.enter(block, eval, label.clone(), values, next, opts, true)?;
+                    Ok(FlowAction::CallFile { path, label })
                 } else {
                     self.skip = Some(Skip::FindSub {
                         label,
@@ -400,6 +448,7 @@ impl Flow {
         args: Vec<f64>,
         return_pos: SourcePos,
         opts: &InterpOptions,
+        file: bool,
     ) -> Result<(), Diagnostic> {
         if self.calls.len() >= opts.max_call_depth {
             return Err(flow_err(
@@ -418,6 +467,7 @@ impl Flow {
         self.calls.push(CallFrame {
             label,
             return_pos,
+            file,
             saved,
             loops: self.loops.len(),
             ifs: self.ifs.len(),
@@ -456,10 +506,11 @@ impl Flow {
                 return_pos,
             } => {
                 if matches!(kind, OKind::Sub) {
-                    self.subs.insert(label.clone(), next);
+                    let key = self.sub_key(&label);
+                    self.subs.insert(key, next);
                     if label == wanted {
                         self.skip = None;
-                        self.enter(block, eval, label, args, return_pos, opts)?;
+                        self.enter(block, eval, label, args, return_pos, opts, false)?;
                         return Ok(FlowAction::Handled);
                     }
                 }

@@ -44,9 +44,10 @@ use flow::{Flow, FlowAction};
 use rs274::Outcome;
 use stanok_canon::setup::ControlData;
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
-use stanok_syntax::{Block, BlockReader, CommentKind, Dialect};
+use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, OKind, SourcePos};
 use std::collections::VecDeque;
-use std::io::{BufRead, Seek};
+use std::io::{BufRead, BufReader, Seek};
+use std::path::Path;
 use words::Words;
 
 /// Settings of one interpreter run.
@@ -76,6 +77,9 @@ pub struct InterpOptions {
     /// False (default) rejects them as "Unknown m code", as LinuxCNC does without an executable
     /// of that name on its user M-code path (its standalone interpreter has none).
     pub user_m_codes: bool,
+    /// RS274/NGC: directories searched, in order, for `name.ngc` when `o<name> call` names a
+    /// subroutine the program does not define (LinuxCNC's SUBROUTINE_PATH).
+    pub subroutine_path: Vec<std::path::PathBuf>,
     /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC (the operator turns it on).
     pub block_delete: bool,
@@ -115,6 +119,7 @@ impl InterpOptions {
             max_blocks: 200_000_000,
             continue_after_error: false,
             block_delete: false,
+            subroutine_path: Vec::new(),
             user_m_codes: false,
             max_errors: 100,
             control: ControlData::default(),
@@ -146,6 +151,9 @@ enum Phase {
 /// The interpreter: an iterator of canonical commands over a program source.
 pub struct Interpreter<R: BufRead + Seek> {
     reader: BlockReader<R>,
+    /// Subroutine files being executed (`o<name> call` of `name.ngc`), innermost last; lines are
+    /// read from the last one while it is there.
+    files: Vec<SubroutineFile>,
     block: Block,
     words: Words,
     opts: InterpOptions,
@@ -165,6 +173,12 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
+}
+
+/// A subroutine file being executed.
+struct SubroutineFile {
+    reader: BlockReader<BufReader<std::fs::File>>,
+    path: std::path::PathBuf,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -240,6 +254,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         }
         Interpreter {
             reader: BlockReader::new(source, opts.dialect),
+            files: Vec::new(),
             block: Block::default(),
             words: Words::default(),
             state,
@@ -307,9 +322,107 @@ impl<R: BufRead + Seek> Interpreter<R> {
         }
     }
 
+    /// Where the next line will be read (in the innermost subroutine file, if one is open).
+    fn read_position(&self) -> SourcePos {
+        match self.files.last() {
+            Some(f) => f.reader.position(),
+            None => self.reader.position(),
+        }
+    }
+
+    fn seek_to(&mut self, pos: SourcePos) -> Result<(), Diagnostic> {
+        let r = match self.files.last_mut() {
+            Some(f) => f.reader.seek(pos),
+            None => self.reader.seek(pos),
+        };
+        r.map_err(|e| {
+            Diagnostic::error(
+                "io::seek",
+                format!("cannot seek in the program: {e}"),
+                self.block.span(),
+            )
+        })
+    }
+
+    /// `o<name> call` of a subroutine file: open it, find its `o<name> sub` line and continue
+    /// reading after it (LinuxCNC: "EOF in file … seeking o-word" if the file does not define it).
+    fn open_subroutine_file(&mut self, path: &Path, label: &str) -> Result<(), Diagnostic> {
+        if self.files.len() >= self.opts.max_call_depth {
+            return Err(Diagnostic::error(
+                "flow::call-depth",
+                format!(
+                    "subroutine files nested deeper than {}",
+                    self.opts.max_call_depth
+                ),
+                self.block.span(),
+            ));
+        }
+        let file = std::fs::File::open(path).map_err(|e| {
+            Diagnostic::error(
+                "io::read",
+                format!("cannot open subroutine file {}: {e}", path.display()),
+                self.block.span(),
+            )
+        })?;
+        let mut reader = BlockReader::new(BufReader::new(file), self.opts.dialect);
+        let mut block = Block::default();
+        let mut diags = Vec::new();
+        loop {
+            let more = reader.next_block(&mut block, &mut diags).map_err(|e| {
+                Diagnostic::error(
+                    "io::read",
+                    format!("cannot read {}: {e}", path.display()),
+                    self.block.span(),
+                )
+            })?;
+            if !more {
+                return Err(Diagnostic::error(
+                    "flow::sub-not-found",
+                    format!("EOF in file:{} seeking o-word: o{label}", path.display()),
+                    self.block.span(),
+                ));
+            }
+            if let Some(o) = &block.oword {
+                if matches!(o.kind, OKind::Sub) && flow::label_text(&block, &o.label) == label {
+                    break;
+                }
+            }
+        }
+        self.files.push(SubroutineFile {
+            reader,
+            path: path.to_path_buf(),
+        });
+        self.flow.set_source(self.files.len());
+        Ok(())
+    }
+
     /// Reads the next line into `self.block`. Ok(false) at end of input.
     fn read(&mut self) -> Result<bool, Diagnostic> {
         self.syntax.clear();
+        if let Some(f) = self.files.last_mut() {
+            let more = f
+                .reader
+                .next_block(&mut self.block, &mut self.syntax)
+                .map_err(|e| {
+                    Diagnostic::error(
+                        "io::read",
+                        format!("cannot read {}: {e}", f.path.display()),
+                        stanok_canon::Span::default(),
+                    )
+                })?;
+            if !more {
+                return Err(Diagnostic::error(
+                    "flow::sub-no-endsub",
+                    format!(
+                        "subroutine file {} ended without its endsub",
+                        f.path.display()
+                    ),
+                    self.block.span(),
+                ));
+            }
+            self.stats.lines_read += 1;
+            return Ok(true);
+        }
         let more = self
             .reader
             .next_block(&mut self.block, &mut self.syntax)
@@ -328,7 +441,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     /// Executes one line. Ok(true) when the program is over.
     fn step(&mut self) -> Result<bool, Diagnostic> {
-        let here = self.reader.position();
+        let here = self.read_position();
         if !self.read()? {
             return self.end_of_input();
         }
@@ -384,7 +497,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         &self.block,
                         &eval,
                         here,
-                        self.reader.position(),
+                        self.read_position(),
                         &self.opts,
                     )?)
                 }
@@ -392,13 +505,21 @@ impl<R: BufRead + Seek> Interpreter<R> {
             match action {
                 None | Some(FlowAction::Skip) => return Ok(false),
                 Some(FlowAction::Seek(pos)) => {
-                    self.reader.seek(pos).map_err(|e| {
-                        Diagnostic::error(
-                            "io::seek",
-                            format!("cannot seek in the program: {e}"),
-                            self.block.span(),
-                        )
-                    })?;
+                    self.seek_to(pos)?;
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::CallFile { path, label }) => {
+                    self.open_subroutine_file(&path, &label)?;
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::ReturnFromFile(pos)) => {
+                    self.files.pop();
+                    self.flow.set_source(self.files.len());
+                    self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
                     return Ok(false);

@@ -66,6 +66,10 @@ pub struct MachineArgs {
     /// (default: the machine's `linuxcnc_units`). `inch` reproduces LinuxCNC's standalone `rs274`.
     #[arg(long, visible_alias = "machine-units", value_enum, value_name = "UNIT")]
     pub linuxcnc_units: Option<UnitsArg>,
+    /// RS274/NGC: a directory searched for `name.ngc` when `o<name> call` names a subroutine the
+    /// program does not define (LinuxCNC's SUBROUTINE_PATH); repeat for several, searched in order.
+    #[arg(long, value_name = "DIR")]
+    pub subroutine_path: Vec<PathBuf>,
 }
 
 /// A LinuxCNC parameter file kept from run to run.

@@ -129,6 +129,7 @@ fn interpreter(
     dialect: Option<Dialect>,
     machine: &MachineData,
     check_mode: bool,
+    subroutine_path: &[PathBuf],
 ) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
     let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
     let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
@@ -139,6 +140,7 @@ fn interpreter(
     opts.control = control_data(machine);
     opts.diameter_axes = machine.diameter_axes();
     opts.rs274_machine_units = machine.linuxcnc_units;
+    opts.subroutine_path = subroutine_path.to_vec();
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -212,7 +214,7 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, true)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, true, &args.subroutine_path)?;
     let mut errors = Vec::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
@@ -314,7 +316,7 @@ fn run_program(
         return Ok(code);
     }
     let units = machine.linuxcnc_units;
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     let trace = match &motion.trace {
         Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
         None => None,
@@ -425,7 +427,7 @@ fn canon(
     if let Err(code) = load_var(file, dialect, var, &mut machine) {
         return Ok(code);
     }
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
@@ -479,6 +481,7 @@ fn programmed_contour(
     file: &Path,
     dialect: Option<Dialect>,
     machine: &MachineData,
+    subroutine_path: &[PathBuf],
     compensated: &[Spanned<Canon>],
 ) -> Vec<Spanned<Canon>> {
     let mut zero = machine.clone();
@@ -488,7 +491,7 @@ fn programmed_contour(
             edge.radius_wear = 0.0;
         }
     }
-    let Ok((interp, _)) = interpreter(file, dialect, &zero, false) else {
+    let Ok((interp, _)) = interpreter(file, dialect, &zero, false, subroutine_path) else {
         return Vec::new();
     };
     let reference: Vec<Spanned<Canon>> = interp.map_while(Result::ok).collect();
@@ -514,7 +517,7 @@ fn plot(
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     let mut commands: Vec<Spanned<Canon>> = Vec::new();
     let mut failure = None;
     for item in interp.by_ref() {
@@ -532,7 +535,7 @@ fn plot(
         .unwrap_or_default();
     let options = stanok_plot::PlotOptions {
         title,
-        reference: programmed_contour(file, dialect, &machine, &commands),
+        reference: programmed_contour(file, dialect, &machine, &args.subroutine_path, &commands),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

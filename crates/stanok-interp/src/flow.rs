@@ -67,6 +67,25 @@ enum Skip {
     LoopEnd(String),
 }
 
+/// A call about to be entered.
+struct Call {
+    label: String,
+    args: Vec<f64>,
+    return_pos: SourcePos,
+    file: bool,
+}
+
+impl Call {
+    fn new(label: String, args: Vec<f64>, return_pos: SourcePos, file: bool) -> Self {
+        Call {
+            label,
+            args,
+            return_pos,
+            file,
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 struct CallFrame {
     label: String,
@@ -255,10 +274,15 @@ impl Flow {
                     ));
                 }
                 if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
-                    self.enter(block, eval, label, values, next, opts, false)?;
+                    self.enter(block, eval, Call::new(label, values, next, false), opts)?;
                     Ok(FlowAction::Seek(pos))
                 } else if let Some(path) = subroutine_file(&label, opts) {
-                    self.enter(block, eval, label.clone(), values, next, opts, true)?;
+                    self.enter(
+                        block,
+                        eval,
+                        Call::new(label.clone(), values, next, true),
+                        opts,
+                    )?;
                     Ok(FlowAction::CallFile { path, label })
                 } else {
                     self.skip = Some(Skip::FindSub {
@@ -444,12 +468,15 @@ impl Flow {
         &mut self,
         block: &Block,
         eval: &Evaluator<'_>,
-        label: String,
-        args: Vec<f64>,
-        return_pos: SourcePos,
+        call: Call,
         opts: &InterpOptions,
-        file: bool,
     ) -> Result<(), Diagnostic> {
+        let Call {
+            label,
+            args,
+            return_pos,
+            file,
+        } = call;
         if self.calls.len() >= opts.max_call_depth {
             return Err(flow_err(
                 block,
@@ -510,7 +537,7 @@ impl Flow {
                     self.subs.insert(key, next);
                     if label == wanted {
                         self.skip = None;
-                        self.enter(block, eval, label, args, return_pos, opts, false)?;
+                        self.enter(block, eval, Call::new(label, args, return_pos, false), opts)?;
                         return Ok(FlowAction::Handled);
                     }
                 }

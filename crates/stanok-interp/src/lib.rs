@@ -562,9 +562,34 @@ impl<R: BufRead + Seek> Interpreter<R> {
             match slot {
                 flow::ParamOp::Write(slot) => self.params.write(&slot, v),
                 flow::ParamOp::PushScope => self.params.push_scope(),
-                flow::ParamOp::PopScope => self.params.pop_scope(),
+                flow::ParamOp::PopScope => {
+                    if let Some(saved) = self.params.pop_scope() {
+                        self.restore_on_return(&saved);
+                    }
+                }
             }
         }
+    }
+
+    /// M73: the subroutine returns, its caller's modal state comes back (commands carry the
+    /// `endsub`/`return` line's span).
+    fn restore_on_return(&mut self, saved: &rs274::modal_context::SavedContext) {
+        let out = ctx::Emitter {
+            queue: &mut self.queue,
+            span: self.block.span(),
+            number: self.block.number,
+            label_digits: 0,
+        };
+        let mut cx = Ctx {
+            block: &self.block,
+            words: &mut self.words,
+            st: &mut self.state,
+            out,
+            opts: &self.opts,
+            warnings: &mut self.warnings,
+            axioma: &mut self.axioma,
+        };
+        rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
 
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {

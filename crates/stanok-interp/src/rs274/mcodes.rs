@@ -200,6 +200,8 @@ pub(super) struct MCodes {
     pub(super) n_overrides: usize,
     /// M19.
     pub(super) orient: Option<ColSpan>,
+    /// M70–M73.
+    pub(super) context: Option<(u32, ColSpan)>,
     /// M61.
     pub(super) set_tool: Option<ColSpan>,
 }
@@ -220,6 +222,7 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
         overrides: [0; 4],
         n_overrides: 0,
         orient: None,
+        context: None,
         set_tool: None,
     };
     if cx.words.m.len() > 4 {
@@ -261,7 +264,8 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
                 m.n_overrides += 1;
                 false
             }
-            67 | 68 | 70..=73 => {
+            70..=73 => m.context.replace((code, span)).is_some(),
+            67 | 68 => {
                 return Err(unsupported(
                     cx,
                     &format!("M{code}"),

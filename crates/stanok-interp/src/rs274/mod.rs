@@ -33,6 +33,7 @@ pub(crate) mod cutter_comp;
 mod cycles;
 mod home;
 mod mcodes;
+pub(crate) mod modal_context;
 mod motion;
 mod offsets;
 mod probe;
@@ -286,7 +287,12 @@ fn distance_mode(absolute: bool) -> DistanceMode {
 }
 
 /// LinuxCNC's `COMMENT("interpreter: … mode changed to …")` on a change of G90/G91 or G90.1/G91.1.
-fn announce_distance(cx: &mut Ctx<'_>, what: &str, old: DistanceMode, new: DistanceMode) {
+pub(crate) fn announce_distance(
+    cx: &mut Ctx<'_>,
+    what: &str,
+    old: DistanceMode,
+    new: DistanceMode,
+) {
     if old != new {
         let to = match new {
             DistanceMode::Absolute => "absolute",
@@ -437,6 +443,10 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
                 cx.out.push(Canon::StopSpindle { spindle: 0 });
             }
         }
+    }
+    // 7a. M70–M73: save, forget, restore the modal state.
+    if let Some((code, span)) = m.context {
+        modal_context::m70_73(cx, params, code, span)?;
     }
     for &code in &m.coolant[..m.n_coolant] {
         cx.coolant(code);

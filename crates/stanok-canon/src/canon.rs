@@ -226,6 +226,19 @@ pub struct SplineMove {
     pub feed: f64,
 }
 
+/// The program-log operations of LinuxCNC's comment commands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum LogAction {
+    /// `(LOGOPEN,file)`: start a new log file.
+    Open,
+    /// `(LOGAPPEND,file)`: continue an existing one.
+    Append,
+    /// `(LOGCLOSE)`.
+    Close,
+    /// `(LOG,text)`: write a line.
+    Write,
+}
+
 /// What a probe move does on contact (LinuxCNC G38.2–G38.5, AxiOMA G75).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum ProbeKind {
@@ -531,6 +544,14 @@ pub enum Canon {
     /// An operator message (AxiOMA `MSG("…")`, LinuxCNC `(MSG,…)`); empty text clears it.
     Message {
         /// The text.
+        text: String,
+    },
+    /// LinuxCNC's program log: `(LOGOPEN,file)`, `(LOGAPPEND,file)`, `(LOGCLOSE)`, `(LOG,text)`
+    /// (the text with its parameters substituted).
+    Log {
+        /// What to do.
+        action: LogAction,
+        /// The file name (open, append) or the line to write; empty for close.
         text: String,
     },
     /// A passive comment that a printer may show (LinuxCNC prints every `( … )` as COMMENT).

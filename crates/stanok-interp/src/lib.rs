@@ -43,7 +43,7 @@ use ctx::Ctx;
 use flow::{Flow, FlowAction};
 use rs274::Outcome;
 use stanok_canon::setup::ControlData;
-use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
+use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, LogAction, Plane, Pose, Spanned};
 use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, OKind, SourcePos};
 use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, Seek};
@@ -173,6 +173,30 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
+}
+
+/// LinuxCNC's comment commands `(LOGOPEN,f)`, `(LOGAPPEND,f)`, `(LOGCLOSE)`, `(LOG,text)` and
+/// `(PRINT,text)`: Some(command) for the log ones, Some(None) for PRINT (console output, no
+/// command), None for an ordinary comment. Keywords are case-insensitive, as in LinuxCNC.
+fn log_command(text: &str, eval: &params::Evaluator<'_>) -> Option<Option<Canon>> {
+    let (head, rest) = match text.split_once(',') {
+        Some((h, r)) => (h, r),
+        None => (text, ""),
+    };
+    let action = match head.trim().to_ascii_uppercase().as_str() {
+        "LOGOPEN" => LogAction::Open,
+        "LOGAPPEND" => LogAction::Append,
+        "LOGCLOSE" => LogAction::Close,
+        "LOG" => LogAction::Write,
+        "PRINT" => return Some(None),
+        _ => return None,
+    };
+    let text = match action {
+        LogAction::Write => flow::substitute_parameters(rest, eval),
+        LogAction::Close => String::new(),
+        _ => rest.to_string(),
+    };
+    Some(Some(Canon::Log { action, text }))
 }
 
 /// A subroutine file being executed.
@@ -662,9 +686,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         CommentKind::Debug => Some(Canon::Message {
                             text: flow::substitute_parameters(text, &eval),
                         }),
-                        // rs274 drops the blanks a comment starts with.
-                        _ => Some(Canon::Comment {
-                            text: text.trim_start().to_string(),
+                        // rs274 drops the blanks a comment starts with; LOG… comments are
+                        // LinuxCNC's program log, PRINT goes to its console (not a command).
+                        _ => log_command(text.trim_start(), &eval).unwrap_or_else(|| {
+                            Some(Canon::Comment {
+                                text: text.trim_start().to_string(),
+                            })
                         }),
                     };
                     if let Some(cmd) = cmd {

@@ -349,6 +349,9 @@ impl SimMachine {
                 },
             ),
             Canon::PalletShuttle => self.log(line, "pallet shuttle"),
+            Canon::Log { action, text } => {
+                self.log(line, format!("program log {action:?}: {text}"))
+            }
             Canon::Finish => {
                 self.report.program_ended = true;
                 self.log(line, "% end of program text");

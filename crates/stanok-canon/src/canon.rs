@@ -581,7 +581,12 @@ impl Canon {
             Canon::StraightFeed(m) => Some(Motion::Line(m)),
             Canon::ArcFeed(a) => Some(Motion::Arc(a)),
             Canon::SplineFeed(s) => Some(Motion::Spline(s)),
-            Canon::StraightProbe { motion, .. } => Some(Motion::Probe(motion)),
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => Some(Motion::Probe {
+                motion,
+                contact: *contact,
+            }),
             Canon::RigidTap { start, end, .. } => Some(Motion::RigidTap {
                 start: *start,
                 bottom: *end,
@@ -602,8 +607,13 @@ pub enum Motion<'a> {
     Arc(&'a ArcMove),
     /// A spline.
     Spline(&'a SplineMove),
-    /// A probe move (as programmed; the machine may stop it early).
-    Probe(&'a LineMove),
+    /// A probe move: programmed to `motion.end`, it stops at `contact` when there is one.
+    Probe {
+        /// The move as programmed.
+        motion: &'a LineMove,
+        /// Where the probe changes state (the move ends there).
+        contact: Option<Pose>,
+    },
     /// A rigid tap: down to `bottom` and back to `start`.
     RigidTap {
         /// Start and end of the cycle.
@@ -617,7 +627,8 @@ impl Motion<'_> {
     /// Start pose.
     pub fn start(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.start,
+            Motion::Rapid(m) | Motion::Line(m) => m.start,
+            Motion::Probe { motion, .. } => motion.start,
             Motion::Arc(a) => a.start,
             Motion::Spline(s) => s.start,
             Motion::RigidTap { start, .. } => *start,
@@ -627,7 +638,8 @@ impl Motion<'_> {
     /// End pose.
     pub fn end(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.end,
+            Motion::Rapid(m) | Motion::Line(m) => m.end,
+            Motion::Probe { motion, contact } => contact.unwrap_or(motion.end),
             Motion::Arc(a) => a.end,
             Motion::Spline(s) => s.end,
             // The tap comes back to where it started.

@@ -258,7 +258,16 @@ impl SimMachine {
             Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
             Canon::ArcFeed(a) => self.apply_arc(a, span)?,
             Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
-            Canon::StraightProbe { motion, .. } => self.apply_line(motion, LineKind::Feed, span)?,
+            // The probe stops where it makes (or loses) contact.
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => {
+                let m = LineMove {
+                    end: contact.unwrap_or(motion.end),
+                    ..*motion
+                };
+                self.apply_line(&m, LineKind::Feed, span)?
+            }
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,

@@ -257,10 +257,10 @@ fn every_corpus_program_that_moves_keeps_the_guarantees() {
     }
     std::fs::remove_dir_all(&dir).ok();
     eprintln!("checked {checked} programs, skipped {skipped}");
-    // Known interpreter issue (reported to its owner): AxiOMA cutter compensation with G143 emits
-    // a move whose start is not the previous end. At most these few programs may skip the path
-    // check; any other discontinuity fails here.
-    eprintln!("Canon discontinuities (path check skipped): {discontinuous:?}");
-    assert!(discontinuous.len() <= 3, "{discontinuous:?}");
+    // Every motion of every program starts where the previous one ended.
+    assert!(
+        discontinuous.is_empty(),
+        "Canon discontinuities: {discontinuous:?}"
+    );
     assert!(checked >= 50, "only {checked} corpus programs ran");
 }

@@ -162,6 +162,9 @@ fn load_machine(args: &MachineArgs) -> Result<(MachineData, Sources), ExitCode> 
     if let Some(u) = args.linuxcnc_units {
         machine.linuxcnc_units = u.into();
     }
+    if !args.probe_surface.is_empty() {
+        machine.control.probe_surfaces = args.probe_surface.clone();
+    }
     let units = machine.linuxcnc_units;
     let mut sources = Sources::machine(&machine.name);
     if let Some(path) = &args.tools {

@@ -163,3 +163,45 @@ fn bad_machine_file_gives_a_located_diagnostic() {
     assert_eq!(code, 1);
     assert!(err.contains("m.toml:2:"), "{err}");
 }
+
+#[test]
+fn probe_moves_stop_at_the_configured_surface() {
+    // G38.2 towards Z-10 trips at the surface Z -3.2: #5063 reads it, #5070 = 1, the next move
+    // starts there; G38.4 back up loses contact as soon as it leaves the surface.
+    let prog = temp(
+        "probe.ngc",
+        "G21 G90 F100\nG0 X1 Y2 Z5\nG38.2 Z-10\n(debug, z=#5063 ok=#5070)\nG38.4 Z0\n(debug, z=#5063 ok=#5070)\nM2\n",
+    );
+    let (code, out, err) = stanok(&["canon", &prog, "--probe-surface", "z<=-3.2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("STRAIGHT_PROBE(1.0000, 2.0000, -10.0000"),
+        "{out}"
+    );
+    assert!(
+        out.contains("MESSAGE(\" z=-3.200000 ok=1.000000\")"),
+        "{out}"
+    );
+    // Away from the surface the contact ends at once (Z -3.2 again), and it is a success.
+    assert!(out.contains("MESSAGE(\" z=-3.200000 ok=1.000000\")"));
+    // The run's final position is the trip point of the last probe.
+    let (code, json, err) = stanok(&["run", &prog, "--json", "--probe-surface", "z=-3.2"]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert!(
+        (r["final_position"]["z"].as_f64().unwrap() + 3.2).abs() < 1e-9,
+        "{json}"
+    );
+    // G38.2 that never reaches the surface is an error at its block.
+    let miss = temp("miss.ngc", "G21 G90 F100\nG0 Z5\nG38.2 Z-1\nM2\n");
+    let (code, _, err) = stanok(&["canon", &miss, "--probe-surface", "z<=-3.2"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("without the probe changing state") && err.contains("miss.ngc:3"),
+        "{err}"
+    );
+    // A malformed surface is refused by the command line.
+    let (code, _, err) = stanok(&["canon", &miss, "--probe-surface", "q<=1"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("unknown axis"), "{err}");
+}

@@ -170,6 +170,17 @@ pub struct LineMove {
     pub feed: f64,
 }
 
+impl LineMove {
+    /// The move as executed when it stops early at `stop` (a probe's contact point), or as
+    /// programmed without one.
+    pub fn stopped_at(&self, stop: Option<Pose>) -> LineMove {
+        LineMove {
+            end: stop.unwrap_or(self.end),
+            ..*self
+        }
+    }
+}
+
 /// A circular or helical move.
 ///
 /// Geometry: the tool turns about the line through `centre` along the unit vector `axis`, in the

@@ -261,13 +261,7 @@ impl SimMachine {
             // The probe stops where it makes (or loses) contact.
             Canon::StraightProbe {
                 motion, contact, ..
-            } => {
-                let m = LineMove {
-                    end: contact.unwrap_or(motion.end),
-                    ..*motion
-                };
-                self.apply_line(&m, LineKind::Feed, span)?
-            }
+            } => self.apply_line(&motion.stopped_at(*contact), LineKind::Feed, span)?,
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,

@@ -244,12 +244,8 @@ impl CanonAdapter {
             Canon::StraightProbe {
                 motion, contact, ..
             } => {
-                let m = LineMove {
-                    end: contact.unwrap_or(motion.end),
-                    ..*motion
-                };
                 stop(out);
-                out(self.line(&m, false, line));
+                out(self.line(&motion.stopped_at(*contact), false, line));
                 stop(out);
             }
             Canon::RigidTap { start, end, scale } => {

@@ -249,6 +249,24 @@ fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
     Ok(g)
 }
 
+/// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
+pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
+    let text = match mode {
+        FeedMode::InverseTime => "inverse time",
+        FeedMode::UnitsPerRevolution => "units per revolution",
+        FeedMode::UnitsPerMinute => "units per minute",
+    };
+    cx.out.push(Canon::Comment {
+        text: format!("interpreter: feed mode set to {text}"),
+    });
+    cx.st.feed_mode = mode;
+    cx.out.push(Canon::SetFeedMode { mode });
+    if mode != FeedMode::InverseTime {
+        cx.st.feed = 0.0;
+        cx.out.push(Canon::SetFeedRate { feed: 0.0 });
+    }
+}
+
 fn plane_of_code(code: u32) -> Plane {
     match code {
         180 => Plane::ZX,
@@ -334,20 +352,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
 
     // 2. Feed mode.
     if let Some((code, _)) = g.get(Group::FeedMode) {
-        let (mode, text) = match code {
-            930 => (FeedMode::InverseTime, "inverse time"),
-            950 => (FeedMode::UnitsPerRevolution, "units per revolution"),
-            _ => (FeedMode::UnitsPerMinute, "units per minute"),
-        };
-        cx.out.push(Canon::Comment {
-            text: format!("interpreter: feed mode set to {text}"),
-        });
-        cx.st.feed_mode = mode;
-        cx.out.push(Canon::SetFeedMode { mode });
-        if mode != FeedMode::InverseTime {
-            cx.st.feed = 0.0;
-            cx.out.push(Canon::SetFeedRate { feed: 0.0 });
-        }
+        set_feed_mode(
+            cx,
+            match code {
+                930 => FeedMode::InverseTime,
+                950 => FeedMode::UnitsPerRevolution,
+                _ => FeedMode::UnitsPerMinute,
+            },
+        );
     }
     // 3. F (per-move in inverse time: see `motion`).
     let f_word = cx.words.take(b'F');

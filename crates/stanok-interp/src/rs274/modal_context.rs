@@ -99,22 +99,7 @@ pub fn restore(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) 
         cx.out.push(Canon::UseLengthUnits { units: saved.units });
     }
     if cx.st.feed_mode != saved.feed_mode {
-        let text = match saved.feed_mode {
-            FeedMode::InverseTime => "inverse time",
-            FeedMode::UnitsPerRevolution => "units per revolution",
-            FeedMode::UnitsPerMinute => "units per minute",
-        };
-        cx.out.push(Canon::Comment {
-            text: format!("interpreter: feed mode set to {text}"),
-        });
-        cx.st.feed_mode = saved.feed_mode;
-        cx.out.push(Canon::SetFeedMode {
-            mode: saved.feed_mode,
-        });
-        if saved.feed_mode != FeedMode::InverseTime {
-            cx.st.feed = 0.0;
-            cx.out.push(Canon::SetFeedRate { feed: 0.0 });
-        }
+        super::set_feed_mode(cx, saved.feed_mode);
     } else if cx.st.feed != saved.feed {
         cx.st.feed = saved.feed;
         if saved.feed_mode != FeedMode::InverseTime {

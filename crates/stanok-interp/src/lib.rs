@@ -423,29 +423,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// Reads the next line into `self.block`. Ok(false) at end of input.
     fn read(&mut self) -> Result<bool, Diagnostic> {
         self.syntax.clear();
-        if let Some(f) = self.files.last_mut() {
-            let more = f
-                .reader
-                .next_block(&mut self.block, &mut self.syntax)
-                .map_err(|e| {
-                    Diagnostic::error(
-                        "io::read",
-                        format!("cannot read {}: {e}", f.path.display()),
-                        stanok_canon::Span::default(),
-                    )
-                })?;
-            if !more {
-                return Err(Diagnostic::error(
-                    "flow::sub-no-endsub",
-                    format!(
-                        "subroutine file {} ended without its endsub",
-                        f.path.display()
-                    ),
-                    self.block.span(),
-                ));
-            }
-            self.stats.lines_read += 1;
-            return Ok(true);
+        if !self.files.is_empty() {
+            return self.read_subroutine_file();
         }
         let more = self
             .reader
@@ -461,6 +440,36 @@ impl<R: BufRead + Seek> Interpreter<R> {
             self.stats.lines_read += 1;
         }
         Ok(more)
+    }
+
+    /// `read` while a subroutine file is open: its end before the endsub is an error.
+    #[cold]
+    fn read_subroutine_file(&mut self) -> Result<bool, Diagnostic> {
+        let Some(f) = self.files.last_mut() else {
+            return Ok(false);
+        };
+        let more = f
+            .reader
+            .next_block(&mut self.block, &mut self.syntax)
+            .map_err(|e| {
+                Diagnostic::error(
+                    "io::read",
+                    format!("cannot read {}: {e}", f.path.display()),
+                    stanok_canon::Span::default(),
+                )
+            })?;
+        if !more {
+            return Err(Diagnostic::error(
+                "flow::sub-no-endsub",
+                format!(
+                    "subroutine file {} ended without its endsub",
+                    f.path.display()
+                ),
+                self.block.span(),
+            ));
+        }
+        self.stats.lines_read += 1;
+        Ok(true)
     }
 
     /// Executes one line. Ok(true) when the program is over.
@@ -749,7 +758,17 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     /// How many commands at the back of the queue are held back (RS274/NGC cutter compensation
     /// may still move the last compensated corner); none once the run is over.
+    #[inline(always)]
     fn held(&self) -> usize {
+        // Compensation off (almost every block): nothing held, nothing to scan.
+        if !self.state.rs274.comp.on() {
+            return 0;
+        }
+        self.held_when_compensating()
+    }
+
+    #[cold]
+    fn held_when_compensating(&self) -> usize {
         let n = rs274::held_motions(&self.state.rs274);
         if n == 0 || self.phase == Phase::Done {
             return 0;

@@ -813,6 +813,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
 impl<R: BufRead + Seek> Iterator for Interpreter<R> {
     type Item = Result<Spanned<Canon>, Diagnostic>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if self.queue.len() > self.held() {

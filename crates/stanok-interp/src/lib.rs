@@ -33,6 +33,7 @@ mod params;
 mod predefined;
 mod rs274;
 mod state;
+mod subfiles;
 mod words;
 
 pub use axioma::AxiomaMachineParams;
@@ -43,11 +44,10 @@ use ctx::Ctx;
 use flow::{Flow, FlowAction};
 use rs274::Outcome;
 use stanok_canon::setup::ControlData;
-use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, LogAction, Plane, Pose, Spanned};
-use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, OKind, SourcePos};
+use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
+use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, SourcePos};
 use std::collections::VecDeque;
-use std::io::{BufRead, BufReader, Seek};
-use std::path::Path;
+use std::io::{BufRead, Seek};
 use words::Words;
 
 /// Settings of one interpreter run.
@@ -153,7 +153,7 @@ pub struct Interpreter<R: BufRead + Seek> {
     reader: BlockReader<R>,
     /// Subroutine files being executed (`o<name> call` of `name.ngc`), innermost last; lines are
     /// read from the last one while it is there.
-    files: Vec<SubroutineFile>,
+    files: Vec<subfiles::SubroutineFile>,
     block: Block,
     words: Words,
     opts: InterpOptions,
@@ -173,36 +173,6 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
-}
-
-/// LinuxCNC's comment commands `(LOGOPEN,f)`, `(LOGAPPEND,f)`, `(LOGCLOSE)`, `(LOG,text)` and
-/// `(PRINT,text)`: Some(command) for the log ones, Some(None) for PRINT (console output, no
-/// command), None for an ordinary comment. Keywords are case-insensitive, as in LinuxCNC.
-fn log_command(text: &str, eval: &params::Evaluator<'_>) -> Option<Option<Canon>> {
-    let (head, rest) = match text.split_once(',') {
-        Some((h, r)) => (h, r),
-        None => (text, ""),
-    };
-    let action = match head.trim().to_ascii_uppercase().as_str() {
-        "LOGOPEN" => LogAction::Open,
-        "LOGAPPEND" => LogAction::Append,
-        "LOGCLOSE" => LogAction::Close,
-        "LOG" => LogAction::Write,
-        "PRINT" => return Some(None),
-        _ => return None,
-    };
-    let text = match action {
-        LogAction::Write => flow::substitute_parameters(rest, eval),
-        LogAction::Close => String::new(),
-        _ => rest.to_string(),
-    };
-    Some(Some(Canon::Log { action, text }))
-}
-
-/// A subroutine file being executed.
-struct SubroutineFile {
-    reader: BlockReader<BufReader<std::fs::File>>,
-    path: std::path::PathBuf,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -368,58 +338,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
         })
     }
 
-    /// `o<name> call` of a subroutine file: open it, find its `o<name> sub` line and continue
-    /// reading after it (LinuxCNC: "EOF in file … seeking o-word" if the file does not define it).
-    fn open_subroutine_file(&mut self, path: &Path, label: &str) -> Result<(), Diagnostic> {
-        if self.files.len() >= self.opts.max_call_depth {
-            return Err(Diagnostic::error(
-                "flow::call-depth",
-                format!(
-                    "subroutine files nested deeper than {}",
-                    self.opts.max_call_depth
-                ),
-                self.block.span(),
-            ));
-        }
-        let file = std::fs::File::open(path).map_err(|e| {
-            Diagnostic::error(
-                "io::read",
-                format!("cannot open subroutine file {}: {e}", path.display()),
-                self.block.span(),
-            )
-        })?;
-        let mut reader = BlockReader::new(BufReader::new(file), self.opts.dialect);
-        let mut block = Block::default();
-        let mut diags = Vec::new();
-        loop {
-            let more = reader.next_block(&mut block, &mut diags).map_err(|e| {
-                Diagnostic::error(
-                    "io::read",
-                    format!("cannot read {}: {e}", path.display()),
-                    self.block.span(),
-                )
-            })?;
-            if !more {
-                return Err(Diagnostic::error(
-                    "flow::sub-not-found",
-                    format!("EOF in file:{} seeking o-word: o{label}", path.display()),
-                    self.block.span(),
-                ));
-            }
-            if let Some(o) = &block.oword {
-                if matches!(o.kind, OKind::Sub) && flow::label_text(&block, &o.label) == label {
-                    break;
-                }
-            }
-        }
-        self.files.push(SubroutineFile {
-            reader,
-            path: path.to_path_buf(),
-        });
-        self.flow.set_source(self.files.len());
-        Ok(())
-    }
-
     /// Reads the next line into `self.block`. Ok(false) at end of input.
     fn read(&mut self) -> Result<bool, Diagnostic> {
         self.syntax.clear();
@@ -440,36 +358,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
             self.stats.lines_read += 1;
         }
         Ok(more)
-    }
-
-    /// `read` while a subroutine file is open: its end before the endsub is an error.
-    #[cold]
-    fn read_subroutine_file(&mut self) -> Result<bool, Diagnostic> {
-        let Some(f) = self.files.last_mut() else {
-            return Ok(false);
-        };
-        let more = f
-            .reader
-            .next_block(&mut self.block, &mut self.syntax)
-            .map_err(|e| {
-                Diagnostic::error(
-                    "io::read",
-                    format!("cannot read {}: {e}", f.path.display()),
-                    stanok_canon::Span::default(),
-                )
-            })?;
-        if !more {
-            return Err(Diagnostic::error(
-                "flow::sub-no-endsub",
-                format!(
-                    "subroutine file {} ended without its endsub",
-                    f.path.display()
-                ),
-                self.block.span(),
-            ));
-        }
-        self.stats.lines_read += 1;
-        Ok(true)
     }
 
     /// Executes one line. Ok(true) when the program is over.
@@ -697,7 +585,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         }),
                         // rs274 drops the blanks a comment starts with; LOG… comments are
                         // LinuxCNC's program log, PRINT goes to its console (not a command).
-                        _ => log_command(text.trim_start(), &eval).unwrap_or_else(|| {
+                        _ => subfiles::log_command(text.trim_start(), &eval).unwrap_or_else(|| {
                             Some(Canon::Comment {
                                 text: text.trim_start().to_string(),
                             })

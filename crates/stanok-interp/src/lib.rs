@@ -720,6 +720,11 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
                     Ok(true) => self.phase = Phase::Done,
                     Ok(false) => {}
                     Err(d) => {
+                        // An error inside a subroutine file is located in that file.
+                        let d = match self.files.last() {
+                            Some(f) => d.in_file(f.path.display().to_string()),
+                            None => d,
+                        };
                         self.errors += 1;
                         let go_on = self.opts.continue_after_error
                             && self.errors < self.opts.max_errors

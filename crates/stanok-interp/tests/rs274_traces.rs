@@ -407,3 +407,30 @@ fn a_subroutine_file_without_its_sub_is_an_error() {
     assert_eq!(err.span.line, 2);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_error_inside_a_subroutine_file_is_located_in_that_file() {
+    let dir = std::env::temp_dir().join(format!("stanok-subfile-err-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("bad.ngc"),
+        "o<bad> sub\nG1 X1 F0\no<bad> endsub\nM2\n",
+    )
+    .unwrap();
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.subroutine_path = vec![dir.clone()];
+    let (_, err) = run_with("G21\no<bad> call\nM2\n", opts);
+    let err = err.unwrap();
+    assert!(
+        err.message.starts_with("Cannot do g1 with zero feed rate"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.span.line, 2);
+    assert!(
+        err.file.as_deref().unwrap().ends_with("bad.ngc"),
+        "{:?}",
+        err.file
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

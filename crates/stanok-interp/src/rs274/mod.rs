@@ -267,6 +267,26 @@ pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
     }
 }
 
+/// G70/G71/G72 (and .1/.2) are not implemented yet: the block is refused — with LinuxCNC's own
+/// error where the words are wrong (so error parity holds), else as unsupported.
+fn lathe_cycle_refusal(cx: &Ctx<'_>, code: u32, span: ColSpan) -> Diagnostic {
+    if !cx.words.has(b'Q') {
+        return cx.err("rs274::g7x-q-missing", "G7x.x  requires a Q word", span);
+    }
+    if cx.st.plane != Plane::ZX {
+        return cx.err(
+            "rs274::g7x-plane",
+            format!(
+                "G{}.{} can only be used in XZ plane (G18)",
+                code / 10,
+                code % 10
+            ),
+            span,
+        );
+    }
+    unsupported(cx, &g_name(code), "RS274/NGC lathe cycles G70-G72", span)
+}
+
 fn plane_of_code(code: u32) -> Plane {
     match code {
         180 => Plane::ZX,
@@ -340,8 +360,10 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             continue;
         }
         let span = g.span[group as usize];
+        if (700..=722).contains(&code) {
+            return Err(lathe_cycle_refusal(cx, code, span));
+        }
         let issue = match code {
-            700..=720 => Some("RS274/NGC cycles, splines and probing"),
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,
         };

@@ -522,7 +522,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let axioma_backup = (dialect == Dialect::Axioma).then(|| self.axioma.clone());
         // RS274/NGC: commands held for cutter compensation may be edited by this block: keep
         // copies to restore if it fails.
-        let held_backup: Vec<Spanned<Canon>> = if dialect == Dialect::Rs274ngc {
+        let held_backup: Vec<Spanned<Canon>> = if self.state.rs274.comp.on() {
             let len = self.queue.len();
             let h = self.held().min(len);
             self.queue.iter().skip(len - h).cloned().collect()
@@ -701,7 +701,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
 impl<R: BufRead + Seek> Iterator for Interpreter<R> {
     type Item = Result<Spanned<Canon>, Diagnostic>;
 
-    #[inline]
+    #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if self.queue.len() > self.held() {

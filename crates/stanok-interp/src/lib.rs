@@ -35,6 +35,7 @@ mod rs274;
 mod state;
 mod words;
 
+pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
 pub use axioma::AxiomaMachineParams;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
@@ -98,6 +99,8 @@ pub struct InterpOptions {
     pub g92_persistence: bool,
     /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
     pub axioma: AxiomaMachineParams,
+    /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
+    pub optional_stop: bool,
 }
 
 impl InterpOptions {
@@ -123,6 +126,7 @@ impl InterpOptions {
             rs274_machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
             axioma: AxiomaMachineParams::default(),
+            optional_stop: true,
         }
     }
 }
@@ -289,6 +293,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// positions, G92, active system, tool table and preset parameters updated.
     pub fn control_data(&self) -> ControlData {
         self.params.to_control(&self.opts.control)
+    }
+
+    /// AxiOMA: the M vector ("active functions" screen) after the blocks run so far: each modal
+    /// M group's name and the function it shows (spec axioma-2 §4.1, §5).
+    pub fn axioma_m_vector(&self) -> Vec<(String, u32)> {
+        self.axioma.m.display(&self.opts.axioma.m_table)
     }
 
     /// Counters.

@@ -17,6 +17,8 @@
 
 use super::cutter_comp::Comp;
 use super::cycles::CycleState;
+use super::mtable::{MState, MTable};
+use super::technology::{default_table, Technology};
 use crate::InterpOptions;
 use stanok_canon::{Canon, Diagnostic, Spanned};
 use std::collections::VecDeque;
@@ -37,6 +39,16 @@ pub struct AxiomaMachineParams {
     /// plane's (a1, a2) = (Z, X) components for G18) from the nose centre S to the tool tip P
     /// (spec axioma-3 §4.5.10, A9). Code 0 and 9: v = 0 (the programmed point is the nose centre).
     pub edge_positions: [[f64; 2]; 10],
+    /// The channel's M-function table (spec axioma-2 §4, §5). Default: the generic profile.
+    pub m_table: MTable,
+    /// Channel feed table of `FTABLE(i)`, 128 entries, mm/min. Default: the manual's printed
+    /// entries (0…3: 2000, 2500, 3000, 3500; 127: 15000), linear in between.
+    pub feed_table: Vec<f64>,
+    /// Channel spindle table of `STABLE(i)`, 128 entries, rev/min. Default: the printed entries
+    /// (0…3: 1000, 1100, 1200, 1500; 127: 50000), linear in between.
+    pub speed_table: Vec<f64>,
+    /// CSPLINE zone of influence: the points after a knot that determine its derivative. Default 8.
+    pub cspline_window: usize,
 }
 
 impl Default for AxiomaMachineParams {
@@ -60,6 +72,10 @@ impl Default for AxiomaMachineParams {
                 [1.0, 0.0],
                 [0.0, 0.0],
             ],
+            m_table: MTable::generic(),
+            feed_table: default_table([2000.0, 2500.0, 3000.0, 3500.0], 15000.0),
+            speed_table: default_table([1000.0, 1100.0, 1200.0, 1500.0], 50000.0),
+            cspline_window: 8,
         }
     }
 }
@@ -73,6 +89,10 @@ pub struct Extension {
     pub cycle: CycleState,
     /// Commands released from `held` so far (slot base).
     pub held_base: u64,
+    /// The M vector and the states behind the M functions.
+    pub m: MState,
+    /// G96/G97 per spindle.
+    pub tech: Technology,
 }
 
 impl Extension {

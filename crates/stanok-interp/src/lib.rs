@@ -36,7 +36,7 @@ mod state;
 mod words;
 
 pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
-pub use axioma::AxiomaMachineParams;
+pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 

@@ -172,6 +172,7 @@ mod tools;
 
 use cutter_comp::Comp;
 pub use extension::{AxiomaMachineParams, Extension};
+pub use technology::css_rpm;
 
 use mfunc::{m_function, run_m, set_speed, MFunction, MWords};
 use motion::{dwell_block, motion};

@@ -18,6 +18,7 @@
 use super::cutter_comp::Comp;
 use super::cycles::CycleState;
 use super::mtable::{MState, MTable};
+use super::splines::SplineState;
 use super::technology::{default_table, Technology};
 use crate::InterpOptions;
 use stanok_canon::{Canon, Diagnostic, Spanned};
@@ -93,6 +94,8 @@ pub struct Extension {
     pub m: MState,
     /// G96/G97 per spindle.
     pub tech: Technology,
+    /// ASPLINE/CSPLINE/BSPLINE mode and the spline points not yet emitted.
+    pub spline: SplineState,
 }
 
 impl Extension {
@@ -103,11 +106,24 @@ impl Extension {
         held: &mut VecDeque<Spanned<Canon>>,
         queue: &mut VecDeque<Spanned<Canon>>,
     ) {
-        let limit = match self.comp.first_unresolved_slot() {
+        // The first slot a later block may still fill: compensation's or the spline's.
+        let unresolved = match (
+            self.comp.first_unresolved_slot(),
+            self.spline.first_unresolved_slot(),
+        ) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let limit = match unresolved {
             Some(slot) => (slot.saturating_sub(self.held_base) as usize).min(held.len()),
             None => held.len(),
         };
-        let mut ready = self.comp.take_ready().into_iter().peekable();
+        let mut resolved = self.comp.take_ready();
+        resolved.extend(self.spline.take_ready());
+        // Stable: motions of one slot keep their order (compensation and splines never share
+        // a slot: a spline is refused under compensation).
+        resolved.sort_by_key(|(slot, _)| *slot);
+        let mut ready = resolved.into_iter().peekable();
         let mut index = self.held_base;
         for item in held.drain(..limit) {
             while let Some((_, c)) = ready.next_if(|(slot, _)| *slot <= index) {
@@ -133,6 +149,7 @@ impl Extension {
         warnings: &mut Vec<Diagnostic>,
     ) -> Result<(), Diagnostic> {
         self.comp.flush_at_end(opts, warnings)?;
+        self.spline.finish(opts.axioma.cspline_window)?;
         self.release(held, queue);
         Ok(())
     }

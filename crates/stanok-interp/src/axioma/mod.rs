@@ -167,6 +167,7 @@ mod motion;
 pub mod mtable;
 mod outputs;
 mod polar;
+pub mod splines;
 mod technology;
 mod tools;
 
@@ -177,6 +178,7 @@ pub use technology::css_rpm;
 use mfunc::{m_function, run_m, set_speed, MFunction, MWords};
 use motion::{dwell_block, motion};
 use mtable::MKind;
+use splines::{SplineKind, SplineWords};
 use technology::TechWords;
 
 fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
@@ -193,6 +195,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // Keywords.
     let mut cr: Option<Val> = None;
     let mut tech = TechWords::default();
+    let mut sw = SplineWords::default();
     for i in 0..cx.words.keywords.len() {
         let (kw, index, val, span) = cx.words.keywords[i];
         match kw {
@@ -209,6 +212,20 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 });
             }
             k if TechWords::handles(k) => tech.take(cx, k, index, val, span)?,
+            Keyword::Aspline => sw.keyword = Some((SplineKind::Akima, span)),
+            Keyword::Cspline => sw.keyword = Some((SplineKind::Cubic, span)),
+            Keyword::Bspline => sw.keyword = Some((SplineKind::Nurbs, span)),
+            Keyword::Splbreak => sw.splbreak = true,
+            Keyword::Pw | Keyword::Pl | Keyword::Sd => {
+                let Some(v) = val else {
+                    return Err(cx.err("interp::missing-value", "the word has no value", span));
+                };
+                match kw {
+                    Keyword::Pw => sw.weight = Some(v),
+                    Keyword::Pl => sw.increment = Some(v),
+                    _ => sw.degree = Some(v),
+                }
+            }
             Keyword::TrafOff
             | Keyword::OriEuler
             | Keyword::OriRpy
@@ -428,6 +445,29 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             }
             _ => {}
         }
+    }
+    // Splines: mode changes and break points (§2.4.1, A16) before anything of this block moves.
+    {
+        let other_motion = actions
+            .iter()
+            .any(|(a, _, _)| matches!(a, GAction::Motion(_) | GAction::Home(_)));
+        let breaks = !cx.words.m.is_empty()
+            || dwell.is_some()
+            || actions.iter().any(|(a, _, _)| {
+                matches!(
+                    a,
+                    GAction::ZeroOffset(_)
+                        | GAction::Workpiece(_)
+                        | GAction::Shift(_)
+                        | GAction::Mirror(_)
+                        | GAction::Scale(_)
+                        | GAction::Rotate(_)
+                        | GAction::Polar(_)
+                        | GAction::Plane(_)
+                )
+            })
+            || (cx.axioma.spline.kind == Some(SplineKind::Nurbs) && cx.words.any(b"TD"));
+        splines::before_motion(cx, &sw, other_motion, breaks)?;
     }
     // An interpolation code cancels the cycle (§6.3); Q words go to G110/G111 or the cycle.
     if motion_code.is_some() {
@@ -667,11 +707,12 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;
         }
-        motion(
-            cx,
-            motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole()),
-            cr,
-        )?;
+        let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
+        if cx.axioma.spline.kind.is_some() {
+            splines::point(cx, at, &sw)?;
+        } else {
+            motion(cx, at, cr)?;
+        }
     }
     cx.check_all_used()?;
     technology::refresh(cx);

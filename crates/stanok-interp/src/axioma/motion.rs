@@ -163,7 +163,7 @@ fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), 
     Ok(())
 }
 
-fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64, Diagnostic> {
+pub(super) fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64, Diagnostic> {
     if cx.st.feed_mode == FeedMode::UnitsPerRevolution && cx.st.spindle_speed[0] <= 0.0 {
         return Err(cx.manual(
             615,

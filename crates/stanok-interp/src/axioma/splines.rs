@@ -144,10 +144,11 @@ impl SplineState {
         ));
     }
 
-    fn feed(rule: FeedRule, length: f64) -> f64 {
+    /// The piece's path feed; the length (a fine tessellation) is computed only for G93.
+    fn feed(rule: FeedRule, length: impl FnOnce() -> f64) -> f64 {
         match rule {
             FeedRule::PerMinute(f) => f,
-            FeedRule::InverseTime(f) => f * length,
+            FeedRule::InverseTime(f) => f * length(),
         }
     }
 
@@ -155,7 +156,7 @@ impl SplineState {
         let (a, b) = (self.points[k], self.points[k + 1]);
         let weights = [1.0; 4];
         let knots = bezier_knots(3);
-        let length = Nurbs::new(3, &bez, &weights, &knots).length();
+        let feed = Self::feed(b.feed, || Nurbs::new(3, &bez, &weights, &knots).length());
         let mv = SplineMove {
             start: a.pose,
             end: b.pose,
@@ -164,7 +165,7 @@ impl SplineState {
             weights: weights.to_vec(),
             knots,
             plane: self.plane,
-            feed: Self::feed(b.feed, length),
+            feed,
         };
         self.push(&b, Canon::SplineFeed(mv));
     }
@@ -310,8 +311,8 @@ impl SplineState {
                 "the BSPLINE cannot be evaluated (weights or knots)".into()
             ));
         }
-        let length = curve.length();
         let (first, end_point) = (self.points[1], self.points[n]);
+        let feed = Self::feed(first.feed, || curve.length());
         let mv = SplineMove {
             start: self.points[0].pose,
             end: end_point.pose,
@@ -320,7 +321,7 @@ impl SplineState {
             weights,
             knots,
             plane: self.plane,
-            feed: Self::feed(first.feed, length),
+            feed,
         };
         self.push(&first, Canon::SplineFeed(mv));
         Ok(())

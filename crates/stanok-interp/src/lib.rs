@@ -36,6 +36,7 @@ mod state;
 mod words;
 
 pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
+pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
@@ -299,6 +300,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// M group's name and the function it shows (spec axioma-2 §4.1, §5).
     pub fn axioma_m_vector(&self) -> Vec<(String, u32)> {
         self.axioma.m.display(&self.opts.axioma.m_table)
+    }
+
+    /// AxiOMA: the result of the last G75 (or batch-mode) probe move: the latched machine
+    /// position and whether the probe tripped (spec axioma-2 §2.5).
+    pub fn axioma_probe_latch(&self) -> Option<ProbeLatch> {
+        self.axioma.probe.latch
     }
 
     /// Counters.

@@ -18,6 +18,7 @@
 use super::cutter_comp::Comp;
 use super::cycles::CycleState;
 use super::mtable::{MState, MTable};
+use super::probe::ProbeState;
 use super::splines::SplineState;
 use super::technology::{default_table, Technology};
 use crate::InterpOptions;
@@ -96,6 +97,8 @@ pub struct Extension {
     pub tech: Technology,
     /// ASPLINE/CSPLINE/BSPLINE mode and the spline points not yet emitted.
     pub spline: SplineState,
+    /// G75 mode and the last probe latch.
+    pub probe: ProbeState,
 }
 
 impl Extension {

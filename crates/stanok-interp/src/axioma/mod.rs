@@ -12,8 +12,8 @@
 //! ```
 //!
 //! Conflicting words: the manual says only the last word of a group takes effect; Stanok does that
-//! and warns. Functions of later capabilities (frames, compensation, cycles, splines, 5-axis …) are
-//! recognised and rejected with `interp::unsupported` naming the issue that adds them.
+//! and warns. Functions of later capabilities (5-axis kinematics, 3D compensation, orientation
+//! words) are recognised and rejected with `interp::unsupported` naming the issue that adds them.
 
 use crate::ctx::Ctx;
 use crate::rs274::Outcome;
@@ -62,14 +62,14 @@ enum GAction {
     Radius(u32),
     /// G110 (true, set) / G111 (false, reset).
     Output(bool),
+    /// G75 probe move (Interpolate group).
+    Probe,
     /// G96 (true) / G97 (false): constant surface speed.
     Css(bool),
     /// G80.
     CycleCancel,
     /// G81 … G389.
     Cycle(cycles::CycleKind),
-    /// Known, not yet implemented: the issue that adds it.
-    Later(&'static str),
 }
 
 fn g_action(code: u32) -> Option<GAction> {
@@ -122,15 +122,15 @@ fn g_action(code: u32) -> Option<GAction> {
         }
         280 => Home(true),
         290 => Home(false),
-        750 => Later("AxiOMA splines, technology, probing and home positions"),
+        750 => Probe,
         _ => return None,
     })
 }
 
 /// Modal group of a G action (for "last one wins").
-fn group_key(a: GAction, code: u32) -> u32 {
+fn group_key(a: GAction, _code: u32) -> u32 {
     match a {
-        GAction::Motion(_) => 1,
+        GAction::Motion(_) | GAction::Probe => 1,
         GAction::Dwell => 2,
         GAction::Plane(_) => 3,
         GAction::Units(_) => 4,
@@ -153,7 +153,6 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::Output(_) => 20,
         GAction::CycleCancel | GAction::Cycle(_) => 21,
         GAction::Css(_) => 22,
-        GAction::Later(_) => 1000 + code,
     }
 }
 
@@ -167,6 +166,7 @@ mod motion;
 pub mod mtable;
 mod outputs;
 mod polar;
+pub mod probe;
 pub mod splines;
 mod technology;
 mod tools;
@@ -260,7 +260,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(unsupported(
                     cx,
                     cx.block.slice(span),
-                    "AxiOMA splines, technology, probing and home positions",
+                    "5-axis kinematics and 3D compensation",
                     span,
                 ))
             }
@@ -289,7 +289,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(unsupported(
                     cx,
                     &format!("{}{}=", letter as char, index),
-                    "coordinate systems, frames, offsets and tool data",
+                    "5-axis kinematics and 3D compensation (orientation words)",
                     val.span,
                 ))
             }
@@ -306,9 +306,6 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 span,
             ));
         };
-        if let GAction::Later(issue) = a {
-            return Err(unsupported(cx, &g_name(code), issue, span));
-        }
         if let (GAction::Output(_), Some((_, prev, _))) = (
             a,
             actions
@@ -373,7 +370,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let mut dwell: Option<ColSpan> = None;
     for &(a, _code, span) in &actions {
         match a {
-            GAction::Motion(m) => motion_code = Some((m, span)),
+            GAction::Motion(m) => {
+                motion_code = Some((m, span));
+                cx.axioma.probe.g75 = false;
+            }
+            GAction::Probe => {
+                motion_code = Some((MotionMode::Linear, span));
+                cx.axioma.probe.g75 = true;
+            }
             GAction::Dwell => dwell = Some(span),
             GAction::Plane(p) if cx.st.plane != p => {
                 if comp_active {
@@ -450,7 +454,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     {
         let other_motion = actions
             .iter()
-            .any(|(a, _, _)| matches!(a, GAction::Motion(_) | GAction::Home(_)));
+            .any(|(a, _, _)| matches!(a, GAction::Motion(_) | GAction::Probe | GAction::Home(_)));
         let breaks = !cx.words.m.is_empty()
             || dwell.is_some()
             || actions.iter().any(|(a, _, _)| {
@@ -708,8 +712,12 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             cx.st.motion = m;
         }
         let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
+        let monitored = cx.axioma.probe.g75
+            || (cx.axioma.m.batch_probe && cx.st.motion == MotionMode::Linear && !cx.st.polar.on);
         if cx.axioma.spline.kind.is_some() {
             splines::point(cx, at, &sw)?;
+        } else if monitored {
+            probe::probe_move(cx, at)?;
         } else {
             motion(cx, at, cr)?;
         }

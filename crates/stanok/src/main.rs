@@ -139,6 +139,9 @@ fn interpreter(
     opts.control = control_data(machine);
     opts.diameter_axes = machine.diameter_axes();
     opts.rs274_machine_units = machine.linuxcnc_units;
+    if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
+        opts.axioma.m_table = table;
+    }
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

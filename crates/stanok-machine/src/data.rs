@@ -545,10 +545,11 @@ impl MachineData {
         match name {
             "mill" => Some(Self::default_mill()),
             "lathe" => Some(Self::default_lathe()),
-            "beavermill" => {
-                Self::from_toml_str(include_str!("../../../machines/beavermill.toml"), "beavermill")
-                    .ok()
-            }
+            "beavermill" => Self::from_toml_str(
+                include_str!("../../../machines/beavermill.toml"),
+                "beavermill",
+            )
+            .ok(),
             _ => None,
         }
     }
@@ -827,5 +828,37 @@ max_jerk = 3600.0
     fn load_reports_a_missing_file() {
         let d = MachineData::load("/nonexistent/stanok-machine.toml").unwrap_err();
         assert!(d.message.contains("cannot read"), "{d}");
+    }
+
+    #[test]
+    fn m_function_profile_key_and_the_beavermill_machine() {
+        assert_eq!(
+            MachineData::from_toml_str(GOOD, "g.toml")
+                .unwrap()
+                .m_functions,
+            "generic"
+        );
+        let bm = GOOD.replace(
+            "arc_tolerance = 0.002",
+            "arc_tolerance = 0.002\nm_functions = \"beavermill\"",
+        );
+        let m = MachineData::from_toml_str(&bm, "b.toml").unwrap();
+        assert_eq!(m.m_functions, "beavermill");
+        // Written back and read again.
+        assert_eq!(
+            MachineData::from_toml_str(&m.to_toml(), "w.toml").unwrap(),
+            m
+        );
+        let bad = GOOD.replace(
+            "arc_tolerance = 0.002",
+            "arc_tolerance = 0.002\nm_functions = \"fanuc\"",
+        );
+        let d = MachineData::from_toml_str(&bad, "x.toml").unwrap_err();
+        assert!(d.message.contains("m_functions"), "{d}");
+        let builtin = MachineData::builtin("beavermill").expect("built-in beavermill");
+        assert_eq!(builtin.m_functions, "beavermill");
+        let names: String = builtin.axes.iter().map(|a| a.name).collect();
+        assert_eq!(names, "XYZAC");
+        assert_eq!(MachineData::builtin("mill").unwrap().m_functions, "generic");
     }
 }

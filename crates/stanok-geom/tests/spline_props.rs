@@ -116,9 +116,9 @@ proptest! {
         let n = cps.len();
         prop_assume!(n > degree);
         let mut knots = vec![0.0; degree + 1];
-        for k in 0..n - degree - 1 {
+        for inc in &incs[..n - degree - 1] {
             let last = knots[knots.len() - 1];
-            knots.push(last + incs[k]);
+            knots.push(last + inc);
         }
         let end = knots[knots.len() - 1] + incs[9];
         knots.extend(std::iter::repeat_n(end, degree + 1));

@@ -354,11 +354,12 @@ fn m99_moves_to_the_configured_waiting_position() {
     assert!(err.is_none());
     let last_move = cmds
         .iter()
+        .rev()
         .filter_map(|c| match &c.value {
             Canon::StraightTraverse(m) => Some(m.end.xyz()),
             _ => None,
         })
-        .last()
+        .next()
         .unwrap();
     assert_eq!(last_move, [100.0, 50.0, 20.0]);
     assert_eq!(names(&cmds).last().map(String::as_str), Some("end"));

@@ -98,6 +98,13 @@ fn g93_in_a_canned_cycle_is_error_617_and_feed_type_change_resets_f() {
     assert_eq!(err.unwrap().code.to_string(), "axioma::feed-missing");
     let (_, err) = run("G95 F1\n", Dialect::Axioma);
     assert_eq!(err.unwrap().code.to_string(), "E615");
+    // A23: a G95 feed move with the spindle stopped (S set, no M03) is 615 too.
+    let (_, err) = run("S500\nG95 F0.1\nG01 X10\n", Dialect::Axioma);
+    assert_eq!(err.unwrap().code.to_string(), "E615");
+    let (cmds, err) = run("S500 M03\nG95 F0.1\nG01 X10\n", Dialect::Axioma);
+    assert!(err.is_none());
+    let f = feed_lines(&cmds);
+    assert!((f[0].2 - 50.0).abs() < 1e-9, "0.1 mm/rev × 500 rpm: {f:?}");
 }
 
 fn path_modes(cmds: &[Spanned<Canon>]) -> Vec<(Option<u32>, PathMode)> {

@@ -452,9 +452,12 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
     // Splines: mode changes and break points (§2.4.1, A16) before anything of this block moves.
     {
-        let other_motion = actions
-            .iter()
-            .any(|(a, _, _)| matches!(a, GAction::Motion(_) | GAction::Probe | GAction::Home(_)));
+        let other_motion = actions.iter().any(|(a, _, _)| {
+            matches!(
+                a,
+                GAction::Motion(_) | GAction::Probe | GAction::Home(_) | GAction::Cycle(_)
+            )
+        });
         let breaks = !cx.words.m.is_empty()
             || dwell.is_some()
             || actions.iter().any(|(a, _, _)| {

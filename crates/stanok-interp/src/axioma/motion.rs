@@ -171,6 +171,12 @@ pub(super) fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64
             span,
         ));
     }
+    // A23: G95 stays legal after M05, but a feed per revolution of a standing spindle never moves.
+    if cx.st.feed_mode == FeedMode::UnitsPerRevolution && !cx.st.spindle_on[0] {
+        return Err(cx
+            .manual(615, "G95 feed move while the main spindle is stopped", span)
+            .with_note("start the spindle (M03/M04) or cancel G95 with G94/G93 after M05"));
+    }
     let feed = cx.path_feed(length);
     if feed <= 0.0 {
         return Err(cx

@@ -20,6 +20,7 @@
 
 pub mod akima;
 mod arc2d;
+mod bezier_split;
 pub mod cubic_spline;
 mod helix;
 mod nurbs;
@@ -28,6 +29,7 @@ mod vec3;
 
 pub use akima::{bezier_point, hermite_bezier};
 pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};
+pub use bezier_split::{bezier_pieces, BezierPiece};
 pub use helix::Helix;
 pub use nurbs::{bezier_knots, distance_to_segment, Nurbs, NurbsError, MAX_DEGREE};
 pub use vec3::{add, cross, dot, norm, normalize, scale, sub, Vec3};

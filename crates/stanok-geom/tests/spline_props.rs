@@ -5,7 +5,9 @@
 use proptest::prelude::*;
 use stanok_geom::akima::{akima_beziers, bezier_derivatives, Window};
 use stanok_geom::cubic_spline::{solve_tangents, windowed_tangents};
-use stanok_geom::{bezier_knots, bezier_point, hermite_bezier, norm, sub, Nurbs, Vec3};
+use stanok_geom::{
+    bezier_knots, bezier_pieces, bezier_point, hermite_bezier, norm, sub, Nurbs, Vec3,
+};
 
 /// Points with consecutive chords of at least 0.5 mm (the interpreter removes repeats).
 fn polyline() -> impl Strategy<Value = Vec<Vec3>> {
@@ -157,6 +159,49 @@ proptest! {
                     .fold(f64::INFINITY, f64::min);
                 prop_assert!(d <= tol * 1.000001, "deviation {} > {}", d, tol);
             }
+        }
+    }
+
+    #[test]
+    fn bezier_pieces_are_the_same_curve(
+        pts in prop::collection::vec((-50.0f64..50.0, -50.0f64..50.0, -50.0f64..50.0), 4..10),
+        ws in prop::collection::vec(0.2f64..3.0, 10),
+        incs in prop::collection::vec(prop_oneof![Just(0.0), 0.1f64..2.0], 10),
+        degree in 2usize..4,
+        us in prop::collection::vec(0.0f64..=1.0, 6),
+    ) {
+        let cps: Vec<Vec3> = pts.iter().map(|&(x, y, z)| [x, y, z]).collect();
+        let n = cps.len();
+        prop_assume!(n > degree);
+        // Inner knots with multiplicity ≤ degree (runs of zero increments shorter than degree).
+        let mut knots = vec![0.0; degree + 1];
+        let mut run = 0;
+        // (Clamped ends: the first inner increment is not 0, as the AxiOMA knot rules demand.)
+        for (j, inc) in incs[..n - degree - 1].iter().enumerate() {
+            let inc = if *inc == 0.0 && (j == 0 || run + 2 > degree) { 1.0 } else { *inc };
+            run = if inc == 0.0 { run + 1 } else { 0 };
+            let last = knots[knots.len() - 1];
+            knots.push(last + inc);
+        }
+        let end = knots[knots.len() - 1] + 1.0;
+        knots.extend(std::iter::repeat_n(end, degree + 1));
+        let w = &ws[..n];
+        let c = Nurbs::new(degree as u8, &cps, w, &knots);
+        prop_assert!(c.validate().is_ok(), "{:?}", knots);
+        let pieces = bezier_pieces(degree as u8, &cps, w, &knots);
+        let spans = knots.windows(2).filter(|k| k[1] > k[0]).count();
+        prop_assert_eq!(pieces.len(), spans);
+        let bk = bezier_knots(degree);
+        for piece in &pieces {
+            let b = Nurbs::new(degree as u8, &piece.points, &piece.weights, &bk);
+            for &s in &us {
+                let u = piece.from + s * (piece.to - piece.from);
+                prop_assert!(close(b.point_at(s), c.point_at(u), 1e-7), "u {}", u);
+            }
+        }
+        // Consecutive pieces join.
+        for pair in pieces.windows(2) {
+            prop_assert!(close(pair[0].points[degree], pair[1].points[0], 1e-7));
         }
     }
 }

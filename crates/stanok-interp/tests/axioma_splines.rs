@@ -7,7 +7,7 @@ mod common;
 use common::*;
 use stanok_canon::{Canon, Spanned, SplineMove};
 use stanok_geom::akima::{akima_beziers, bezier_derivatives};
-use stanok_geom::{norm, sub, Nurbs, Vec3};
+use stanok_geom::{bezier_knots, bezier_pieces, norm, sub, BezierPiece, Nurbs, Vec3};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
 
@@ -137,38 +137,85 @@ fn s5_4_3_cspline_c2_within_its_zone_of_influence() {
     }
 }
 
+/// The expected BSPLINE output: the rational Bézier pieces of the NURBS with these control points,
+/// weights and knots (an independent construction from the expected knot vector).
+fn expected_pieces(degree: u8, cps: &[Vec3], weights: &[f64], knots: &[f64]) -> Vec<BezierPiece> {
+    let c = Nurbs::new(degree, cps, weights, knots);
+    assert!(c.validate().is_ok(), "{knots:?}");
+    bezier_pieces(degree, cps, weights, knots)
+}
+
+#[track_caller]
+fn assert_same_pieces(got: &[SplineMove], want: &[BezierPiece]) {
+    assert_eq!(got.len(), want.len(), "{got:#?}");
+    for (g, w) in got.iter().zip(want) {
+        assert_eq!(g.knots, bezier_knots(g.degree as usize));
+        for (a, b) in g.control_points.iter().zip(&w.points) {
+            assert!(close3(*a, *b, 1e-9), "{a:?} vs {b:?}");
+        }
+        for (a, b) in g.weights.iter().zip(&w.weights) {
+            assert!((a - b).abs() < 1e-12);
+        }
+    }
+}
+
 #[test]
 fn s5_4_2_nurbs_circle_radius_30() {
     let cmds = ok(&program("s5_4_2-bspline-nurbs-circle-example-5_16.nc"));
     let s = splines(&cmds);
-    assert_eq!(s.len(), 1);
-    let m = &s[0].1;
-    assert_eq!(m.degree, 2);
-    assert_eq!(
-        m.knots,
-        [0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0]
-    );
-    assert_eq!(m.control_points.len(), 9);
-    assert_eq!(m.weights[0], 1.0);
-    assert_eq!(m.weights[1], 0.707);
-    assert_eq!(m.feed, 1500.0);
-    let c = Nurbs::new(m.degree, &m.control_points, &m.weights, &m.knots);
-    assert!(c.validate().is_ok());
-    for k in 0..=2000 {
-        let p = c.point_at(k as f64 / 2000.0);
-        let r = p[0].hypot(p[1]);
-        assert!((r - 30.0).abs() <= 0.0008, "u {}: r {r}", k as f64 / 2000.0);
+    // Knots [0,0,0,.25,.25,.5,.5,.75,.75,1,1,1]: four quarter circles, owned by N20, N40, N60, N80.
+    let blocks: Vec<Option<u32>> = s.iter().map(|p| p.0).collect();
+    assert_eq!(blocks, [Some(20), Some(40), Some(60), Some(80)]);
+    let w = 0.707;
+    let cps: Vec<Vec3> = [
+        [30.0, 0.0],
+        [30.0, 30.0],
+        [0.0, 30.0],
+        [-30.0, 30.0],
+        [-30.0, 0.0],
+        [-30.0, -30.0],
+        [0.0, -30.0],
+        [30.0, -30.0],
+        [30.0, 0.0],
+    ]
+    .iter()
+    .map(|p| [p[0], p[1], 0.0])
+    .collect();
+    let weights = [1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0];
+    let knots = [
+        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+    ];
+    let pieces: Vec<SplineMove> = s.iter().map(|p| p.1.clone()).collect();
+    assert_same_pieces(&pieces, &expected_pieces(2, &cps, &weights, &knots));
+    let mut length = 0.0;
+    for m in &pieces {
+        assert_eq!((m.degree, m.feed), (2, 1500.0));
+        let c = Nurbs::new(m.degree, &m.control_points, &m.weights, &m.knots);
+        for k in 0..=500 {
+            let p = c.point_at(k as f64 / 500.0);
+            let r = p[0].hypot(p[1]);
+            assert!((r - 30.0).abs() <= 0.0008, "r {r}");
+        }
+        length += c.length();
     }
-    let q = c.point_at(0.125);
+    // u = 0.125 of the circle = the middle of the first quarter piece.
+    let first = &pieces[0];
+    let q = Nurbs::new(2, &first.control_points, &first.weights, &first.knots).point_at(0.5);
     assert!(
         (q[0] - 21.21265).abs() < 1e-4 && (q[1] - 21.21265).abs() < 1e-4,
         "{q:?}"
     );
-    // CCW through (0,30) (−30,0) (0,−30).
-    assert!(close3(c.point_at(0.25), [0.0, 30.0, 0.0], 1e-9));
-    assert!(close3(c.point_at(0.5), [-30.0, 0.0, 0.0], 1e-9));
-    assert!(close3(c.point_at(0.75), [0.0, -30.0, 0.0], 1e-9));
-    assert!((c.length() - 188.5).abs() < 0.05, "{}", c.length());
+    // CCW through (0,30) (−30,0) (0,−30) and back to (30,0).
+    let ends: Vec<Vec3> = pieces.iter().map(|m| m.end.xyz()).collect();
+    for (e, want) in ends.iter().zip([
+        [0.0, 30.0, 0.0],
+        [-30.0, 0.0, 0.0],
+        [0.0, -30.0, 0.0],
+        [30.0, 0.0, 0.0],
+    ]) {
+        assert!(close3(*e, want, 1e-9), "{e:?}");
+    }
+    assert!((length - 188.5).abs() < 0.05, "{length}");
     // Then N100 G01 back to the centre.
     let last = cmds
         .iter()
@@ -192,19 +239,14 @@ fn s5_4_2_too_few_points_for_degree_3_is_an_error_at_the_breaking_block() {
     assert!(splines(&cmds).is_empty());
 }
 
-fn knots_of(text: &str) -> Vec<f64> {
-    let s = splines(&ok(text));
-    assert_eq!(s.len(), 1);
-    s[0].1.knots.clone()
+fn pieces_of(text: &str) -> Vec<SplineMove> {
+    splines(&ok(text)).into_iter().map(|p| p.1).collect()
 }
 
-#[track_caller]
-fn assert_knots(got: &[f64], want: &[f64]) {
-    assert_eq!(got.len(), want.len(), "{got:?}");
-    assert!(
-        got.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-12),
-        "{got:?} vs {want:?}"
-    );
+fn xyz_points(p: &[[f64; 3]]) -> Vec<Vec3> {
+    let mut v = vec![[0.0; 3]];
+    v.extend_from_slice(p);
+    v
 }
 
 #[test]
@@ -212,22 +254,44 @@ fn s5_4_2_knot_increments_degree_3_and_2() {
     // The fragments lack a feed; with one, the knots follow the manual's comments: the first
     // p+1 knots automatic, then PL of N20 (SD 3) / N10 (SD 2), …, the last p knots automatic.
     // (With the fixture's PL=.10 on N100 the SD-3 vector is [0⁴, .1, .15, .25, .4⁴]; the spec's
-    // "COMPUTED" line assumed .2 there.)
+    // "COMPUTED" line assumed .2 there.) The output is compared with the Bézier pieces of the
+    // NURBS built from the expected knot vector.
+    let pts = xyz_points(&[
+        [16.535, -16.769, 95.0],
+        [21.392, -18.854, 95.0],
+        [26.942, -21.238, 95.0],
+        [39.971, -28.441, 92.743],
+        [35.962, -26.72, 94.165],
+        [33.909, -25.838, 94.559],
+    ]);
+    let ones = [1.0; 7];
     let d3 = format!(
         "F1000\n{}",
         program("s5_4_2-bspline-degree3-knot-increments-fragment.nc")
     );
-    assert_knots(
-        &knots_of(&d3),
-        &[0.0, 0.0, 0.0, 0.0, 0.1, 0.15, 0.25, 0.4, 0.4, 0.4, 0.4],
+    let got = pieces_of(&d3);
+    assert_same_pieces(
+        &got,
+        &expected_pieces(
+            3,
+            &pts,
+            &ones,
+            &[0.0, 0.0, 0.0, 0.0, 0.1, 0.15, 0.25, 0.4, 0.4, 0.4, 0.4],
+        ),
     );
+    assert!(close3(got[got.len() - 1].end.xyz(), pts[6], 1e-9));
     let d2 = format!(
         "F1000\n{}",
         program("s5_4_2-bspline-degree2-knot-increments-fragment.nc")
     );
-    assert_knots(
-        &knots_of(&d2),
-        &[0.0, 0.0, 0.0, 1.0, 1.1, 1.15, 1.25, 1.4, 1.4, 1.4],
+    assert_same_pieces(
+        &pieces_of(&d2),
+        &expected_pieces(
+            2,
+            &pts,
+            &ones,
+            &[0.0, 0.0, 0.0, 1.0, 1.1, 1.15, 1.25, 1.4, 1.4, 1.4],
+        ),
     );
     // The forbidden zeros of the comments.
     for (prog, what) in [
@@ -291,15 +355,44 @@ fn s5_4_2_extra_axes_on_points_without_an_interval() {
     let err = err.unwrap();
     assert_eq!(err.code.to_string(), "axioma::bspline");
     assert!(err.message.contains("last"), "{err}");
-    // Both fixed: the knots of the spec, with N50's double knot.
+    // Both fixed: the knots of the spec [0,0,0,0,1,1,2,3,3,3,3] with N50's double knot: N40's
+    // interval moves C to 30, N50's empty interval moves C alone to 90, N60 and N70 (the last
+    // interval, ending at N80's point) carry C to 70 and 0.
     let valid = no_c.replace("X30 Y20 A2=30 B2=45", "X30 Y20");
-    let s = splines(&ok_with(&valid, with_c_axis()));
-    assert_eq!(s.len(), 1);
-    assert_knots(
-        &s[0].1.knots,
+    let cmds = ok_with(&valid, with_c_axis());
+    let seq: Vec<(&str, Vec3, f64)> = cmds
+        .iter()
+        .filter_map(|c| match &c.value {
+            Canon::SplineFeed(s) => Some(("spline", s.end.xyz(), s.end.c)),
+            Canon::StraightFeed(l) if c.block_number != Some(10) => {
+                Some(("line", l.end.xyz(), l.end.c))
+            }
+            _ => None,
+        })
+        .collect();
+    let pts = xyz_points(&[
+        [10.0, 10.0, 0.0],
+        [20.0, 0.0, 0.0],
+        [20.0, 0.0, 0.0],
+        [20.0, 0.0, 0.0],
+        [20.0, 0.0, 0.0],
+        [30.0, 20.0, 0.0],
+    ]);
+    let want = expected_pieces(
+        3,
+        &pts,
+        &[1.0; 7],
         &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 3.0, 3.0, 3.0, 3.0],
     );
-    assert_eq!(s[0].1.control_points.len(), 7);
+    assert_eq!(want.len(), 3);
+    assert_eq!(seq.len(), 4, "{seq:?}");
+    assert_eq!((seq[0].0, seq[0].2), ("spline", 30.0));
+    assert_eq!((seq[1].0, seq[1].2), ("line", 90.0));
+    assert!(close3(seq[1].1, seq[0].1, 1e-12), "C moves alone");
+    assert_eq!((seq[2].0, seq[2].2), ("spline", 70.0));
+    assert_eq!((seq[3].0, seq[3].2), ("spline", 0.0));
+    assert!(close3(seq[0].1, want[0].points[3], 1e-9));
+    assert!(close3(seq[3].1, [30.0, 20.0, 0.0], 1e-9));
 }
 
 #[test]

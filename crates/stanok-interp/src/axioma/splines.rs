@@ -17,20 +17,21 @@
 //! there), bounded by `MAX_BSPLINE_POINTS`.
 //!
 //! Output: ASPLINE/CSPLINE segments as cubic Béziers (`SplineMove`, degree 3, `bezier_knots`),
-//! BSPLINE as one NURBS with the knot vector of the manual:
+//! BSPLINE as the rational Bézier pieces (`stanok_geom::bezier_pieces`) of the NURBS with the knot
+//! vector of the manual, one per point that owns a knot interval:
 //!
 //! ```text
 //!   t_0 = … = t_p = 0;  t_{i+2} = t_{i+1} + PL_i (i = p−1 … n−1);  t_{n+2} = … = t_{n+p+1} = t_{n+1}
 //! ```
 //!
-//! Axes other than X Y Z move linearly along each emitted piece (for BSPLINE over the whole curve:
-//! Stanok's simplification of A15). Two consecutive points with the same X Y Z (ASPLINE/CSPLINE)
+//! Axes other than X Y Z move linearly along each emitted piece: for BSPLINE over the interval of
+//! the point that programs them (A15); a point with PL=0 moves them alone. Two consecutive points with the same X Y Z (ASPLINE/CSPLINE)
 //! split the spline: the extra axes move alone in a straight feed, or the point is dropped.
 
 use crate::ctx::Ctx;
 use crate::words::Val;
 use stanok_canon::{Canon, Diagnostic, LineMove, Plane, Pose, Span, Spanned, SplineMove};
-use stanok_geom::{akima, bezier_knots, cubic_spline, hermite_bezier, Nurbs, Vec3};
+use stanok_geom::{akima, bezier_knots, bezier_pieces, cubic_spline, hermite_bezier, Nurbs, Vec3};
 use stanok_syntax::ColSpan;
 use std::collections::VecDeque;
 
@@ -311,19 +312,57 @@ impl SplineState {
                 "the BSPLINE cannot be evaluated (weights or knots)".into()
             ));
         }
-        let (first, end_point) = (self.points[1], self.points[n]);
-        let feed = Self::feed(first.feed, || curve.length());
-        let mv = SplineMove {
-            start: self.points[0].pose,
-            end: end_point.pose,
-            degree: p as u8,
-            control_points,
-            weights,
-            knots,
-            plane: self.plane,
-            feed,
-        };
-        self.push(&first, Canon::SplineFeed(mv));
+        // One rational Bézier piece per non-empty knot interval, each at the slot of the point
+        // that owns it (P_i owns [t_{i+1}, t_{i+2}], i = p−1 … n−1): the extra axes of P_i move
+        // over that piece; a PL=0 point (an empty interval) moves its extra axes alone (§2.4.4).
+        let pieces = bezier_pieces(p as u8, &control_points, &weights, &knots);
+        let mut pieces = pieces.into_iter();
+        let bk = bezier_knots(p);
+        let mut prev = self.points[0].pose;
+        for i in p - 1..n {
+            let owner = self.points[i];
+            let mut end = owner.pose;
+            if i == n - 1 {
+                end = self.points[n].pose;
+            }
+            if inc[i + 1 - p] > 0.0 {
+                let Some(piece) = pieces.next() else {
+                    return Err(err("the BSPLINE cannot be split into pieces".into()));
+                };
+                if i != n - 1 {
+                    end = end.with_xyz(piece.points[p]);
+                }
+                let feed = Self::feed(owner.feed, || {
+                    Nurbs::new(p as u8, &piece.points, &piece.weights, &bk).length()
+                });
+                let mv = SplineMove {
+                    start: prev,
+                    end,
+                    degree: p as u8,
+                    control_points: piece.points,
+                    weights: piece.weights,
+                    knots: bk.clone(),
+                    plane: self.plane,
+                    feed,
+                };
+                self.push(&owner, Canon::SplineFeed(mv));
+            } else {
+                end = end.with_xyz(prev.xyz());
+                let (a, b) = (prev.to_array(), end.to_array());
+                if (0..9).any(|k| (a[k] - b[k]).abs() > 1e-12) {
+                    let feed = Self::feed(owner.feed, || super::technology::feed_length(&a, &b));
+                    self.push(
+                        &owner,
+                        Canon::StraightFeed(LineMove {
+                            start: prev,
+                            end,
+                            feed,
+                        }),
+                    );
+                }
+            }
+            prev = end;
+        }
         Ok(())
     }
 }

@@ -264,3 +264,39 @@ fn s6_8_spindle_speed_forms() {
     let cmds = run_opts(&program("s6_8-spindle-speed-table-stable-fragment-3.nc"), o);
     assert_eq!(speeds(&cmds), [(Some(10), 0, 1200.0), (Some(10), 1, 777.0)]);
 }
+
+#[test]
+fn start_up_modes_come_from_the_machine_parameters() {
+    let mut o = options(Dialect::Axioma);
+    o.axioma.start_exact_stop = true;
+    o.axioma.start_soft = true;
+    let cmds = run_opts("G01 X10 F100\nG64 BRISK X20\n", o);
+    let modes: Vec<String> = cmds
+        .iter()
+        .filter_map(|c| match c.value {
+            Canon::SetPathMode { mode, .. } => Some(format!("{:?} {mode:?}", c.block_number)),
+            Canon::SetAccelerationProfile { profile } => {
+                Some(format!("{:?} {profile:?}", c.block_number))
+            }
+            Canon::StraightFeed(_) => Some("move".into()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        modes,
+        [
+            "None ExactStop",
+            "None Soft",
+            "move",
+            "None Brisk",
+            "None Continuous { tolerance: 0.0 }",
+            "move"
+        ]
+    );
+    // Defaults (G64, BRISK): nothing is sent before the program says so.
+    let cmds = ok("G01 X10 F100\n");
+    assert!(!cmds.iter().any(|c| matches!(
+        c.value,
+        Canon::SetPathMode { .. } | Canon::SetAccelerationProfile { .. }
+    )));
+}

@@ -51,6 +51,10 @@ pub struct AxiomaMachineParams {
     pub speed_table: Vec<f64>,
     /// CSPLINE zone of influence: the points after a knot that determine its derivative. Default 8.
     pub cspline_window: usize,
+    /// Channel parameter "feed control": G60 (true) or G64 (false, default) at start-up (§3.4).
+    pub start_exact_stop: bool,
+    /// Channel parameter "type of acceleration": SOFT (true) or BRISK (false, default) at start-up.
+    pub start_soft: bool,
 }
 
 impl Default for AxiomaMachineParams {
@@ -78,6 +82,8 @@ impl Default for AxiomaMachineParams {
             feed_table: default_table([2000.0, 2500.0, 3000.0, 3500.0], 15000.0),
             speed_table: default_table([1000.0, 1100.0, 1200.0, 1500.0], 50000.0),
             cspline_window: 8,
+            start_exact_stop: false,
+            start_soft: false,
         }
     }
 }

@@ -192,6 +192,7 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
 
 /// Executes one AxiOMA block.
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
+    technology::power_on(cx);
     // Keywords.
     let mut cr: Option<Val> = None;
     let mut tech = TechWords::default();

@@ -39,6 +39,8 @@ pub struct SurfaceSpeed {
 /// The AxiOMA technology state that `ModalState` does not hold.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Technology {
+    /// The start-up modes of the machine parameters were applied (first block).
+    pub powered_on: bool,
     /// G96 active.
     pub css: bool,
     /// Per spindle.
@@ -291,4 +293,28 @@ pub(super) fn feed_length(start: &[f64; 9], end: &[f64; 9]) -> f64 {
         return rotary;
     }
     norm(&[0, 1, 2, 3, 4, 5, 6, 7, 8])
+}
+
+/// Before the first block: the start-up G60/G64 and BRISK/SOFT of the machine parameters, sent
+/// to the planner only where they differ from the power-on G64/BRISK every consumer assumes.
+pub(super) fn power_on(cx: &mut Ctx<'_>) {
+    if cx.axioma.tech.powered_on {
+        return;
+    }
+    cx.axioma.tech.powered_on = true;
+    let p = &cx.opts.axioma;
+    let (exact, soft) = (p.start_exact_stop, p.start_soft);
+    if exact {
+        cx.st.path_mode = crate::state::PathMode::ExactStop;
+        cx.out.push(Canon::SetPathMode {
+            mode: stanok_canon::PathMode::ExactStop,
+            naive_cam_tolerance: None,
+        });
+    }
+    if soft {
+        cx.st.soft_acceleration = true;
+        cx.out.push(Canon::SetAccelerationProfile {
+            profile: stanok_canon::AccelerationProfile::Soft,
+        });
+    }
 }

@@ -23,3 +23,10 @@ for prog in "$dir"/*.ngc; do
   cat "$tmp/canon.txt" "$tmp/err.txt" > "$out"
   echo "$name: $(wc -l < "$out") lines"
 done
+
+# Subroutine files on the search path: rs274 reads SUBROUTINE_PATH from an ini file (-i).
+sub="$here/crates/stanok-interp/tests/rs274-subfiles"
+printf "[RS274NGC]\nSUBROUTINE_PATH = %s\n" "$sub" > "$tmp/sub.ini"
+(cd "$tmp" && rs274 -i "$tmp/sub.ini" -t "$tbl" -g "$sub/main.ngc" canon.txt 2> err.txt < /dev/null) || true
+cat "$tmp/canon.txt" "$tmp/err.txt" > "$sub/expected.canon.txt"
+echo "rs274-subfiles: $(wc -l < "$sub/expected.canon.txt") lines"

@@ -170,6 +170,17 @@ pub struct LineMove {
     pub feed: f64,
 }
 
+impl LineMove {
+    /// The move as executed when it stops early at `stop` (a probe's contact point), or as
+    /// programmed without one.
+    pub fn stopped_at(&self, stop: Option<Pose>) -> LineMove {
+        LineMove {
+            end: stop.unwrap_or(self.end),
+            ..*self
+        }
+    }
+}
+
 /// A circular or helical move.
 ///
 /// Geometry: the tool turns about the line through `centre` along the unit vector `axis`, in the
@@ -226,6 +237,19 @@ pub struct SplineMove {
     pub feed: f64,
 }
 
+/// The program-log operations of LinuxCNC's comment commands.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum LogAction {
+    /// `(LOGOPEN,file)`: start a new log file.
+    Open,
+    /// `(LOGAPPEND,file)`: continue an existing one.
+    Append,
+    /// `(LOGCLOSE)`.
+    Close,
+    /// `(LOG,text)`: write a line.
+    Write,
+}
+
 /// What a probe move does on contact (LinuxCNC G38.2–G38.5, AxiOMA G75).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum ProbeKind {
@@ -239,12 +263,14 @@ pub enum ProbeKind {
     Away,
 }
 
-/// How consecutive moves are joined (LinuxCNC G61/G61.1/G64, AxiOMA G60/G64).
+/// How consecutive moves are joined (LinuxCNC G61/G61.1/G64, AxiOMA G60/G64). LinuxCNC's own
+/// naming: G61 is CANON_EXACT_PATH, G61.1 CANON_EXACT_STOP (its `rs274` trace says so).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum PathMode {
-    /// G61 / AxiOMA G60: stop exactly at every block end.
+    /// LinuxCNC G61.1 / AxiOMA G60: stop exactly at every block end.
     ExactStop,
-    /// G61.1: follow the path exactly (no blending) but without stopping where the path is smooth.
+    /// LinuxCNC G61: follow the path exactly (no blending) but without stopping where the path is
+    /// smooth.
     ExactPath,
     /// G64: blend corners, staying within `tolerance` mm of the path (0 = as fast as possible, no
     /// tolerance given).
@@ -531,6 +557,14 @@ pub enum Canon {
         /// The text.
         text: String,
     },
+    /// LinuxCNC's program log: `(LOGOPEN,file)`, `(LOGAPPEND,file)`, `(LOGCLOSE)`, `(LOG,text)`
+    /// (the text with its parameters substituted).
+    Log {
+        /// What to do.
+        action: LogAction,
+        /// The file name (open, append) or the line to write; empty for close.
+        text: String,
+    },
     /// A passive comment that a printer may show (LinuxCNC prints every `( … )` as COMMENT).
     Comment {
         /// The text.
@@ -558,7 +592,12 @@ impl Canon {
             Canon::StraightFeed(m) => Some(Motion::Line(m)),
             Canon::ArcFeed(a) => Some(Motion::Arc(a)),
             Canon::SplineFeed(s) => Some(Motion::Spline(s)),
-            Canon::StraightProbe { motion, .. } => Some(Motion::Probe(motion)),
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => Some(Motion::Probe {
+                motion,
+                contact: *contact,
+            }),
             Canon::RigidTap { start, end, .. } => Some(Motion::RigidTap {
                 start: *start,
                 bottom: *end,
@@ -579,8 +618,13 @@ pub enum Motion<'a> {
     Arc(&'a ArcMove),
     /// A spline.
     Spline(&'a SplineMove),
-    /// A probe move (as programmed; the machine may stop it early).
-    Probe(&'a LineMove),
+    /// A probe move: programmed to `motion.end`, it stops at `contact` when there is one.
+    Probe {
+        /// The move as programmed.
+        motion: &'a LineMove,
+        /// Where the probe changes state (the move ends there).
+        contact: Option<Pose>,
+    },
     /// A rigid tap: down to `bottom` and back to `start`.
     RigidTap {
         /// Start and end of the cycle.
@@ -594,7 +638,8 @@ impl Motion<'_> {
     /// Start pose.
     pub fn start(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.start,
+            Motion::Rapid(m) | Motion::Line(m) => m.start,
+            Motion::Probe { motion, .. } => motion.start,
             Motion::Arc(a) => a.start,
             Motion::Spline(s) => s.start,
             Motion::RigidTap { start, .. } => *start,
@@ -604,7 +649,8 @@ impl Motion<'_> {
     /// End pose.
     pub fn end(&self) -> Pose {
         match self {
-            Motion::Rapid(m) | Motion::Line(m) | Motion::Probe(m) => m.end,
+            Motion::Rapid(m) | Motion::Line(m) => m.end,
+            Motion::Probe { motion, contact } => contact.unwrap_or(motion.end),
             Motion::Arc(a) => a.end,
             Motion::Spline(s) => s.end,
             // The tap comes back to where it started.

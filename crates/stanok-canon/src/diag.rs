@@ -51,6 +51,9 @@ pub struct Diagnostic {
     pub span: Span,
     /// Extra lines: the arithmetic that failed, the rule of the manual, a hint.
     pub notes: Vec<String>,
+    /// The file the span refers to when it is not the program being run (an RS274/NGC subroutine
+    /// file called from it); None = the program.
+    pub file: Option<String>,
 }
 
 impl Diagnostic {
@@ -62,6 +65,7 @@ impl Diagnostic {
             message: message.into(),
             span,
             notes: Vec::new(),
+            file: None,
         }
     }
 
@@ -73,6 +77,7 @@ impl Diagnostic {
             message: message.into(),
             span,
             notes: Vec::new(),
+            file: None,
         }
     }
 
@@ -84,6 +89,7 @@ impl Diagnostic {
             message: message.into(),
             span,
             notes: Vec::new(),
+            file: None,
         }
     }
 
@@ -96,6 +102,14 @@ impl Diagnostic {
     /// True for [`Severity::Error`].
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
+    }
+}
+
+impl Diagnostic {
+    /// The same diagnostic, located in `file` (see [`Diagnostic::file`]).
+    pub fn in_file(mut self, file: impl Into<String>) -> Self {
+        self.file = Some(file.into());
+        self
     }
 }
 

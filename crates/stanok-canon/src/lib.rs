@@ -23,8 +23,8 @@ pub mod setup;
 mod span;
 
 pub use canon::{
-    AccelerationProfile, ArcMove, AuxTiming, Canon, FeedMode, LengthUnits, LineMove, Motion,
-    PathMode, Plane, Pose, ProbeKind, SpindleDirection, SplineMove, AXIS_LETTERS,
+    AccelerationProfile, ArcMove, AuxTiming, Canon, FeedMode, LengthUnits, LineMove, LogAction,
+    Motion, PathMode, Plane, Pose, ProbeKind, SpindleDirection, SplineMove, AXIS_LETTERS,
 };
 pub use diag::{DiagCode, Diagnostic, Severity};
 pub use span::{Span, Spanned};

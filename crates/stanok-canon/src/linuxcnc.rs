@@ -15,7 +15,7 @@
 //! `ON_RESET()` lines `rs274` prints when it exits.
 
 use crate::canon::{
-    AccelerationProfile, ArcMove, Canon, FeedMode, LengthUnits, PathMode, Plane, Pose,
+    AccelerationProfile, ArcMove, Canon, FeedMode, LengthUnits, LogAction, PathMode, Plane, Pose,
     SpindleDirection,
 };
 use crate::span::Spanned;
@@ -349,6 +349,15 @@ impl LinuxCncPrinter {
             }
             Canon::Message { text } => self.line(n, format!("MESSAGE(\"{text}\")")),
             Canon::Comment { text } => self.line(n, format!("COMMENT(\"{text}\")")),
+            Canon::Log { action, text } => {
+                let call = match action {
+                    LogAction::Open => format!("LOGOPEN(\"{text}\")"),
+                    LogAction::Append => format!("LOGAPPEND(\"{text}\")"),
+                    LogAction::Close => "LOGCLOSE()".to_string(),
+                    LogAction::Write => format!("LOG(\"{text}\")"),
+                };
+                self.line(n, call);
+            }
             Canon::ProgramStop { optional } => self.line(
                 n,
                 if *optional {

@@ -21,7 +21,7 @@ use stanok_syntax::{Block, OKind, OLabel, SourcePos};
 use std::collections::HashMap;
 
 /// What the driver does with the current line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FlowAction {
     /// An ordinary block: execute it.
     Execute,
@@ -31,6 +31,16 @@ pub enum FlowAction {
     Handled,
     /// Continue reading at this position.
     Seek(SourcePos),
+    /// Call a subroutine kept in its own file (`o<name> call` with `name.ngc` on the subroutine
+    /// path): the driver opens it and reads the body after its `o<name> sub` line.
+    CallFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The label as written in the file's `sub` line (normalised, with `<>`).
+        label: String,
+    },
+    /// Return from a subroutine file: close it and continue in the caller at this position.
+    ReturnFromFile(SourcePos),
 }
 
 /// A parameter operation requested by a call or return.
@@ -57,10 +67,31 @@ enum Skip {
     LoopEnd(String),
 }
 
+/// A call about to be entered.
+struct Call {
+    label: String,
+    args: Vec<f64>,
+    return_pos: SourcePos,
+    file: bool,
+}
+
+impl Call {
+    fn new(label: String, args: Vec<f64>, return_pos: SourcePos, file: bool) -> Self {
+        Call {
+            label,
+            args,
+            return_pos,
+            file,
+        }
+    }
+}
+
 #[derive(Debug, Clone)]
 struct CallFrame {
     label: String,
     return_pos: SourcePos,
+    /// The subroutine is a file of its own (the driver reads it with a reader of its own).
+    file: bool,
     saved: [f64; 30],
     loops: usize,
     ifs: usize,
@@ -91,6 +122,35 @@ pub struct Flow {
     ifs: Vec<String>,
     skip: Option<Skip>,
     ops: Vec<(ParamOp, f64)>,
+    /// Which file lines come from: 0 = the program, n = the n-th nested subroutine file. Keys of
+    /// `subs` carry it, so positions of one file are never used in another.
+    source: usize,
+}
+
+/// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
+fn subroutine_file(label: &str, opts: &InterpOptions) -> Option<std::path::PathBuf> {
+    let name = label.strip_prefix('<')?.strip_suffix('>')?;
+    opts.subroutine_path
+        .iter()
+        .map(|dir| dir.join(format!("{name}.ngc")))
+        .find(|p| p.is_file())
+}
+
+impl Flow {
+    /// The driver switched to reading file `source` (0 = the program).
+    pub fn set_source(&mut self, source: usize) {
+        self.source = source;
+    }
+
+    /// Key of a label in `subs`: the file it belongs to and the label.
+    fn sub_key(&self, label: &str) -> String {
+        format!("{}:{label}", self.source)
+    }
+}
+
+/// The normalised text of a label (`<name>` or the number), as `FlowAction::CallFile` names it.
+pub fn label_text(block: &Block, l: &OLabel) -> String {
+    label_key(block, l)
 }
 
 fn label_key(block: &Block, l: &OLabel) -> String {
@@ -147,7 +207,7 @@ impl Flow {
         }
         match &o.kind {
             OKind::Sub => {
-                self.subs.insert(label.clone(), next);
+                self.subs.insert(self.sub_key(&label), next);
                 self.skip = Some(Skip::Sub(label));
                 Ok(FlowAction::Skip)
             }
@@ -163,7 +223,10 @@ impl Flow {
                         format!("{name} endsub/return outside a subroutine call"),
                     ));
                 };
-                if frame.label != label {
+                // `return` may carry the label of the if or loop it sits in (LinuxCNC's
+                // retval.ngc: `o1010 return` inside `o1010 if`); `endsub` must name the sub.
+                let is_return = matches!(o.kind, OKind::Return(_));
+                if frame.label != label && !is_return {
                     self.calls.push(frame);
                     return Err(flow_err(
                         block,
@@ -192,7 +255,11 @@ impl Flow {
                     }),
                     if returned { 1.0 } else { 0.0 },
                 ));
-                Ok(FlowAction::Seek(frame.return_pos))
+                if frame.file {
+                    Ok(FlowAction::ReturnFromFile(frame.return_pos))
+                } else {
+                    Ok(FlowAction::Seek(frame.return_pos))
+                }
             }
             OKind::Call(args) => {
                 let mut values = Vec::with_capacity(args.len());
@@ -206,9 +273,17 @@ impl Flow {
                         format!("{name} call has more than 30 arguments"),
                     ));
                 }
-                if let Some(&pos) = self.subs.get(&label) {
-                    self.enter(block, eval, label, values, next, opts)?;
+                if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
+                    self.enter(block, eval, Call::new(label, values, next, false), opts)?;
                     Ok(FlowAction::Seek(pos))
+                } else if let Some(path) = subroutine_file(&label, opts) {
+                    self.enter(
+                        block,
+                        eval,
+                        Call::new(label.clone(), values, next, true),
+                        opts,
+                    )?;
+                    Ok(FlowAction::CallFile { path, label })
                 } else {
                     self.skip = Some(Skip::FindSub {
                         label,
@@ -393,11 +468,15 @@ impl Flow {
         &mut self,
         block: &Block,
         eval: &Evaluator<'_>,
-        label: String,
-        args: Vec<f64>,
-        return_pos: SourcePos,
+        call: Call,
         opts: &InterpOptions,
     ) -> Result<(), Diagnostic> {
+        let Call {
+            label,
+            args,
+            return_pos,
+            file,
+        } = call;
         if self.calls.len() >= opts.max_call_depth {
             return Err(flow_err(
                 block,
@@ -415,6 +494,7 @@ impl Flow {
         self.calls.push(CallFrame {
             label,
             return_pos,
+            file,
             saved,
             loops: self.loops.len(),
             ifs: self.ifs.len(),
@@ -453,10 +533,11 @@ impl Flow {
                 return_pos,
             } => {
                 if matches!(kind, OKind::Sub) {
-                    self.subs.insert(label.clone(), next);
+                    let key = self.sub_key(&label);
+                    self.subs.insert(key, next);
                     if label == wanted {
                         self.skip = None;
-                        self.enter(block, eval, label, args, return_pos, opts)?;
+                        self.enter(block, eval, Call::new(label, args, return_pos, false), opts)?;
                         return Ok(FlowAction::Handled);
                     }
                 }

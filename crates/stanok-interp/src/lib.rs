@@ -33,6 +33,7 @@ mod params;
 mod predefined;
 mod rs274;
 mod state;
+mod subfiles;
 mod words;
 
 pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
@@ -46,7 +47,7 @@ use flow::{Flow, FlowAction};
 use rs274::Outcome;
 use stanok_canon::setup::ControlData;
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
-use stanok_syntax::{Block, BlockReader, CommentKind, Dialect};
+use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, SourcePos};
 use std::collections::VecDeque;
 use std::io::{BufRead, Seek};
 use words::Words;
@@ -78,6 +79,9 @@ pub struct InterpOptions {
     /// False (default) rejects them as "Unknown m code", as LinuxCNC does without an executable
     /// of that name on its user M-code path (its standalone interpreter has none).
     pub user_m_codes: bool,
+    /// RS274/NGC: directories searched, in order, for `name.ngc` when `o<name> call` names a
+    /// subroutine the program does not define (LinuxCNC's SUBROUTINE_PATH).
+    pub subroutine_path: Vec<std::path::PathBuf>,
     /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
     /// default, as in LinuxCNC (the operator turns it on).
     pub block_delete: bool,
@@ -119,6 +123,7 @@ impl InterpOptions {
             max_blocks: 200_000_000,
             continue_after_error: false,
             block_delete: false,
+            subroutine_path: Vec::new(),
             user_m_codes: false,
             max_errors: 100,
             control: ControlData::default(),
@@ -151,6 +156,9 @@ enum Phase {
 /// The interpreter: an iterator of canonical commands over a program source.
 pub struct Interpreter<R: BufRead + Seek> {
     reader: BlockReader<R>,
+    /// Subroutine files being executed (`o<name> call` of `name.ngc`), innermost last; lines are
+    /// read from the last one while it is there.
+    files: Vec<subfiles::SubroutineFile>,
     block: Block,
     words: Words,
     opts: InterpOptions,
@@ -245,6 +253,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         }
         Interpreter {
             reader: BlockReader::new(source, opts.dialect),
+            files: Vec::new(),
             block: Block::default(),
             words: Words::default(),
             state,
@@ -324,9 +333,34 @@ impl<R: BufRead + Seek> Interpreter<R> {
         }
     }
 
+    /// Where the next line will be read (in the innermost subroutine file, if one is open).
+    fn read_position(&self) -> SourcePos {
+        match self.files.last() {
+            Some(f) => f.reader.position(),
+            None => self.reader.position(),
+        }
+    }
+
+    fn seek_to(&mut self, pos: SourcePos) -> Result<(), Diagnostic> {
+        let r = match self.files.last_mut() {
+            Some(f) => f.reader.seek(pos),
+            None => self.reader.seek(pos),
+        };
+        r.map_err(|e| {
+            Diagnostic::error(
+                "io::seek",
+                format!("cannot seek in the program: {e}"),
+                self.block.span(),
+            )
+        })
+    }
+
     /// Reads the next line into `self.block`. Ok(false) at end of input.
     fn read(&mut self) -> Result<bool, Diagnostic> {
         self.syntax.clear();
+        if !self.files.is_empty() {
+            return self.read_subroutine_file();
+        }
         let more = self
             .reader
             .next_block(&mut self.block, &mut self.syntax)
@@ -345,7 +379,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     /// Executes one line. Ok(true) when the program is over.
     fn step(&mut self) -> Result<bool, Diagnostic> {
-        let here = self.reader.position();
+        let here = self.read_position();
         if !self.read()? {
             return self.end_of_input();
         }
@@ -401,7 +435,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         &self.block,
                         &eval,
                         here,
-                        self.reader.position(),
+                        self.read_position(),
                         &self.opts,
                     )?)
                 }
@@ -409,13 +443,21 @@ impl<R: BufRead + Seek> Interpreter<R> {
             match action {
                 None | Some(FlowAction::Skip) => return Ok(false),
                 Some(FlowAction::Seek(pos)) => {
-                    self.reader.seek(pos).map_err(|e| {
-                        Diagnostic::error(
-                            "io::seek",
-                            format!("cannot seek in the program: {e}"),
-                            self.block.span(),
-                        )
-                    })?;
+                    self.seek_to(pos)?;
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::CallFile { path, label }) => {
+                    self.open_subroutine_file(&path, &label)?;
+                    self.count_block()?;
+                    self.apply_flow_params();
+                    return Ok(false);
+                }
+                Some(FlowAction::ReturnFromFile(pos)) => {
+                    self.files.pop();
+                    self.flow.set_source(self.files.len());
+                    self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
                     return Ok(false);
@@ -458,9 +500,34 @@ impl<R: BufRead + Seek> Interpreter<R> {
             match slot {
                 flow::ParamOp::Write(slot) => self.params.write(&slot, v),
                 flow::ParamOp::PushScope => self.params.push_scope(),
-                flow::ParamOp::PopScope => self.params.pop_scope(),
+                flow::ParamOp::PopScope => {
+                    if let Some(saved) = self.params.pop_scope() {
+                        self.restore_on_return(&saved);
+                    }
+                }
             }
         }
+    }
+
+    /// M73: the subroutine returns, its caller's modal state comes back (commands carry the
+    /// `endsub`/`return` line's span).
+    fn restore_on_return(&mut self, saved: &rs274::modal_context::SavedContext) {
+        let out = ctx::Emitter {
+            queue: &mut self.queue,
+            span: self.block.span(),
+            number: self.block.number,
+            label_digits: 0,
+        };
+        let mut cx = Ctx {
+            block: &self.block,
+            words: &mut self.words,
+            st: &mut self.state,
+            out,
+            opts: &self.opts,
+            warnings: &mut self.warnings,
+            axioma: &mut self.axioma,
+        };
+        rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
 
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
@@ -533,9 +600,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         CommentKind::Debug => Some(Canon::Message {
                             text: flow::substitute_parameters(text, &eval),
                         }),
-                        // rs274 drops the blanks a comment starts with.
-                        _ => Some(Canon::Comment {
-                            text: text.trim_start().to_string(),
+                        // rs274 drops the blanks a comment starts with; LOG… comments are
+                        // LinuxCNC's program log, PRINT goes to its console (not a command).
+                        _ => subfiles::log_command(text.trim_start(), &eval).unwrap_or_else(|| {
+                            Some(Canon::Comment {
+                                text: text.trim_start().to_string(),
+                            })
                         }),
                     };
                     if let Some(cmd) = cmd {
@@ -593,7 +663,17 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     /// How many commands at the back of the queue are held back (RS274/NGC cutter compensation
     /// may still move the last compensated corner); none once the run is over.
+    #[inline(always)]
     fn held(&self) -> usize {
+        // Compensation off (almost every block): nothing held, nothing to scan.
+        if !self.state.rs274.comp.on() {
+            return 0;
+        }
+        self.held_when_compensating()
+    }
+
+    #[cold]
+    fn held_when_compensating(&self) -> usize {
         let n = rs274::held_motions(&self.state.rs274);
         if n == 0 || self.phase == Phase::Done {
             return 0;
@@ -638,6 +718,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
 impl<R: BufRead + Seek> Iterator for Interpreter<R> {
     type Item = Result<Spanned<Canon>, Diagnostic>;
 
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if self.queue.len() > self.held() {
@@ -656,6 +737,11 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
                     Ok(true) => self.phase = Phase::Done,
                     Ok(false) => {}
                     Err(d) => {
+                        // An error inside a subroutine file is located in that file.
+                        let d = match self.files.last() {
+                            Some(f) => d.in_file(f.path.display().to_string()),
+                            None => d,
+                        };
                         self.errors += 1;
                         let go_on = self.opts.continue_after_error
                             && self.errors < self.opts.max_errors

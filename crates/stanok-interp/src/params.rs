@@ -21,6 +21,7 @@
 //! zero, `sqrt` of a negative, `acos` outside [−1, 1], unknown parameter …) is a diagnostic at the
 //! offending sub-expression, with LinuxCNC's wording.
 
+use crate::rs274::modal_context::SavedContext;
 use crate::state::ModalState;
 use stanok_canon::setup::{ControlData, Tool, ToolTable};
 use stanok_canon::{Diagnostic, LengthUnits, Pose, Span};
@@ -52,6 +53,10 @@ pub struct Parameters {
     nurbs: NurbsBuffer,
     /// The buffer as it was before the block first changed it (for `rollback`).
     nurbs_backup: Option<NurbsBuffer>,
+    /// M70/M73 saved modal states, one slot per call level (parallel to `locals`).
+    contexts: Vec<Option<SavedContext>>,
+    /// `contexts` as it was before the block first changed it (for `rollback`).
+    contexts_backup: Option<Vec<Option<SavedContext>>>,
 }
 
 /// The control points of an open G5.2 block.
@@ -80,6 +85,8 @@ impl Default for Parameters {
             tool_journal: Vec::new(),
             nurbs: NurbsBuffer::default(),
             nurbs_backup: None,
+            contexts: vec![None],
+            contexts_backup: None,
         }
     }
 }
@@ -272,6 +279,7 @@ impl Parameters {
     /// The block succeeded: keep its writes.
     pub fn commit(&mut self) {
         self.nurbs_backup = None;
+        self.contexts_backup = None;
         self.in_block = false;
         self.journal.clear();
         self.tool_journal.clear();
@@ -281,6 +289,9 @@ impl Parameters {
     pub fn rollback(&mut self) {
         if let Some(b) = self.nurbs_backup.take() {
             self.nurbs = b;
+        }
+        if let Some(c) = self.contexts_backup.take() {
+            self.contexts = c;
         }
         self.in_block = false;
         while let Some((n, v)) = self.journal.pop() {
@@ -312,12 +323,30 @@ impl Parameters {
     /// Enters a subroutine: a fresh local scope.
     pub fn push_scope(&mut self) {
         self.locals.push(HashMap::new());
+        self.contexts.push(None);
     }
 
-    /// Leaves a subroutine.
-    pub fn pop_scope(&mut self) {
+    /// Leaves a subroutine; returns the modal state M73 asked to restore, if any.
+    pub fn pop_scope(&mut self) -> Option<SavedContext> {
         if self.locals.len() > 1 {
             self.locals.pop();
+            return self.contexts.pop().flatten().filter(|c| c.auto_restore);
+        }
+        None
+    }
+
+    /// The modal state M70/M73 saved at the current call level.
+    pub fn context(&self) -> Option<SavedContext> {
+        self.contexts.last().copied().flatten()
+    }
+
+    /// Saves (or with None forgets) the current level's modal state (undone by `rollback`).
+    pub fn set_context(&mut self, c: Option<SavedContext>) {
+        if self.in_block && self.contexts_backup.is_none() {
+            self.contexts_backup = Some(self.contexts.clone());
+        }
+        if let Some(slot) = self.contexts.last_mut() {
+            *slot = c;
         }
     }
 

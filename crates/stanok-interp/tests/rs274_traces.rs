@@ -10,6 +10,7 @@
 
 mod common;
 use common::*;
+use stanok_interp::InterpOptions;
 use stanok_syntax::Dialect;
 
 const TOL: f64 = 1e-4;
@@ -85,12 +86,22 @@ fn edit_trace(mut trace: Trace, e: &SpecEdit) -> Trace {
 }
 
 fn check(name: &str, program: &str, trace_text: &str, expect: Expect) {
+    check_with(
+        name,
+        program,
+        trace_text,
+        expect,
+        options(Dialect::Rs274ngc),
+    );
+}
+
+fn check_with(name: &str, program: &str, trace_text: &str, expect: Expect, opts: InterpOptions) {
     let mut trace = read_trace(trace_text);
     if let Expect::Spec(e) = &expect {
         println!("{name}: the spec differs from LinuxCNC 2.9 here: {}", e.why);
         trace = edit_trace(trace, e);
     }
-    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    let (cmds, err) = run_with(program, opts);
     let ours = linuxcnc_lines(&cmds);
     match expect {
         Expect::DocumentRejects(message) => {
@@ -355,4 +366,71 @@ fn numbers_compare_within_tolerance() {
         "N..... STRAIGHT_FEED(0.0000)",
         TOL
     ));
+}
+
+/// `o<name> call` of subroutines kept in files of their own on the subroutine path (nested: a
+/// file calling another file, return values, `return` from inside an if). Golden made with
+/// LinuxCNC's rs274 and an ini whose [RS274NGC]SUBROUTINE_PATH is tests/rs274-subfiles.
+#[test]
+fn subroutine_files_on_the_search_path_match_linuxcnc() {
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/rs274-subfiles"));
+    let program = std::fs::read_to_string(dir.join("main.ngc")).unwrap();
+    let trace = std::fs::read_to_string(dir.join("expected.canon.txt")).unwrap();
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.subroutine_path = vec![dir.to_path_buf()];
+    check_with("subfiles", &program, &trace, Expect::LinuxCnc, opts);
+    // Without the path the call is an error at the first call, as in LinuxCNC.
+    let (cmds, err) = run(&program, Dialect::Rs274ngc);
+    let err = err.expect("no path: the subroutine is unknown");
+    assert!(err.message.starts_with("EOF in file"), "{}", err.message);
+    assert!(!cmds.iter().any(|c| c.value.motion().is_some()));
+}
+
+#[test]
+fn a_subroutine_file_without_its_sub_is_an_error() {
+    let dir = std::env::temp_dir().join(format!("stanok-subfile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("other.ngc"),
+        "o<different> sub\nG0 X1\no<different> endsub\nM2\n",
+    )
+    .unwrap();
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.subroutine_path = vec![dir.clone()];
+    let (_, err) = run_with("G21\no<other> call\nM2\n", opts);
+    let err = err.unwrap();
+    assert!(
+        err.message.contains("seeking o-word: o<other>"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.span.line, 2);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_error_inside_a_subroutine_file_is_located_in_that_file() {
+    let dir = std::env::temp_dir().join(format!("stanok-subfile-err-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("bad.ngc"),
+        "o<bad> sub\nG1 X1 F0\no<bad> endsub\nM2\n",
+    )
+    .unwrap();
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.subroutine_path = vec![dir.clone()];
+    let (_, err) = run_with("G21\no<bad> call\nM2\n", opts);
+    let err = err.unwrap();
+    assert!(
+        err.message.starts_with("Cannot do g1 with zero feed rate"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.span.line, 2);
+    assert!(
+        err.file.as_deref().unwrap().ends_with("bad.ngc"),
+        "{:?}",
+        err.file
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -258,7 +258,10 @@ impl SimMachine {
             Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
             Canon::ArcFeed(a) => self.apply_arc(a, span)?,
             Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
-            Canon::StraightProbe { motion, .. } => self.apply_line(motion, LineKind::Feed, span)?,
+            // The probe stops where it makes (or loses) contact.
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => self.apply_line(&motion.stopped_at(*contact), LineKind::Feed, span)?,
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,
@@ -349,6 +352,9 @@ impl SimMachine {
                 },
             ),
             Canon::PalletShuttle => self.log(line, "pallet shuttle"),
+            Canon::Log { action, text } => {
+                self.log(line, format!("program log {action:?}: {text}"))
+            }
             Canon::Finish => {
                 self.report.program_ended = true;
                 self.log(line, "% end of program text");

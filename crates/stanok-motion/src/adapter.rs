@@ -240,9 +240,12 @@ impl CanonAdapter {
             Canon::StraightFeed(m) => out(self.line(m, false, line)),
             Canon::ArcFeed(a) => out(self.arc(a, line)),
             Canon::SplineFeed(sp) => out(self.spline(sp, line)),
-            Canon::StraightProbe { motion, .. } => {
+            // The probe stops where it makes (or loses) contact, at rest.
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => {
                 stop(out);
-                out(self.line(motion, false, line));
+                out(self.line(&motion.stopped_at(*contact), false, line));
                 stop(out);
             }
             Canon::RigidTap { start, end, scale } => {

@@ -172,3 +172,47 @@ fn soft_line_is_an_s_curve_with_bounded_jerk() {
     );
     assert_eq!(trace.last().unwrap().position, b);
 }
+
+#[test]
+fn the_window_bounds_memory_and_a_tiny_window_stays_safe() {
+    use stanok_motion::path::PathBuilder;
+    use stanok_motion::planner::Planner;
+    let mut cfg = mill();
+    cfg.lookahead = 64;
+    let mut builder = PathBuilder::new(&cfg);
+    let mut planner = Planner::new(cfg.lookahead);
+    let mut released = 0u64;
+    let mut most = 0;
+    let pts: Vec<_> = (0..20_000)
+        .map(|k| {
+            p3(
+                0.5 * k as f64 % 200.0,
+                if k % 2 == 0 { 0.0 } else { 0.4 },
+                0.0,
+            )
+        })
+        .collect();
+    for w in pts.windows(2) {
+        builder.push(line(w[0], w[1], 5000.0, G64, Brisk), &mut |piece| {
+            planner.push(piece, &mut |_| released += 1);
+            most = most.max(planner.len());
+        });
+    }
+    assert!(most <= 64, "{most}");
+    assert!(released > 30_000, "{released}");
+    // A window of 2 pieces: slow (it must be able to stop at the window's end) but within limits.
+    cfg.lookahead = 2;
+    let short: Vec<_> = pts[..200]
+        .windows(2)
+        .map(|w| line(w[0], w[1], 5000.0, G64, Brisk))
+        .collect();
+    let long: Vec<_> = pts[..200]
+        .windows(2)
+        .map(|w| line(w[0], w[1], 5000.0, G64, Brisk))
+        .collect();
+    let (trace, mon, t_short) = run(&cfg, pts[0], short);
+    assert_eq!(mon.violation_count, 0, "{:?}", mon.violations);
+    assert_eq!(trace.last().unwrap().position, pts[199]);
+    let (_, _, t_long) = run(&mill(), pts[0], long);
+    assert!(t_short >= t_long, "{t_short} < {t_long}");
+}

@@ -53,6 +53,9 @@ pub struct PlotOptions {
     /// Largest deviation of a drawn arc from the true arc, mm. The renderer never uses more than
     /// 0.25 px either, whichever is smaller.
     pub chord_tolerance: f64,
+    /// A second stream whose feed moves are drawn under the path in their own colour: the
+    /// programmed contour when the path is the compensated tool centre (empty = none).
+    pub reference: Vec<Spanned<Canon>>,
 }
 
 impl Default for PlotOptions {
@@ -63,6 +66,7 @@ impl Default for PlotOptions {
             width: 1200,
             height: 900,
             chord_tolerance: 0.01,
+            reference: Vec::new(),
         }
     }
 }
@@ -72,6 +76,8 @@ impl Default for PlotOptions {
 enum Kind {
     Rapid,
     Feed,
+    /// A feed move of the reference stream (the programmed contour).
+    Programmed,
 }
 
 impl Kind {
@@ -82,6 +88,9 @@ impl Kind {
                 r##"class="rapid" fill="none" stroke="#e8590c" stroke-width="1" stroke-dasharray="6 4""##
             }
             Kind::Feed => r##"class="feed" fill="none" stroke="#1864ab" stroke-width="1.5""##,
+            Kind::Programmed => {
+                r##"class="programmed" fill="none" stroke="#ae3ec9" stroke-width="1" stroke-dasharray="2 2""##
+            }
         }
     }
 }
@@ -213,10 +222,22 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
         r##"<text class="sheet-title" x="12" y="26" font-size="18" fill="#212529">{}</text>"##,
         escape(&options.title)
     );
-    let (segments, start) = collect(commands);
+    let (mut segments, start) = collect(commands);
+    // The reference's feed moves go first, so the path is drawn over them.
+    let (reference, _) = collect(&options.reference);
+    let with_reference = reference.iter().any(|(k, _)| *k == Kind::Feed);
+    if with_reference {
+        let mut all: Vec<(Kind, Shape)> = reference
+            .into_iter()
+            .filter(|(k, _)| *k == Kind::Feed)
+            .map(|(_, s)| (Kind::Programmed, s))
+            .collect();
+        all.append(&mut segments);
+        segments = all;
+    }
     match start {
         Some(start) if !segments.is_empty() => {
-            legend(&mut out, width);
+            legend(&mut out, width, with_reference);
             let views = view::layout(width, height, HEADER);
             let (lo, hi) = bounds(&segments, start);
             let mappings = view::fit(&views, lo, hi);
@@ -242,8 +263,18 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
 const HEADER: f64 = 40.0;
 
 /// The key in the header: what the line styles mean.
-fn legend(out: &mut String, width: f64) {
+fn legend(out: &mut String, width: f64, with_reference: bool) {
     let x = width - 330.0;
+    if with_reference {
+        let _ = write!(
+            out,
+            r##"<g class="legend-programmed" font-size="13" fill="#212529"><path d="M{} 21H{}" {}/><text x="{}" y="25">programmed</text></g>"##,
+            num(x - 150.0),
+            num(x - 114.0),
+            Kind::Programmed.attributes(),
+            num(x - 108.0),
+        );
+    }
     let _ = write!(
         out,
         concat!(

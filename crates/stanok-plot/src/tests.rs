@@ -308,6 +308,7 @@ fn text_is_escaped_and_bad_numbers_are_dropped() {
         width: 10, // raised to the minimum
         height: 10,
         chord_tolerance: f64::NAN,
+        reference: Vec::new(),
     };
     let mut cmds = sample_program();
     cmds.push(feed(p(0.0, 20.0, 5.0), p(f64::NAN, 0.0, 0.0)));
@@ -417,4 +418,31 @@ fn splines_are_drawn_as_curves_within_a_quarter_pixel() {
         (lo[0] - 30.0).abs() < 1e-3 && (hi[1] - 70.0).abs() < 1e-3,
         "{lo:?} {hi:?}"
     );
+}
+
+#[test]
+fn a_reference_is_drawn_under_the_path_in_its_own_class() {
+    let cmds = sample_program();
+    let plain = render_svg(&cmds, &PlotOptions::default());
+    assert!(!plain.contains("programmed"));
+    // The reference: the same square 1 mm inside.
+    let reference = vec![
+        init(1.0, 1.0, 0.0),
+        feed(p(1.0, 1.0, 0.0), p(9.0, 1.0, 0.0)),
+        rapid(p(9.0, 1.0, 0.0), p(9.0, 9.0, 0.0)),
+    ];
+    let options = PlotOptions {
+        reference,
+        ..PlotOptions::default()
+    };
+    let svg = render_svg(&cmds, &options);
+    assert_well_formed(&svg);
+    // Only the reference's feed move: once per view, and before the path's own feed moves.
+    assert_eq!(
+        svg.matches(r#"class="programmed""#).count(),
+        4 + 1,
+        "4 views + legend"
+    );
+    let xy = view(&svg, "xy");
+    assert!(xy.find(r#"class="programmed""#).unwrap() < xy.find(r#"class="feed""#).unwrap());
 }

@@ -66,6 +66,58 @@ pub struct MachineArgs {
     /// (default: the machine's `linuxcnc_units`). `inch` reproduces LinuxCNC's standalone `rs274`.
     #[arg(long, visible_alias = "machine-units", value_enum, value_name = "UNIT")]
     pub linuxcnc_units: Option<UnitsArg>,
+    /// RS274/NGC: a directory searched for `name.ngc` when `o<name> call` names a subroutine the
+    /// program does not define (LinuxCNC's SUBROUTINE_PATH); repeat for several, searched in order.
+    #[arg(long, value_name = "DIR")]
+    pub subroutine_path: Vec<PathBuf>,
+    /// The simulated probe's world: where a probe move (G38.n, G75) makes contact, as a half-space
+    /// of machine coordinates, e.g. `z<=-3.2` (a surface at Z −3.2 mm, contact below it) or
+    /// `x>=50`; `z=-3.2` means `z<=-3.2`. Repeat for several surfaces. Without one the probe never
+    /// trips.
+    #[arg(long, value_name = "AXIS<=VALUE", value_parser = parse_probe_surface)]
+    pub probe_surface: Vec<stanok_canon::setup::ProbeSurface>,
+}
+
+/// `z<=-3.2`, `x>=50`, `z=-3.2` (= `<=`): a probe surface (machine coordinates, mm/deg).
+pub fn parse_probe_surface(s: &str) -> Result<stanok_canon::setup::ProbeSurface, String> {
+    let s = s.trim();
+    let (axis_text, rest) = s.split_at(
+        s.find(['<', '>', '='])
+            .ok_or("expected AXIS<=VALUE, AXIS>=VALUE or AXIS=VALUE")?,
+    );
+    let axis = match axis_text.trim().to_ascii_uppercase().as_str() {
+        "X" => 0,
+        "Y" => 1,
+        "Z" => 2,
+        "A" => 3,
+        "B" => 4,
+        "C" => 5,
+        "U" => 6,
+        "V" => 7,
+        "W" => 8,
+        other => return Err(format!("unknown axis `{other}`")),
+    };
+    let (at_or_below, value) = if let Some(v) = rest.strip_prefix("<=") {
+        (true, v)
+    } else if let Some(v) = rest.strip_prefix(">=") {
+        (false, v)
+    } else if let Some(v) = rest.strip_prefix('=') {
+        (true, v)
+    } else {
+        return Err("expected <=, >= or = after the axis".into());
+    };
+    let value: f64 = value
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{}` is not a number", value.trim()))?;
+    if !value.is_finite() {
+        return Err("the value must be finite".into());
+    }
+    Ok(stanok_canon::setup::ProbeSurface {
+        axis,
+        at_or_below,
+        value,
+    })
 }
 
 /// A LinuxCNC parameter file kept from run to run.

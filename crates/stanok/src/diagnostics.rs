@@ -18,6 +18,8 @@ pub fn render(file: &Path, d: &Diagnostic) {
 
 /// The rendered text (no colour unless `colour`).
 pub fn to_string(file: &Path, d: &Diagnostic, colour: bool) -> String {
+    // A diagnostic about a subroutine file names it; its line and column are in that file.
+    let file = d.file.as_deref().map(Path::new).unwrap_or(file);
     let name = file.display().to_string();
     let severity = match d.severity {
         Severity::Error => miette::Severity::Error,

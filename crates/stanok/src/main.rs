@@ -129,6 +129,7 @@ fn interpreter(
     dialect: Option<Dialect>,
     machine: &MachineData,
     check_mode: bool,
+    subroutine_path: &[PathBuf],
 ) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
     let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
     let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
@@ -142,6 +143,7 @@ fn interpreter(
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }
+    opts.subroutine_path = subroutine_path.to_vec();
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -162,6 +164,9 @@ fn load_machine(args: &MachineArgs) -> Result<(MachineData, Sources), ExitCode> 
     };
     if let Some(u) = args.linuxcnc_units {
         machine.linuxcnc_units = u.into();
+    }
+    if !args.probe_surface.is_empty() {
+        machine.control.probe_surfaces = args.probe_surface.clone();
     }
     let units = machine.linuxcnc_units;
     let mut sources = Sources::machine(&machine.name);
@@ -215,7 +220,7 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, true)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, true, &args.subroutine_path)?;
     let mut errors = Vec::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
@@ -317,7 +322,7 @@ fn run_program(
         return Ok(code);
     }
     let units = machine.linuxcnc_units;
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     let trace = match &motion.trace {
         Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
         None => None,
@@ -428,7 +433,7 @@ fn canon(
     if let Err(code) = load_var(file, dialect, var, &mut machine) {
         return Ok(code);
     }
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
@@ -475,6 +480,39 @@ fn canon(
     Ok(ExitCode::SUCCESS)
 }
 
+/// The programmed contour of a program that uses cutter radius compensation: the same program run
+/// with every tool radius 0 (compensation then offsets by nothing). Empty when it moves exactly as
+/// the compensated run does (no compensation) or cannot be run.
+fn programmed_contour(
+    file: &Path,
+    dialect: Option<Dialect>,
+    machine: &MachineData,
+    subroutine_path: &[PathBuf],
+    compensated: &[Spanned<Canon>],
+) -> Vec<Spanned<Canon>> {
+    let mut zero = machine.clone();
+    for tool in zero.control.tools.tools.values_mut() {
+        for edge in &mut tool.edges {
+            edge.radius = 0.0;
+            edge.radius_wear = 0.0;
+        }
+    }
+    let Ok((interp, _)) = interpreter(file, dialect, &zero, false, subroutine_path) else {
+        return Vec::new();
+    };
+    let reference: Vec<Spanned<Canon>> = interp.map_while(Result::ok).collect();
+    let moves = |cmds: &[Spanned<Canon>]| -> Vec<Canon> {
+        cmds.iter()
+            .filter(|c| c.value.motion().is_some())
+            .map(|c| c.value.clone())
+            .collect()
+    };
+    if moves(&reference) == moves(compensated) {
+        return Vec::new();
+    }
+    reference
+}
+
 fn plot(
     file: &Path,
     dialect: Option<Dialect>,
@@ -485,7 +523,7 @@ fn plot(
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, false)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
     let mut commands: Vec<Spanned<Canon>> = Vec::new();
     let mut failure = None;
     for item in interp.by_ref() {
@@ -503,6 +541,7 @@ fn plot(
         .unwrap_or_default();
     let options = stanok_plot::PlotOptions {
         title,
+        reference: programmed_contour(file, dialect, &machine, &args.subroutine_path, &commands),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

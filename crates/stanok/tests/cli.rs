@@ -132,10 +132,76 @@ fn plot_writes_four_views() {
 }
 
 #[test]
+fn plot_of_a_compensated_contour_draws_the_programmed_one_too() {
+    // Example 9.6: a 100 mm square under G41 with T1 (radius 3 mm in the example machine data).
+    let file = corpus("axioma/s9_2_1-g41-square-contour-example-9_6.nc");
+    let machine = repo("machines/example-offsets-tools.toml");
+    let out = temp("comp.svg", "");
+    let (code, _, err) = stanok(&["plot", &file, "--machine", &machine, "-o", &out]);
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        svg.contains(r#"class="programmed""#),
+        "programmed contour missing"
+    );
+    assert!(svg.contains(">programmed</text>"), "legend entry missing");
+    // Without compensation there is nothing extra to draw.
+    let plain = corpus("axioma/s4_8_1-absolute-centre-turning-example-4_18.nc");
+    let out2 = temp("plain.svg", "");
+    let (code, _, err) = stanok(&["plot", &plain, "-o", &out2]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!std::fs::read_to_string(&out2)
+        .unwrap()
+        .contains("programmed"));
+}
+
+#[test]
 fn bad_machine_file_gives_a_located_diagnostic() {
     let m = temp("m.toml", "name = \"x\"\nrapid_rate = \"fast\"\n");
     let prog = corpus("axioma/s5_1-rapid-positioning-milling-example-5_1.nc");
     let (code, _, err) = stanok(&["run", &prog, "--machine", &m]);
     assert_eq!(code, 1);
     assert!(err.contains("m.toml:2:"), "{err}");
+}
+
+#[test]
+fn probe_moves_stop_at_the_configured_surface() {
+    // G38.2 towards Z-10 trips at the surface Z -3.2: #5063 reads it, #5070 = 1, the next move
+    // starts there; G38.4 back up loses contact as soon as it leaves the surface.
+    let prog = temp(
+        "probe.ngc",
+        "G21 G90 F100\nG0 X1 Y2 Z5\nG38.2 Z-10\n(debug, z=#5063 ok=#5070)\nG38.4 Z0\n(debug, z=#5063 ok=#5070)\nM2\n",
+    );
+    let (code, out, err) = stanok(&["canon", &prog, "--probe-surface", "z<=-3.2"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("STRAIGHT_PROBE(1.0000, 2.0000, -10.0000"),
+        "{out}"
+    );
+    assert!(
+        out.contains("MESSAGE(\" z=-3.200000 ok=1.000000\")"),
+        "{out}"
+    );
+    // Away from the surface the contact ends at once (Z -3.2 again), and it is a success.
+    assert!(out.contains("MESSAGE(\" z=-3.200000 ok=1.000000\")"));
+    // The run's final position is the trip point of the last probe.
+    let (code, json, err) = stanok(&["run", &prog, "--json", "--probe-surface", "z=-3.2"]);
+    assert_eq!(code, 0, "{err}");
+    let r: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert!(
+        (r["final_position"]["z"].as_f64().unwrap() + 3.2).abs() < 1e-9,
+        "{json}"
+    );
+    // G38.2 that never reaches the surface is an error at its block.
+    let miss = temp("miss.ngc", "G21 G90 F100\nG0 Z5\nG38.2 Z-1\nM2\n");
+    let (code, _, err) = stanok(&["canon", &miss, "--probe-surface", "z<=-3.2"]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("without the probe changing state") && err.contains("miss.ngc:3"),
+        "{err}"
+    );
+    // A malformed surface is refused by the command line.
+    let (code, _, err) = stanok(&["canon", &miss, "--probe-surface", "q<=1"]);
+    assert_ne!(code, 0);
+    assert!(err.contains("unknown axis"), "{err}");
 }

@@ -104,7 +104,7 @@ fn sample_programs_match_linuxcnc() {
         .lines()
         .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
         .collect();
-    assert!(entries.len() >= 300, "{} goldens listed", entries.len());
+    assert!(entries.len() >= 320, "{} goldens listed", entries.len());
     let required = std::env::var_os("STANOK_REQUIRE_LINUXCNC_SAMPLES").is_some();
     let machine = dir.join("sim.toml").display().to_string();
     let tools = dir.join("sim.tbl").display().to_string();

@@ -105,6 +105,23 @@ pub struct Extension {
     pub spline: SplineState,
     /// G75 mode and the last probe latch.
     pub probe: ProbeState,
+    /// Where the last released motion ended (machine coordinates).
+    pub released_end: Option<stanok_canon::Pose>,
+}
+
+/// Every released straight move starts where the previous motion ended. The compensation
+/// engine's own tool bookkeeping can lag behind moves that bypass it (a Z plunge after a G143
+/// contour was switched off), and the machine moves from where it is: the stream must say so.
+/// Arcs are left as computed (their centre fixes their start).
+fn chain(prev: &mut Option<stanok_canon::Pose>, c: &mut Spanned<Canon>) {
+    if let Canon::StraightFeed(m) | Canon::StraightTraverse(m) = &mut c.value {
+        if let Some(p) = *prev {
+            m.start = p;
+        }
+    }
+    if let Some(m) = c.value.motion() {
+        *prev = Some(m.end());
+    }
 }
 
 impl Extension {
@@ -134,17 +151,22 @@ impl Extension {
         resolved.sort_by_key(|(slot, _)| *slot);
         let mut ready = resolved.into_iter().peekable();
         let mut index = self.held_base;
-        for item in held.drain(..limit) {
-            while let Some((_, c)) = ready.next_if(|(slot, _)| *slot <= index) {
+        let mut prev = self.released_end;
+        for mut item in held.drain(..limit) {
+            while let Some((_, mut c)) = ready.next_if(|(slot, _)| *slot <= index) {
+                chain(&mut prev, &mut c);
                 queue.push_back(c);
             }
+            chain(&mut prev, &mut item);
             queue.push_back(item);
             index += 1;
         }
         // Motions at the end of the released part (their slot is the next held index).
-        for (_, c) in ready {
+        for (_, mut c) in ready {
+            chain(&mut prev, &mut c);
             queue.push_back(c);
         }
+        self.released_end = prev;
         self.held_base = index;
     }
 

@@ -3,8 +3,10 @@
 //! input (spec rs274ngc §5; LinuxCNC 2.9's `rs274` for what it prints).
 //!
 //! Where they run in a line (LinuxCNC's order of execution): M62–M66 after T and before M6/M61,
-//! M19 with the spindle codes, M48–M53 after coolant and before the user M codes.
+//! M19 with the spindle codes, M48–M53 after coolant and before the user M codes. [`classify_m`]
+//! sorts a block's M words into LinuxCNC's modal groups for `execute`.
 
+use super::{unsupported, NO_CODE};
 use crate::ctx::Ctx;
 use crate::params::Parameters;
 use stanok_canon::{Canon, Diagnostic};
@@ -176,4 +178,123 @@ pub(super) fn set_tool_number(
     super::tools::load_tool_parameters(params, tool);
     cx.out.push(Canon::SetCurrentTool { tool, slot });
     Ok(())
+}
+
+/// M codes by LinuxCNC's modal groups: stopping (4), tool change (6), spindle (7), coolant (8),
+/// user-defined (M100–M199). Plain fields with a sentinel: this runs for every block.
+pub(super) struct MCodes {
+    pub(super) stop: u32,
+    pub(super) stop_span: ColSpan,
+    pub(super) tool_change: bool,
+    pub(super) spindle: u32,
+    /// Coolant codes in written order (at most four M words per line).
+    pub(super) coolant: [u32; 4],
+    pub(super) n_coolant: usize,
+    pub(super) user: [u32; 4],
+    pub(super) n_user: usize,
+    /// M62–M66 in written order.
+    pub(super) io: [(u32, ColSpan); 4],
+    pub(super) n_io: usize,
+    /// M48–M53 in written order.
+    pub(super) overrides: [u32; 4],
+    pub(super) n_overrides: usize,
+    /// M19.
+    pub(super) orient: Option<ColSpan>,
+    /// M70–M73.
+    pub(super) context: Option<(u32, ColSpan)>,
+    /// M61.
+    pub(super) set_tool: Option<ColSpan>,
+}
+
+#[inline(always)]
+pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
+    let mut m = MCodes {
+        stop: NO_CODE,
+        stop_span: ColSpan::default(),
+        tool_change: false,
+        spindle: NO_CODE,
+        coolant: [0; 4],
+        n_coolant: 0,
+        user: [0; 4],
+        n_user: 0,
+        io: [(0, ColSpan::default()); 4],
+        n_io: 0,
+        overrides: [0; 4],
+        n_overrides: 0,
+        orient: None,
+        context: None,
+        set_tool: None,
+    };
+    if cx.words.m.len() > 4 {
+        return Err(cx.err(
+            "rs274::too-many-m-codes",
+            "Too many m codes on line",
+            cx.words.m[4].1,
+        ));
+    }
+    for &(code, span) in &cx.words.m {
+        let taken = match code {
+            0 | 1 | 2 | 30 | 60 => {
+                let t = m.stop != NO_CODE;
+                m.stop = code;
+                m.stop_span = span;
+                t
+            }
+            6 => std::mem::replace(&mut m.tool_change, true) || m.set_tool.is_some(),
+            3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE || m.orient.is_some(),
+            7..=9 => {
+                m.coolant[m.n_coolant] = code;
+                m.n_coolant += 1;
+                false
+            }
+            100..=199 if cx.opts.user_m_codes => {
+                m.user[m.n_user] = code;
+                m.n_user += 1;
+                false
+            }
+            19 => m.orient.replace(span).is_some() || m.spindle != NO_CODE,
+            61 => m.set_tool.replace(span).is_some() || m.tool_change,
+            62..=66 => {
+                m.io[m.n_io] = (code, span);
+                m.n_io += 1;
+                false
+            }
+            48..=53 => {
+                m.overrides[m.n_overrides] = code;
+                m.n_overrides += 1;
+                false
+            }
+            70..=73 => m.context.replace((code, span)).is_some(),
+            67 | 68 => {
+                return Err(unsupported(
+                    cx,
+                    &format!("M{code}"),
+                    "RS274/NGC completeness",
+                    span,
+                ))
+            }
+            _ if code > 199 => {
+                return Err(cx.err(
+                    "rs274::unknown-m-code",
+                    format!("M-code greater than 199: M{code}"),
+                    span,
+                ))
+            }
+            _ => {
+                return Err(cx.err(
+                    "rs274::unknown-m-code",
+                    format!("Unknown m code used: M{code}"),
+                    span,
+                ))
+            }
+        };
+        if taken {
+            return Err(cx.err(
+                "rs274::two-m-codes-same-group",
+                "Two m codes used from same modal group",
+                span,
+            ));
+        }
+    }
+    Ok(m)
 }

@@ -33,6 +33,7 @@ pub(crate) mod cutter_comp;
 mod cycles;
 mod home;
 mod mcodes;
+pub(crate) mod modal_context;
 mod motion;
 mod offsets;
 mod probe;
@@ -248,119 +249,22 @@ fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
     Ok(g)
 }
 
-/// M codes by LinuxCNC's modal groups: stopping (4), tool change (6), spindle (7), coolant (8),
-/// user-defined (M100–M199). Plain fields with a sentinel: this runs for every block.
-struct MCodes {
-    stop: u32,
-    stop_span: ColSpan,
-    tool_change: bool,
-    spindle: u32,
-    /// Coolant codes in written order (at most four M words per line).
-    coolant: [u32; 4],
-    n_coolant: usize,
-    user: [u32; 4],
-    n_user: usize,
-    /// M62–M66 in written order.
-    io: [(u32, ColSpan); 4],
-    n_io: usize,
-    /// M48–M53 in written order.
-    overrides: [u32; 4],
-    n_overrides: usize,
-    /// M19.
-    orient: Option<ColSpan>,
-    /// M61.
-    set_tool: Option<ColSpan>,
-}
-
-#[inline(always)]
-fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
-    let mut m = MCodes {
-        stop: NO_CODE,
-        stop_span: ColSpan::default(),
-        tool_change: false,
-        spindle: NO_CODE,
-        coolant: [0; 4],
-        n_coolant: 0,
-        user: [0; 4],
-        n_user: 0,
-        io: [(0, ColSpan::default()); 4],
-        n_io: 0,
-        overrides: [0; 4],
-        n_overrides: 0,
-        orient: None,
-        set_tool: None,
+/// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
+pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
+    let text = match mode {
+        FeedMode::InverseTime => "inverse time",
+        FeedMode::UnitsPerRevolution => "units per revolution",
+        FeedMode::UnitsPerMinute => "units per minute",
     };
-    if cx.words.m.len() > 4 {
-        return Err(cx.err(
-            "rs274::too-many-m-codes",
-            "Too many m codes on line",
-            cx.words.m[4].1,
-        ));
+    cx.out.push(Canon::Comment {
+        text: format!("interpreter: feed mode set to {text}"),
+    });
+    cx.st.feed_mode = mode;
+    cx.out.push(Canon::SetFeedMode { mode });
+    if mode != FeedMode::InverseTime {
+        cx.st.feed = 0.0;
+        cx.out.push(Canon::SetFeedRate { feed: 0.0 });
     }
-    for &(code, span) in &cx.words.m {
-        let taken = match code {
-            0 | 1 | 2 | 30 | 60 => {
-                let t = m.stop != NO_CODE;
-                m.stop = code;
-                m.stop_span = span;
-                t
-            }
-            6 => std::mem::replace(&mut m.tool_change, true) || m.set_tool.is_some(),
-            3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE || m.orient.is_some(),
-            7..=9 => {
-                m.coolant[m.n_coolant] = code;
-                m.n_coolant += 1;
-                false
-            }
-            100..=199 if cx.opts.user_m_codes => {
-                m.user[m.n_user] = code;
-                m.n_user += 1;
-                false
-            }
-            19 => m.orient.replace(span).is_some() || m.spindle != NO_CODE,
-            61 => m.set_tool.replace(span).is_some() || m.tool_change,
-            62..=66 => {
-                m.io[m.n_io] = (code, span);
-                m.n_io += 1;
-                false
-            }
-            48..=53 => {
-                m.overrides[m.n_overrides] = code;
-                m.n_overrides += 1;
-                false
-            }
-            67 | 68 | 70..=73 => {
-                return Err(unsupported(
-                    cx,
-                    &format!("M{code}"),
-                    "RS274/NGC completeness",
-                    span,
-                ))
-            }
-            _ if code > 199 => {
-                return Err(cx.err(
-                    "rs274::unknown-m-code",
-                    format!("M-code greater than 199: M{code}"),
-                    span,
-                ))
-            }
-            _ => {
-                return Err(cx.err(
-                    "rs274::unknown-m-code",
-                    format!("Unknown m code used: M{code}"),
-                    span,
-                ))
-            }
-        };
-        if taken {
-            return Err(cx.err(
-                "rs274::two-m-codes-same-group",
-                "Two m codes used from same modal group",
-                span,
-            ));
-        }
-    }
-    Ok(m)
 }
 
 fn plane_of_code(code: u32) -> Plane {
@@ -401,7 +305,12 @@ fn distance_mode(absolute: bool) -> DistanceMode {
 }
 
 /// LinuxCNC's `COMMENT("interpreter: … mode changed to …")` on a change of G90/G91 or G90.1/G91.1.
-fn announce_distance(cx: &mut Ctx<'_>, what: &str, old: DistanceMode, new: DistanceMode) {
+pub(crate) fn announce_distance(
+    cx: &mut Ctx<'_>,
+    what: &str,
+    old: DistanceMode,
+    new: DistanceMode,
+) {
     if old != new {
         let to = match new {
             DistanceMode::Absolute => "absolute",
@@ -416,7 +325,7 @@ fn announce_distance(cx: &mut Ctx<'_>, what: &str, old: DistanceMode, new: Dista
 /// Executes one RS274/NGC block (comments already emitted by the driver).
 pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Diagnostic> {
     let g = classify(cx)?;
-    let m = classify_m(cx)?;
+    let m = mcodes::classify_m(cx)?;
 
     // Codes recognised but belonging to later capabilities. (Straight off the code array: building
     // seven `Option`s and flattening them cost ~50 instructions per block.)
@@ -443,20 +352,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
 
     // 2. Feed mode.
     if let Some((code, _)) = g.get(Group::FeedMode) {
-        let (mode, text) = match code {
-            930 => (FeedMode::InverseTime, "inverse time"),
-            950 => (FeedMode::UnitsPerRevolution, "units per revolution"),
-            _ => (FeedMode::UnitsPerMinute, "units per minute"),
-        };
-        cx.out.push(Canon::Comment {
-            text: format!("interpreter: feed mode set to {text}"),
-        });
-        cx.st.feed_mode = mode;
-        cx.out.push(Canon::SetFeedMode { mode });
-        if mode != FeedMode::InverseTime {
-            cx.st.feed = 0.0;
-            cx.out.push(Canon::SetFeedRate { feed: 0.0 });
-        }
+        set_feed_mode(
+            cx,
+            match code {
+                930 => FeedMode::InverseTime,
+                950 => FeedMode::UnitsPerRevolution,
+                _ => FeedMode::UnitsPerMinute,
+            },
+        );
     }
     // 3. F (per-move in inverse time: see `motion`).
     let f_word = cx.words.take(b'F');
@@ -552,6 +455,10 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
                 cx.out.push(Canon::StopSpindle { spindle: 0 });
             }
         }
+    }
+    // 7a. M70–M73: save, forget, restore the modal state.
+    if let Some((code, span)) = m.context {
+        modal_context::m70_73(cx, params, code, span)?;
     }
     for &code in &m.coolant[..m.n_coolant] {
         cx.coolant(code);

@@ -24,6 +24,22 @@ pub(super) fn motion_block(
     if matches!(code, 0 | 10 | 20 | 30 | 800) {
         cx.st.rs274.motion_code = None;
     }
+    // Moves whose path compensation cannot offset (LinuxCNC refuses them the same way).
+    if cx.st.rs274.comp.on()
+        && matches!(code, 50..=52 | 330 | 331 | 382..=385 | 730 | 740 | 760 | 810..=890)
+    {
+        let what = match code {
+            382..=385 => "probe",
+            50..=52 => "use splines",
+            330 | 331 | 760 => "thread or tap",
+            _ => "use canned cycles",
+        };
+        return Err(cx.err(
+            "rs274::comp-forbids",
+            format!("Cannot {what} with cutter radius compensation on"),
+            span,
+        ));
+    }
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
         330 => super::sync::g33(cx, span),

@@ -93,19 +93,19 @@ pub(super) fn straight_probe(
             span,
         ));
     }
-    // First change of the contact state along the move.
+    // First change of the contact state along the move; the tripping surface's own coordinate is
+    // taken exactly (no rounding of the interpolation), so the probe stands on the surface.
     let trip = surfaces
         .iter()
-        .filter_map(|s| s.crossing(&start_m, &end_m))
-        .fold(None, |best: Option<f64>, t| {
-            Some(best.map_or(t, |b| b.min(t)))
-        })
-        .map(|t| {
+        .filter_map(|s| s.crossing(&start_m, &end_m).map(|t| (t, s)))
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(t, surface)| {
             let (a, b) = (start_m.to_array(), end_m.to_array());
             let mut p = [0.0; 9];
             for i in 0..9 {
                 p[i] = a[i] + t * (b[i] - a[i]);
             }
+            p[surface.axis.min(8)] = surface.value;
             Pose::from_array(p)
         });
     if trip.is_none()

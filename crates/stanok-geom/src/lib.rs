@@ -14,16 +14,22 @@
 //! Splines: every spline of both controls is handed over as a rational B-spline ([`Nurbs`]).
 //!
 //! Cutter compensation: planar lines and arcs with offsets and intersections ([`offset2d`]).
-//! Planned here later: Akima and cubic spline construction.
+//! AxiOMA ASPLINE / CSPLINE: the Akima ([`akima`]) and C² cubic ([`cubic_spline`]) splines
+//! through points, both as Hermite segments in cubic Bézier form.
 #![deny(missing_docs)]
 
+pub mod akima;
 mod arc2d;
+mod bezier_split;
+pub mod cubic_spline;
 mod helix;
 mod nurbs;
 pub mod offset2d;
 mod vec3;
 
+pub use akima::{bezier_point, hermite_bezier};
 pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};
+pub use bezier_split::{bezier_pieces, BezierPiece};
 pub use helix::Helix;
 pub use nurbs::{bezier_knots, distance_to_segment, Nurbs, NurbsError, MAX_DEGREE};
 pub use vec3::{add, cross, dot, norm, normalize, scale, sub, Vec3};

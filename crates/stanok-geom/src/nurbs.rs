@@ -15,8 +15,8 @@
 //! weight at the end. A zero denominator (repeated knots) blends with α = 0. Cost O(p²) per point,
 //! no allocation (degree ≤ [`MAX_DEGREE`]).
 //!
-//! **Tessellation** walks every non-empty knot span and halves it until the curve's midpoint, and
-//! its quarter points, lie within the chord tolerance of the chord (depth ≤ 24 per span, so it always
+//! **Tessellation** walks every non-empty knot span and halves it until the curve's points at
+//! eighths of the piece lie within the chord tolerance of the chord (depth ≤ 24 per span, so it always
 //! ends). Within a knot span a NURBS is one rational polynomial piece, so after a couple of halvings
 //! the sampled deviation bounds the true one closely.
 //!
@@ -205,14 +205,18 @@ impl<'a> Nurbs<'a> {
     ) {
         let m = 0.5 * (a + b);
         let pm = self.point_at(m);
+        // Seven samples against 95 % of the tolerance: the deviation peak can fall between the
+        // samples (a property test found 0.9 % overshoot with three samples and the full
+        // tolerance); between eighths a smooth peak is missed by at most ≈ 1/64 of its height.
+        let sampled_tol = 0.95 * tol;
         let flat = depth >= 2
-            && [0.25, 0.5, 0.75].iter().all(|f| {
-                let q = if *f == 0.5 {
+            && (1..8).all(|k| {
+                let q = if k == 4 {
                     pm
                 } else {
-                    self.point_at(a + f * (b - a))
+                    self.point_at(a + k as f64 / 8.0 * (b - a))
                 };
-                distance_to_segment(q, pa, pb) <= tol
+                distance_to_segment(q, pa, pb) <= sampled_tol
             });
         if flat || depth >= 24 {
             out.push(pb);

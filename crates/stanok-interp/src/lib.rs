@@ -36,7 +36,9 @@ mod state;
 mod subfiles;
 mod words;
 
-pub use axioma::AxiomaMachineParams;
+pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
+pub use axioma::probe::ProbeLatch;
+pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -102,6 +104,8 @@ pub struct InterpOptions {
     pub g92_persistence: bool,
     /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
     pub axioma: AxiomaMachineParams,
+    /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
+    pub optional_stop: bool,
 }
 
 impl InterpOptions {
@@ -128,6 +132,7 @@ impl InterpOptions {
             rs274_machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
             axioma: AxiomaMachineParams::default(),
+            optional_stop: true,
         }
     }
 }
@@ -298,6 +303,18 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// positions, G92, active system, tool table and preset parameters updated.
     pub fn control_data(&self) -> ControlData {
         self.params.to_control(&self.opts.control)
+    }
+
+    /// AxiOMA: the M vector ("active functions" screen) after the blocks run so far: each modal
+    /// M group's name and the function it shows (spec axioma-2 §4.1, §5).
+    pub fn axioma_m_vector(&self) -> Vec<(String, u32)> {
+        self.axioma.m.display(&self.opts.axioma.m_table)
+    }
+
+    /// AxiOMA: the result of the last G75 (or batch-mode) probe move: the latched machine
+    /// position and whether the probe tripped (spec axioma-2 §2.5).
+    pub fn axioma_probe_latch(&self) -> Option<ProbeLatch> {
+        self.axioma.probe.latch
     }
 
     /// Counters.

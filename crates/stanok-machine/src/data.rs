@@ -9,6 +9,7 @@
 //! max_feed = 5000.0             # mm/min, > 0
 //! arc_tolerance = 0.01          # mm, ≥ 0
 //! linuxcnc_units = "mm"         # optional, "mm" | "inch": units of LinuxCNC .tbl/.var files
+//! m_functions = "generic"       # optional, AxiOMA M-function profile: "generic" | "beavermill"
 //! [[axis]]                      # one table per axis, at least one
 //! name = "X"                    # X Y Z U V W (linear, mm) or A B C (rotary, deg); no duplicates
 //! kind = "linear"               # "linear" | "rotary", must match the letter
@@ -75,7 +76,14 @@ pub struct MachineData {
     pub linuxcnc_units: LengthUnits,
     /// The stored data the interpreter reads: tool table, offset tables, preset parameters.
     pub control: ControlData,
+    /// The AxiOMA M-function profile of the channel (spec axioma-2 §4, §5): one of
+    /// [`M_FUNCTION_PROFILES`]; the interpreter holds the tables themselves.
+    pub m_functions: String,
 }
+
+/// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
+/// the BeaverMill BVR B-110 of table 2.3 / §8.1.
+pub const M_FUNCTION_PROFILES: [&str; 2] = ["generic", "beavermill"];
 
 /// Linear or rotary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -137,6 +145,7 @@ struct RawFile {
     max_feed: Option<Spanned<f64>>,
     arc_tolerance: Option<Spanned<f64>>,
     linuxcnc_units: Option<Spanned<String>>,
+    m_functions: Option<Spanned<String>>,
     axis: Option<Spanned<Vec<RawAxis>>>,
     active_system: Option<Spanned<String>>,
     zero_offset: Option<Spanned<Vec<Spanned<RawZeroOffset>>>>,
@@ -311,6 +320,7 @@ impl RawFile {
             ("max_feed", at(&self.max_feed)),
             ("arc_tolerance", at(&self.arc_tolerance)),
             ("linuxcnc_units", at(&self.linuxcnc_units)),
+            ("m_functions", at(&self.m_functions)),
             ("axis", at(&self.axis)),
             ("active_system", at(&self.active_system)),
             ("zero_offset", at(&self.zero_offset)),
@@ -400,6 +410,20 @@ impl RawFile {
             ));
         }
         let linuxcnc_units = units(&self.linuxcnc_units)?;
+        let m_functions = match &self.m_functions {
+            None => "generic".to_string(),
+            Some(p) if M_FUNCTION_PROFILES.contains(&p.get_ref().as_str()) => p.get_ref().clone(),
+            Some(p) => {
+                return Err((
+                    format!(
+                        "m_functions must be one of {}, not {:?}",
+                        M_FUNCTION_PROFILES.join(", "),
+                        p.get_ref()
+                    ),
+                    p.span(),
+                ))
+            }
+        };
         let Some(raw_axes) = &self.axis else {
             return Err((
                 "missing field `axis` (a machine needs at least one [[axis]])".into(),
@@ -430,6 +454,7 @@ impl RawFile {
             axes,
             linuxcnc_units,
             control: ControlData::default(),
+            m_functions,
         })
     }
 }
@@ -520,6 +545,11 @@ impl MachineData {
         match name {
             "mill" => Some(Self::default_mill()),
             "lathe" => Some(Self::default_lathe()),
+            "beavermill" => Self::from_toml_str(
+                include_str!("../../../machines/beavermill.toml"),
+                "beavermill",
+            )
+            .ok(),
             _ => None,
         }
     }
@@ -548,6 +578,7 @@ impl MachineData {
             axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
+            m_functions: "generic".into(),
         }
     }
 
@@ -577,6 +608,7 @@ impl MachineData {
             ],
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
+            m_functions: "generic".into(),
         }
     }
 
@@ -613,6 +645,9 @@ impl MachineData {
             LengthUnits::Inches => "inch",
         };
         let _ = writeln!(out, "linuxcnc_units = \"{units}\"");
+        if self.m_functions != "generic" {
+            let _ = writeln!(out, "m_functions = {}", toml_string(&self.m_functions));
+        }
         out.push_str(&control_keys);
         for a in &self.axes {
             let kind = match a.kind {
@@ -793,5 +828,37 @@ max_jerk = 3600.0
     fn load_reports_a_missing_file() {
         let d = MachineData::load("/nonexistent/stanok-machine.toml").unwrap_err();
         assert!(d.message.contains("cannot read"), "{d}");
+    }
+
+    #[test]
+    fn m_function_profile_key_and_the_beavermill_machine() {
+        assert_eq!(
+            MachineData::from_toml_str(GOOD, "g.toml")
+                .unwrap()
+                .m_functions,
+            "generic"
+        );
+        let bm = GOOD.replace(
+            "arc_tolerance = 0.002",
+            "arc_tolerance = 0.002\nm_functions = \"beavermill\"",
+        );
+        let m = MachineData::from_toml_str(&bm, "b.toml").unwrap();
+        assert_eq!(m.m_functions, "beavermill");
+        // Written back and read again.
+        assert_eq!(
+            MachineData::from_toml_str(&m.to_toml(), "w.toml").unwrap(),
+            m
+        );
+        let bad = GOOD.replace(
+            "arc_tolerance = 0.002",
+            "arc_tolerance = 0.002\nm_functions = \"fanuc\"",
+        );
+        let d = MachineData::from_toml_str(&bad, "x.toml").unwrap_err();
+        assert!(d.message.contains("m_functions"), "{d}");
+        let builtin = MachineData::builtin("beavermill").expect("built-in beavermill");
+        assert_eq!(builtin.m_functions, "beavermill");
+        let names: String = builtin.axes.iter().map(|a| a.name).collect();
+        assert_eq!(names, "XYZAC");
+        assert_eq!(MachineData::builtin("mill").unwrap().m_functions, "generic");
     }
 }

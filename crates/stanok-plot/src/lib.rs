@@ -5,7 +5,8 @@
 //! dashed, feed moves solid in another colour; a dot marks the start point.
 //!
 //! ## Algorithm
-//! 1. **Collect** the motion commands as segments (line or arc, rapid or feed), in machine X Y Z.
+//! 1. **Collect** the motion commands as segments (line, arc or spline, rapid or feed; a probe
+//!    move up to its contact point), in machine X Y Z.
 //!    Commands with a non-finite coordinate are skipped, so one bad number cannot blank the sheet.
 //! 2. **Bound** the path: end points plus the exact arc extrema (`Helix::bounding_box`).
 //! 3. **Fit**: one scale for the three orthographic views, the largest at which the box fits all of
@@ -19,6 +20,9 @@
 //!      y-down coordinates is sweep flag 0;
 //!    * otherwise (helices, spirals, oblique views, the isometric view) as a polyline from
 //!      `Helix::tessellate` with a chord tolerance of min(`chord_tolerance`, 0.25 px).
+//!
+//!    Splines (NURBS, the form of every spline in the stream) are polylines from
+//!    `Nurbs::tessellate` with the same tolerance; their box comes from `Nurbs::bounding_box`.
 //! 5. **Annotate** each view: title, direction arrows for its axes, a scale bar of a round length
 //!    (1, 2 or 5 × 10ⁿ mm) and the start marker.
 //!
@@ -30,8 +34,8 @@
 mod svg;
 mod view;
 
-use stanok_canon::{Canon, Spanned};
-use stanok_geom::{dot, normalize, Helix, Vec3};
+use stanok_canon::{Canon, Spanned, SplineMove};
+use stanok_geom::{dot, normalize, Helix, Nurbs, Vec3};
 use std::f64::consts::PI;
 use std::fmt::Write;
 use svg::{escape, num, PathData};
@@ -92,10 +96,12 @@ impl Kind {
 }
 
 /// One motion in machine X Y Z.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 enum Shape {
     Line(Vec3, Vec3),
     Arc(Helix),
+    /// A spline (NURBS), drawn as a polyline within the chord tolerance of the exact curve.
+    Spline(Box<SplineMove>),
 }
 
 impl Shape {
@@ -103,6 +109,7 @@ impl Shape {
         match self {
             Shape::Line(a, _) => *a,
             Shape::Arc(h) => h.start,
+            Shape::Spline(s) => s.start.xyz(),
         }
     }
 }
@@ -132,11 +139,25 @@ fn collect(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>) {
                     turns: a.turns,
                 }),
             ),
+            Canon::SplineFeed(s) => (Kind::Feed, Shape::Spline(Box::new(s.clone()))),
+            // A probe move ends where the probe trips.
+            Canon::StraightProbe {
+                motion, contact, ..
+            } => (
+                Kind::Feed,
+                Shape::Line(motion.start.xyz(), contact.unwrap_or(motion.end).xyz()),
+            ),
             _ => continue,
         };
         let ok = match &seg.1 {
             Shape::Line(a, b) => finite(&[*a, *b]),
             Shape::Arc(h) => finite(&[h.start, h.end, h.centre, h.axis]),
+            Shape::Spline(s) => {
+                finite(&s.control_points)
+                    && Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots)
+                        .validate()
+                        .is_ok()
+            }
         };
         if ok {
             start.get_or_insert(seg.1.start());
@@ -163,6 +184,11 @@ fn bounds(segments: &[(Kind, Shape)], start: Vec3) -> (Vec3, Vec3) {
             }
             Shape::Arc(h) => {
                 let (a, b) = h.bounding_box();
+                include(a, b);
+            }
+            Shape::Spline(s) => {
+                let (a, b) =
+                    Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots).bounding_box();
                 include(a, b);
             }
         }
@@ -358,6 +384,14 @@ fn draw_path(
                     }
                 }
             },
+            Shape::Spline(s) => {
+                points.clear();
+                Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots)
+                    .tessellate(tolerance, &mut points);
+                for p in &points {
+                    data.line_to(screen(*p));
+                }
+            }
         }
         let last_of_run = !matches!(segments.get(i + 1), Some((next, _)) if next == kind);
         if last_of_run && !data.is_empty() {

@@ -345,6 +345,81 @@ fn round_lengths_and_labels() {
     assert_eq!(length_label(200.0), "200 mm");
 }
 
+/// The rational quadratic NURBS circle of radius 20 about (50, 50) (AxiOMA example 5.16's form).
+fn nurbs_circle_program() -> Vec<Spanned<Canon>> {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let c = |x: f64, y: f64| [50.0 + 20.0 * x, 50.0 + 20.0 * y, 0.0];
+    vec![
+        init(70.0, 50.0, 0.0),
+        at(Canon::SplineFeed(stanok_canon::SplineMove {
+            start: p(70.0, 50.0, 0.0),
+            end: p(70.0, 50.0, 0.0),
+            degree: 2,
+            control_points: vec![
+                c(1.0, 0.0),
+                c(1.0, 1.0),
+                c(0.0, 1.0),
+                c(-1.0, 1.0),
+                c(-1.0, 0.0),
+                c(-1.0, -1.0),
+                c(0.0, -1.0),
+                c(1.0, -1.0),
+                c(1.0, 0.0),
+            ],
+            weights: vec![1.0, w, 1.0, w, 1.0, w, 1.0, w, 1.0],
+            knots: vec![
+                0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
+            ],
+            plane: Plane::XY,
+            feed: 1000.0,
+        })),
+    ]
+}
+
+#[test]
+fn splines_are_drawn_as_curves_within_a_quarter_pixel() {
+    let svg = render_svg(&nurbs_circle_program(), &PlotOptions::default());
+    assert_well_formed(&svg);
+    let xy = view(&svg, "xy");
+    let feed = paths(xy, "feed")[0];
+    let scale = scale_of(xy);
+    let pts: Vec<[f64; 2]> = feed
+        .split(['M', 'L'])
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            let mut it = s.split(' ').map(|n| n.parse::<f64>().unwrap());
+            [it.next().unwrap(), it.next().unwrap()]
+        })
+        .collect();
+    assert!(
+        pts.len() > 50,
+        "a circle, not its control polygon: {}",
+        pts.len()
+    );
+    // Every vertex on the circle r = 20 (the first vertex is (70, 50): the centre is 20 mm left).
+    let centre = [pts[0][0] - 20.0 * scale, pts[0][1]];
+    let rs = 20.0 * scale;
+    for q in &pts {
+        let r = (q[0] - centre[0]).hypot(q[1] - centre[1]);
+        assert!(
+            (r - rs).abs() < 0.02,
+            "vertex off the circle by {} px",
+            r - rs
+        );
+    }
+    for w in pts.windows(2) {
+        let chord = (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]);
+        let sagitta = rs - (rs * rs - chord * chord / 4.0).max(0.0).sqrt();
+        assert!(sagitta <= 0.25 + 0.02, "sagitta {sagitta} px");
+    }
+    // The box is the circle's, not the control polygon's (whose corners are 20·√2 out).
+    let (lo, hi) = bounds(&collect(&nurbs_circle_program()).0, [70.0, 50.0, 0.0]);
+    assert!(
+        (lo[0] - 30.0).abs() < 1e-3 && (hi[1] - 70.0).abs() < 1e-3,
+        "{lo:?} {hi:?}"
+    );
+}
+
 #[test]
 fn a_reference_is_drawn_under_the_path_in_its_own_class() {
     let cmds = sample_program();

@@ -140,6 +140,9 @@ fn interpreter(
     opts.control = control_data(machine);
     opts.diameter_axes = machine.diameter_axes();
     opts.rs274_machine_units = machine.linuxcnc_units;
+    if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
+        opts.axioma.m_table = table;
+    }
     opts.subroutine_path = subroutine_path.to_vec();
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }

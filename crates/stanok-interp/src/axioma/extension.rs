@@ -17,6 +17,10 @@
 
 use super::cutter_comp::Comp;
 use super::cycles::CycleState;
+use super::mtable::{MState, MTable};
+use super::probe::ProbeState;
+use super::splines::SplineState;
+use super::technology::{default_table, Technology};
 use crate::InterpOptions;
 use stanok_canon::{Canon, Diagnostic, Spanned};
 use std::collections::VecDeque;
@@ -37,6 +41,20 @@ pub struct AxiomaMachineParams {
     /// plane's (a1, a2) = (Z, X) components for G18) from the nose centre S to the tool tip P
     /// (spec axioma-3 §4.5.10, A9). Code 0 and 9: v = 0 (the programmed point is the nose centre).
     pub edge_positions: [[f64; 2]; 10],
+    /// The channel's M-function table (spec axioma-2 §4, §5). Default: the generic profile.
+    pub m_table: MTable,
+    /// Channel feed table of `FTABLE(i)`, 128 entries, mm/min. Default: the manual's printed
+    /// entries (0…3: 2000, 2500, 3000, 3500; 127: 15000), linear in between.
+    pub feed_table: Vec<f64>,
+    /// Channel spindle table of `STABLE(i)`, 128 entries, rev/min. Default: the printed entries
+    /// (0…3: 1000, 1100, 1200, 1500; 127: 50000), linear in between.
+    pub speed_table: Vec<f64>,
+    /// CSPLINE zone of influence: the points after a knot that determine its derivative. Default 8.
+    pub cspline_window: usize,
+    /// Channel parameter "feed control": G60 (true) or G64 (false, default) at start-up (§3.4).
+    pub start_exact_stop: bool,
+    /// Channel parameter "type of acceleration": SOFT (true) or BRISK (false, default) at start-up.
+    pub start_soft: bool,
 }
 
 impl Default for AxiomaMachineParams {
@@ -60,6 +78,12 @@ impl Default for AxiomaMachineParams {
                 [1.0, 0.0],
                 [0.0, 0.0],
             ],
+            m_table: MTable::generic(),
+            feed_table: default_table([2000.0, 2500.0, 3000.0, 3500.0], 15000.0),
+            speed_table: default_table([1000.0, 1100.0, 1200.0, 1500.0], 50000.0),
+            cspline_window: 8,
+            start_exact_stop: false,
+            start_soft: false,
         }
     }
 }
@@ -73,6 +97,14 @@ pub struct Extension {
     pub cycle: CycleState,
     /// Commands released from `held` so far (slot base).
     pub held_base: u64,
+    /// The M vector and the states behind the M functions.
+    pub m: MState,
+    /// G96/G97 per spindle.
+    pub tech: Technology,
+    /// ASPLINE/CSPLINE/BSPLINE mode and the spline points not yet emitted.
+    pub spline: SplineState,
+    /// G75 mode and the last probe latch.
+    pub probe: ProbeState,
     /// Where the last released motion ended (machine coordinates).
     pub released_end: Option<stanok_canon::Pose>,
 }
@@ -100,11 +132,24 @@ impl Extension {
         held: &mut VecDeque<Spanned<Canon>>,
         queue: &mut VecDeque<Spanned<Canon>>,
     ) {
-        let limit = match self.comp.first_unresolved_slot() {
+        // The first slot a later block may still fill: compensation's or the spline's.
+        let unresolved = match (
+            self.comp.first_unresolved_slot(),
+            self.spline.first_unresolved_slot(),
+        ) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
+        let limit = match unresolved {
             Some(slot) => (slot.saturating_sub(self.held_base) as usize).min(held.len()),
             None => held.len(),
         };
-        let mut ready = self.comp.take_ready().into_iter().peekable();
+        let mut resolved = self.comp.take_ready();
+        resolved.extend(self.spline.take_ready());
+        // Stable: motions of one slot keep their order (compensation and splines never share
+        // a slot: a spline is refused under compensation).
+        resolved.sort_by_key(|(slot, _)| *slot);
+        let mut ready = resolved.into_iter().peekable();
         let mut index = self.held_base;
         let mut prev = self.released_end;
         for mut item in held.drain(..limit) {
@@ -135,6 +180,7 @@ impl Extension {
         warnings: &mut Vec<Diagnostic>,
     ) -> Result<(), Diagnostic> {
         self.comp.flush_at_end(opts, warnings)?;
+        self.spline.finish(opts.axioma.cspline_window)?;
         self.release(held, queue);
         Ok(())
     }

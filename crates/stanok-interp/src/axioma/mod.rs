@@ -12,8 +12,8 @@
 //! ```
 //!
 //! Conflicting words: the manual says only the last word of a group takes effect; Stanok does that
-//! and warns. Functions of later capabilities (frames, compensation, cycles, splines, 5-axis …) are
-//! recognised and rejected with `interp::unsupported` naming the issue that adds them.
+//! and warns. Functions of later capabilities (5-axis kinematics, 3D compensation, orientation
+//! words) are recognised and rejected with `interp::unsupported` naming the issue that adds them.
 
 use crate::ctx::Ctx;
 use crate::rs274::Outcome;
@@ -62,14 +62,14 @@ enum GAction {
     Radius(u32),
     /// G110 (true, set) / G111 (false, reset).
     Output(bool),
+    /// G75 probe move (Interpolate group).
+    Probe,
+    /// G96 (true) / G97 (false): constant surface speed.
+    Css(bool),
     /// G80.
     CycleCancel,
     /// G81 … G389.
     Cycle(cycles::CycleKind),
-    /// A cancel/default code of a group whose active form is a later capability: accepted, no effect.
-    Default(&'static str),
-    /// Known, not yet implemented: the issue that adds it.
-    Later(&'static str),
 }
 
 fn g_action(code: u32) -> Option<GAction> {
@@ -111,7 +111,8 @@ fn g_action(code: u32) -> Option<GAction> {
         2720 => Rotate(false),
         2730 => Rotate(true),
         800 => CycleCancel,
-        970 => Default("Dimension2"),
+        960 => Css(true),
+        970 => Css(false),
         1530 => Workpiece(None),
         1540..=1590 if code.is_multiple_of(10) => Workpiece(Some((code / 10 - 153) as u8)),
         1930 | 1940 | 1950 => Shift(code),
@@ -121,15 +122,15 @@ fn g_action(code: u32) -> Option<GAction> {
         }
         280 => Home(true),
         290 => Home(false),
-        750 | 960 => Later("AxiOMA splines, technology, probing and home positions"),
+        750 => Probe,
         _ => return None,
     })
 }
 
 /// Modal group of a G action (for "last one wins").
-fn group_key(a: GAction, code: u32) -> u32 {
+fn group_key(a: GAction, _code: u32) -> u32 {
     match a {
-        GAction::Motion(_) => 1,
+        GAction::Motion(_) | GAction::Probe => 1,
         GAction::Dwell => 2,
         GAction::Plane(_) => 3,
         GAction::Units(_) => 4,
@@ -151,7 +152,7 @@ fn group_key(a: GAction, code: u32) -> u32 {
         GAction::Radius(_) => 19,
         GAction::Output(_) => 20,
         GAction::CycleCancel | GAction::Cycle(_) => 21,
-        GAction::Default(_) | GAction::Later(_) => 1000 + code,
+        GAction::Css(_) => 22,
     }
 }
 
@@ -162,15 +163,23 @@ mod frames;
 mod home;
 mod mfunc;
 mod motion;
+pub mod mtable;
 mod outputs;
 mod polar;
+pub mod probe;
+pub mod splines;
+mod technology;
 mod tools;
 
 use cutter_comp::Comp;
 pub use extension::{AxiomaMachineParams, Extension};
+pub use technology::css_rpm;
 
-use mfunc::{m_function, run_m, set_speed, MAction, MFunction};
+use mfunc::{m_function, run_m, set_speed, MFunction, MWords};
 use motion::{dwell_block, motion};
+use mtable::MKind;
+use splines::{SplineKind, SplineWords};
+use technology::TechWords;
 
 fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
     cx.err(
@@ -183,13 +192,41 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
 
 /// Executes one AxiOMA block.
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
+    technology::power_on(cx);
     // Keywords.
     let mut cr: Option<Val> = None;
+    let mut tech = TechWords::default();
+    let mut sw = SplineWords::default();
     for i in 0..cx.words.keywords.len() {
-        let (kw, _index, val, span) = cx.words.keywords[i];
+        let (kw, index, val, span) = cx.words.keywords[i];
         match kw {
-            Keyword::Brisk => cx.st.soft_acceleration = false,
-            Keyword::Soft => cx.st.soft_acceleration = true,
+            // §3.5: the profile applies from this block on (A25).
+            Keyword::Brisk | Keyword::Soft => {
+                let soft = kw == Keyword::Soft;
+                cx.st.soft_acceleration = soft;
+                cx.out.push(Canon::SetAccelerationProfile {
+                    profile: if soft {
+                        stanok_canon::AccelerationProfile::Soft
+                    } else {
+                        stanok_canon::AccelerationProfile::Brisk
+                    },
+                });
+            }
+            k if TechWords::handles(k) => tech.take(cx, k, index, val, span)?,
+            Keyword::Aspline => sw.keyword = Some((SplineKind::Akima, span)),
+            Keyword::Cspline => sw.keyword = Some((SplineKind::Cubic, span)),
+            Keyword::Bspline => sw.keyword = Some((SplineKind::Nurbs, span)),
+            Keyword::Splbreak => sw.splbreak = true,
+            Keyword::Pw | Keyword::Pl | Keyword::Sd => {
+                let Some(v) = val else {
+                    return Err(cx.err("interp::missing-value", "the word has no value", span));
+                };
+                match kw {
+                    Keyword::Pw => sw.weight = Some(v),
+                    Keyword::Pl => sw.increment = Some(v),
+                    _ => sw.degree = Some(v),
+                }
+            }
             Keyword::TrafOff
             | Keyword::OriEuler
             | Keyword::OriRpy
@@ -224,7 +261,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(unsupported(
                     cx,
                     cx.block.slice(span),
-                    "AxiOMA splines, technology, probing and home positions",
+                    "5-axis kinematics and 3D compensation",
                     span,
                 ))
             }
@@ -240,7 +277,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     for &(letter, index, val) in &cx.words.indexed {
         match letter {
             b'Q' => q_words.push((index, val)),
-            b'N' | b'H' if index == 1 && cx.words.m.iter().any(|m| m.0 == 905) => {
+            b'N' | b'H'
+                if index == 1 && cx.words.m.iter().any(|m| matches!(m.0, 902 | 903 | 905)) =>
+            {
                 m905_depth = Some(val)
             }
             b'S' if (1..=4).contains(&index) => indexed_speeds.push((index - 1, val.v)),
@@ -251,7 +290,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(unsupported(
                     cx,
                     &format!("{}{}=", letter as char, index),
-                    "coordinate systems, frames, offsets and tool data",
+                    "5-axis kinematics and 3D compensation (orientation words)",
                     val.span,
                 ))
             }
@@ -268,9 +307,6 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 span,
             ));
         };
-        if let GAction::Later(issue) = a {
-            return Err(unsupported(cx, &g_name(code), issue, span));
-        }
         if let (GAction::Output(_), Some((_, prev, _))) = (
             a,
             actions
@@ -335,7 +371,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let mut dwell: Option<ColSpan> = None;
     for &(a, _code, span) in &actions {
         match a {
-            GAction::Motion(m) => motion_code = Some((m, span)),
+            GAction::Motion(m) => {
+                motion_code = Some((m, span));
+                cx.axioma.probe.g75 = false;
+            }
+            GAction::Probe => {
+                motion_code = Some((MotionMode::Linear, span));
+                cx.axioma.probe.g75 = true;
+            }
             GAction::Dwell => dwell = Some(span),
             GAction::Plane(p) if cx.st.plane != p => {
                 if comp_active {
@@ -373,14 +416,24 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 }
             }
             GAction::PathMode(exact) => {
+                // §3.4: G60 exact stop / G64 continuous path, carried by the planner.
                 cx.st.path_mode = if exact {
                     PathMode::ExactStop
                 } else {
                     PathMode::Continuous {
                         blend_tolerance: 0.0,
                     }
-                }
+                };
+                cx.out.push(Canon::SetPathMode {
+                    mode: if exact {
+                        stanok_canon::PathMode::ExactStop
+                    } else {
+                        stanok_canon::PathMode::Continuous { tolerance: 0.0 }
+                    },
+                    naive_cam_tolerance: None,
+                });
             }
+            GAction::Css(on) => technology::css_mode(cx, on),
             GAction::Retract(initial) => cx.st.retract_to_initial = initial,
             GAction::Radius(code) => Comp::select(cx, code, span)?,
             GAction::CycleCancel => cx.axioma.cycle.active = None,
@@ -397,6 +450,32 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             }
             _ => {}
         }
+    }
+    // Splines: mode changes and break points (§2.4.1, A16) before anything of this block moves.
+    {
+        let other_motion = actions.iter().any(|(a, _, _)| {
+            matches!(
+                a,
+                GAction::Motion(_) | GAction::Probe | GAction::Home(_) | GAction::Cycle(_)
+            )
+        });
+        let breaks = !cx.words.m.is_empty()
+            || dwell.is_some()
+            || actions.iter().any(|(a, _, _)| {
+                matches!(
+                    a,
+                    GAction::ZeroOffset(_)
+                        | GAction::Workpiece(_)
+                        | GAction::Shift(_)
+                        | GAction::Mirror(_)
+                        | GAction::Scale(_)
+                        | GAction::Rotate(_)
+                        | GAction::Polar(_)
+                        | GAction::Plane(_)
+                )
+            })
+            || (cx.axioma.spline.kind == Some(SplineKind::Nurbs) && cx.words.any(b"TD"));
+        splines::before_motion(cx, &sw, other_motion, breaks)?;
     }
     // An interpolation code cancels the cycle (§6.3); Q words go to G110/G111 or the cycle.
     if motion_code.is_some() {
@@ -481,8 +560,8 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     if frame_changed {
         frames::apply(cx);
     }
-    // 3. F.
-    if let Some(f) = cx.words.take(b'F') {
+    // 3. F (a constant, an expression or FTABLE(i), §3.1).
+    if let Some(f) = cx.words.take(b'F').or(tech.feed) {
         if f.v < 0.0 {
             return Err(cx.err("axioma::negative-feed", "negative feed F", f.span));
         }
@@ -494,25 +573,51 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
 
     // 4./5. S, T and prefix M functions.
+    let table = &cx.opts.axioma.m_table;
     let mut ms: Vec<(MFunction, ColSpan)> = Vec::with_capacity(cx.words.m.len());
     for &(number, span) in &cx.words.m {
-        let Some(f) = m_function(number) else {
+        let Some(f) = m_function(table, number) else {
             return Err(cx.err(
                 "axioma::unknown-m-function",
-                format!("M{number} is not in the M-function table of this machine"),
+                format!(
+                    "M{number} is not in the M-function table of this machine (profile `{}`)",
+                    table.profile
+                ),
                 span,
             ));
         };
         ms.push((f, span));
     }
-    // Stable sort: same order number keeps written order.
+    // Stable sort: same group order keeps the table's group order, then the written order.
     ms.sort_by_key(|(f, _)| f.order);
-    let s_word = cx.words.take(b'S');
+    let mut mw = MWords::default();
+    mw.speed[0] = cx.words.take(b'S').or(tech.speed[0]);
+    for &(spindle, v) in &indexed_speeds {
+        mw.speed[spindle as usize] = Some(Val {
+            v,
+            span: cx.whole(),
+        });
+    }
+    for (s, v) in tech.speed.iter().enumerate().skip(1) {
+        if v.is_some() {
+            mw.speed[s] = *v;
+        }
+    }
     let t_word = cx.words.take(b'T');
     let tool = match t_word {
         Some(t) => Some(cx.non_negative_integer(t, "tool number T")?),
         None => None,
     };
+    if let Some(t) = tool {
+        if t > 32767 {
+            return Err(cx.err(
+                "axioma::tool-number",
+                format!("T{t}: tool numbers are 0 … 32767"),
+                t_word.map(|v| v.span).unwrap_or_else(|| cx.whole()),
+            ));
+        }
+    }
+    mw.tool = tool;
     if let (Some(t), true) = (tool, comp_active) {
         // A5: T0 (with M06) suspends compensation and is allowed; another tool is not.
         if t != 0 {
@@ -523,15 +628,15 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     if let Some(&(_, span)) = cx.words.m.iter().find(|m| m.0 == 905) {
         let depth = m905_depth.map(|v| v.v);
         Comp::set_depth(cx, depth, m905_depth.map(|v| v.span).unwrap_or(span))?;
+    } else {
+        mw.spindle_param = m905_depth;
     }
-    let has_spindle_m = ms
-        .iter()
-        .any(|(f, _)| matches!(f.action, MAction::Spindle { spindle: 0, .. }));
-    let has_tool_m = ms.iter().any(|(f, _)| f.action == MAction::ToolChange);
+    let has_tool_m = ms.iter().any(|(f, _)| f.kind == MKind::ToolChange);
     let d_word = cx.words.take(b'D');
     if let (Some(d), false) = (d_word, has_tool_m) {
         return Err(tools::stray_d(cx, d));
     }
+    mw.edge = d_word;
     if let (Some(&(_, v)), false) = (spindle_tools.first().or(spindle_edges.first()), has_tool_m) {
         return Err(cx.err(
             "axioma::spindle-tool-without-change",
@@ -540,25 +645,29 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         ));
     }
 
-    let mut s_done = false;
-    let mut t_done = false;
-    if let Some(s) = s_word {
-        if !has_spindle_m {
-            set_speed(cx, 0, s.v)?;
-            s_done = true;
+    technology::limits(cx, &tech)?;
+    // An S whose spindle has no spindle function in this block is stored now (§3.7).
+    for spindle in 0..4u8 {
+        let with_m = ms.iter().any(|(f, _)| f.spindle() == Some(spindle));
+        if let (Some(v), false) = (mw.speed[spindle as usize], with_m) {
+            set_speed(cx, spindle, v)?;
+            mw.speed_done[spindle as usize] = true;
         }
     }
-    for &(spindle, v) in &indexed_speeds {
-        cx.st.spindle_speed[spindle as usize] = v;
-        cx.out.push(Canon::SetSpindleSpeed { spindle, rpm: v });
+    if let Some((_, _, span)) = actions
+        .iter()
+        .find(|(a, _, _)| matches!(a, GAction::Css(true)))
+    {
+        technology::check_css_speed(cx, *span)?;
     }
+    technology::refresh(cx);
     if let (Some(t), false) = (tool, has_tool_m) {
         cx.st.selected_tool = Some(t);
         cx.out.push(Canon::SelectTool { tool: t });
-        t_done = true;
+        mw.tool_done = true;
     }
-    for (f, _span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Prefix) {
-        run_m(cx, f, &mut s_done, s_word, &mut t_done, tool, d_word)?;
+    for (f, span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Prefix) {
+        run_m(cx, f, &mut mw, *span)?;
     }
     // Tools of spindles 2…4 after the main spindle's change (manual §6.10: "T2 in the first spindle
     // and T3 in the second").
@@ -584,6 +693,13 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;
         }
+        if cx.st.feed_mode == FeedMode::InverseTime {
+            return Err(cx.manual(
+                617,
+                "G93 (inverse time) is not allowed in canned cycles",
+                cx.whole(),
+            ));
+        }
         cycles::call(cx, cx.whole())?;
     } else if let Some((to_home, span)) = home {
         if to_home {
@@ -599,51 +715,36 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;
         }
-        motion(
-            cx,
-            motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole()),
-            cr,
-        )?;
+        let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
+        let monitored = cx.axioma.probe.g75
+            || (cx.axioma.m.batch_probe && cx.st.motion == MotionMode::Linear && !cx.st.polar.on);
+        if cx.axioma.spline.kind.is_some() {
+            splines::point(cx, at, &sw)?;
+        } else if monitored {
+            probe::probe_move(cx, at)?;
+        } else {
+            motion(cx, at, cr)?;
+        }
     }
     cx.check_all_used()?;
+    technology::refresh(cx);
 
     // 7. Postfix M functions; program control last.
     let mut outcome = Outcome::Continue;
     for (f, span) in ms.iter().filter(|(f, _)| f.timing == AuxTiming::Postfix) {
-        match f.action {
-            MAction::End | MAction::EndToWaitingPosition => {
-                if f.action == MAction::EndToWaitingPosition {
-                    cx.warnings.push(Diagnostic::warning(
-                        "axioma::m99-waiting-position",
-                        "M99: the move to the waiting position needs home positions (not supported yet); the program ends where it is",
-                        cx.block.span_of(*span),
-                    ));
-                }
-                for spindle in 0..4u8 {
-                    if cx.st.spindle_on[spindle as usize] {
-                        cx.st.spindle_on[spindle as usize] = false;
-                        cx.out.push(Canon::StopSpindle { spindle });
-                    }
-                }
-                if cx.st.mist {
-                    cx.st.mist = false;
-                    cx.out.push(Canon::Mist { on: false });
-                }
-                if cx.st.flood {
-                    cx.st.flood = false;
-                    cx.out.push(Canon::Flood { on: false });
-                }
-                let end_span = cx.block.span();
-                cx.axioma.comp.end_of_program(end_span, cx.warnings)?;
-                cx.out.push(Canon::ProgramEnd);
-                outcome = Outcome::End;
-            }
-            MAction::Stop { optional } => cx.out.push(Canon::ProgramStop { optional }),
-            _ => run_m(cx, f, &mut s_done, s_word, &mut t_done, tool, d_word)?,
+        if matches!(
+            f.kind,
+            MKind::ProgramEnd | MKind::ProgramEndToWaitingPosition
+        ) {
+            outcome = Outcome::End;
         }
+        debug_assert!(!f.is_program_control() || f.timing == AuxTiming::Postfix);
+        run_m(cx, f, &mut mw, *span)?;
     }
-    if let (Some(s), false) = (s_word, s_done) {
-        set_speed(cx, 0, s.v)?;
+    for spindle in 0..4u8 {
+        if let (Some(v), false) = (mw.speed[spindle as usize], mw.speed_done[spindle as usize]) {
+            set_speed(cx, spindle, v)?;
+        }
     }
     Ok(outcome)
 }

@@ -98,11 +98,10 @@ pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result
                 }
                 cx.straight(true, end, 0.0);
             } else {
-                let length = {
-                    let a = cx.st.program_position().to_array();
-                    let b = end.to_array();
-                    (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt()
-                };
+                let length = super::technology::feed_length(
+                    &cx.st.program_position().to_array(),
+                    &end.to_array(),
+                );
                 let feed = feed_check(cx, span, length)?;
                 if cx.axioma.comp.is_active() {
                     return Comp::line(cx, false, end, feed, span);
@@ -137,11 +136,7 @@ fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), 
     let Some((end, full_turn)) = super::polar::end_point(cx)? else {
         return Ok(());
     };
-    let length = {
-        let a = start.to_array();
-        let b = end.to_array();
-        (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt()
-    };
+    let length = super::technology::feed_length(&start.to_array(), &end.to_array());
     match cx.st.motion {
         MotionMode::Rapid => cx.straight(true, end, 0.0),
         MotionMode::Linear | MotionMode::None => {
@@ -168,13 +163,19 @@ fn polar_motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), 
     Ok(())
 }
 
-fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64, Diagnostic> {
+pub(super) fn feed_check(cx: &Ctx<'_>, span: ColSpan, length: f64) -> Result<f64, Diagnostic> {
     if cx.st.feed_mode == FeedMode::UnitsPerRevolution && cx.st.spindle_speed[0] <= 0.0 {
         return Err(cx.manual(
             615,
             "G95 feed move while the main spindle speed S is 0",
             span,
         ));
+    }
+    // A23: G95 stays legal after M05, but a feed per revolution of a standing spindle never moves.
+    if cx.st.feed_mode == FeedMode::UnitsPerRevolution && !cx.st.spindle_on[0] {
+        return Err(cx
+            .manual(615, "G95 feed move while the main spindle is stopped", span)
+            .with_note("start the spindle (M03/M04) or cancel G95 with G94/G93 after M05"));
     }
     let feed = cx.path_feed(length);
     if feed <= 0.0 {

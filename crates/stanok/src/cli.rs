@@ -70,6 +70,10 @@ pub struct MachineArgs {
     /// program does not define (LinuxCNC's SUBROUTINE_PATH); repeat for several, searched in order.
     #[arg(long, value_name = "DIR")]
     pub subroutine_path: Vec<PathBuf>,
+    /// The operator's optional-stop switch off: M01 does not stop (AxiOMA; RS274/NGC's M1 is
+    /// always passed on as OPTIONAL_PROGRAM_STOP, as LinuxCNC's interpreter does).
+    #[arg(long)]
+    pub skip_optional_stops: bool,
     /// The simulated probe's world: where a probe move (G38.n, G75) makes contact, as a half-space
     /// of machine coordinates, e.g. `z<=-3.2` (a surface at Z −3.2 mm, contact below it) or
     /// `x>=50`; `z=-3.2` means `z<=-3.2`. Repeat for several surfaces. Without one the probe never

@@ -129,7 +129,7 @@ fn interpreter(
     dialect: Option<Dialect>,
     machine: &MachineData,
     check_mode: bool,
-    subroutine_path: &[PathBuf],
+    args: &MachineArgs,
 ) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
     let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
     let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
@@ -143,7 +143,8 @@ fn interpreter(
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }
-    opts.subroutine_path = subroutine_path.to_vec();
+    opts.subroutine_path = args.subroutine_path.clone();
+    opts.optional_stop = !args.skip_optional_stops;
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -220,7 +221,7 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, true, &args.subroutine_path)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, true, args)?;
     let mut errors = Vec::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
@@ -322,7 +323,7 @@ fn run_program(
         return Ok(code);
     }
     let units = machine.linuxcnc_units;
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
     let trace = match &motion.trace {
         Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
         None => None,
@@ -433,7 +434,7 @@ fn canon(
     if let Err(code) = load_var(file, dialect, var, &mut machine) {
         return Ok(code);
     }
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
@@ -487,7 +488,7 @@ fn programmed_contour(
     file: &Path,
     dialect: Option<Dialect>,
     machine: &MachineData,
-    subroutine_path: &[PathBuf],
+    args: &MachineArgs,
     compensated: &[Spanned<Canon>],
 ) -> Vec<Spanned<Canon>> {
     let mut zero = machine.clone();
@@ -497,7 +498,7 @@ fn programmed_contour(
             edge.radius_wear = 0.0;
         }
     }
-    let Ok((interp, _)) = interpreter(file, dialect, &zero, false, subroutine_path) else {
+    let Ok((interp, _)) = interpreter(file, dialect, &zero, false, args) else {
         return Vec::new();
     };
     let reference: Vec<Spanned<Canon>> = interp.map_while(Result::ok).collect();
@@ -523,7 +524,7 @@ fn plot(
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, false, &args.subroutine_path)?;
+    let (mut interp, _) = interpreter(file, dialect, &machine, false, args)?;
     let mut commands: Vec<Spanned<Canon>> = Vec::new();
     let mut failure = None;
     for item in interp.by_ref() {
@@ -541,7 +542,7 @@ fn plot(
         .unwrap_or_default();
     let options = stanok_plot::PlotOptions {
         title,
-        reference: programmed_contour(file, dialect, &machine, &args.subroutine_path, &commands),
+        reference: programmed_contour(file, dialect, &machine, args, &commands),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

@@ -205,3 +205,14 @@ fn probe_moves_stop_at_the_configured_surface() {
     assert_ne!(code, 0);
     assert!(err.contains("unknown axis"), "{err}");
 }
+
+#[test]
+fn the_optional_stop_switch_decides_whether_m01_stops() {
+    let prog = temp("m01.nc", "G71 G90\nG0 X0 Y0 Z5\nM01\nG0 X10\nM30\n");
+    let (code, on, err) = stanok(&["canon", "--format", "jsonl", &prog]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(on.matches("\"program_stop\"").count(), 1, "{on}");
+    let (code, off, err) = stanok(&["canon", "--format", "jsonl", "--skip-optional-stops", &prog]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(off.matches("\"program_stop\"").count(), 0, "{off}");
+}

@@ -746,6 +746,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             set_speed(cx, spindle, v)?;
         }
     }
+    Comp::end_of_block(cx)?;
     Ok(outcome)
 }
 

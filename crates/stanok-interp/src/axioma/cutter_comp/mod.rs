@@ -63,6 +63,9 @@ pub struct Comp {
     /// The tool-centre position when it differs from the programmed point (program coordinates).
     pub(super) tool: Option<Pose>,
     entry_pending: bool,
+    /// Blocks left in which a G00/G01 must come after G40/G41/G42/G143/G144 was selected
+    /// (spec axioma-3 §4.3 rule 1: the selection block or the next one); 0 = none due.
+    linear_due: u8,
     free_start: bool,
     exit_pending: bool,
     window: VecDeque<Elem>,
@@ -178,7 +181,40 @@ impl Comp {
                 }
             }
         }
+        // Switching on from off (or G40 ending G41/G42) must be realised by a linear block; a
+        // switch between G143/G144 and G41/G42 is already realised (the unlabelled example after
+        // 9.13 selects G42 in a block without motion after G143 and goes on with G02).
+        let realise = match new {
+            CompMode::Off => matches!(mode, CompMode::Left | CompMode::Right),
+            _ => mode == CompMode::Off,
+        };
         cx.axioma.comp.mode = new;
+        if realise {
+            cx.axioma.comp.linear_due = 2;
+        }
+        Ok(())
+    }
+
+    /// End of a block: after a selection, G00/G01 must have come in the selection block or the
+    /// next one (spec axioma-3 §4.3 rule 1, error [D]; "programmed" means modally active, as
+    /// example 9.4's `N3 G41 X0 Y0` after `G01` shows).
+    pub fn end_of_block(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
+        let c = &mut cx.axioma.comp;
+        if c.linear_due == 0 {
+            return Ok(());
+        }
+        c.linear_due -= 1;
+        if c.linear_due == 0 {
+            return Err(cx
+                .err(
+                    "axioma::comp-linear-due",
+                    "G00 or G01 must follow G40/G41/G42/G143/G144 in the same or the next block",
+                    cx.whole(),
+                )
+                .with_note(
+                    "the compensation is realised by that linear block (spec axioma-3 §4.3)",
+                ));
+        }
         Ok(())
     }
 
@@ -245,6 +281,7 @@ impl Comp {
         feed: f64,
         at: ColSpan,
     ) -> Result<(), Diagnostic> {
+        cx.axioma.comp.linear_due = 0;
         cx.apply_pending_tlo();
         let (a, b, _) = cx.st.plane.axes();
         let p0 = cx.st.program_position().to_array();

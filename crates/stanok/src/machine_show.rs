@@ -209,6 +209,7 @@ pub fn text(m: &MachineData, sources: &Sources) -> String {
         "LinuxCNC    .tbl/.var files in {}",
         units_name(m.linuxcnc_units)
     );
+    let _ = writeln!(s, "M functions {} profile (AxiOMA)", m.m_functions);
     axes_table(&mut s, &m.axes);
 
     let o = &m.control.offsets;
@@ -303,6 +304,7 @@ struct JsonMachine<'a> {
     max_feed: f64,
     arc_tolerance: f64,
     linuxcnc_units: &'static str,
+    m_functions: &'a str,
     axes: &'a [AxisData],
 }
 
@@ -356,6 +358,7 @@ pub fn json(m: &MachineData, sources: &Sources) -> String {
             max_feed: m.max_feed,
             arc_tolerance: m.arc_tolerance,
             linuxcnc_units: units_name(m.linuxcnc_units),
+            m_functions: &m.m_functions,
             axes: &m.axes,
         },
         sources,

@@ -346,3 +346,14 @@ fn show_writes_linuxcnc_files_that_read_back() {
     assert_eq!(v["parameters"]["100"].as_f64(), Some(12.0));
     assert_eq!(v["workpiece_frames"].as_array().unwrap().len(), 0);
 }
+
+#[test]
+fn machine_show_names_the_m_function_profile() {
+    let (code, out, err) = stanok(&["machine", "show", "--machine", "beavermill"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("M functions beavermill profile"), "{out}");
+    let (code, json, err) = stanok(&["machine", "show", "--machine", "mill", "--json"]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["machine"]["m_functions"], "generic");
+}

@@ -127,6 +127,9 @@ pub struct RunReport {
     pub violations: Vec<LoggedEvent>,
     /// How many violations in all.
     pub violation_count: u64,
+    /// Per spindle that turned: the range of its commanded speed over the setpoints (under G96 the
+    /// speed the law gives at each position).
+    pub spindles: Vec<crate::sim_motion::SpindleRange>,
 }
 
 /// Executes Canon commands on a simulated machine (see the module doc).
@@ -208,6 +211,7 @@ impl SimMachine {
             max_path_deviation_mm: 0.0,
             violations: Vec::new(),
             violation_count: 0,
+            spindles: Vec::new(),
         };
         let motion = MotionRun::new(&machine, &options);
         SimMachine {
@@ -380,6 +384,7 @@ impl SimMachine {
             | Canon::SetG92Offset { .. }
             | Canon::SetXyRotation { .. }
             | Canon::SetSpindleMode { .. }
+            | Canon::SetSurfaceSpeedLaw { .. }
             | Canon::StartSpindleSync { .. }
             | Canon::StopSpindleSync
             | Canon::SetPathMode { .. }

@@ -29,7 +29,7 @@ use crate::piece::Shape;
 use crate::planner::PlannedPiece;
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
-use crate::segment::Point9;
+use crate::segment::{Point9, Spindles};
 
 /// One servo-period setpoint.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,6 +48,9 @@ pub struct Setpoint {
     pub soft: bool,
     /// Source line of the piece.
     pub line: u32,
+    /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
+    /// evaluated at `position`).
+    pub spindle_rpm: [f64; 4],
 }
 
 /// The time law of one piece.
@@ -114,6 +117,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         jerk: [0.0; 9],
         soft: pc.soft,
         line: pc.line,
+        spindle_rpm: [0.0; 4],
     };
     let inv_r2 = match pc.shape {
         Shape::Arc { radius, .. } => 1.0 / (radius * radius),
@@ -125,6 +129,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         end
     });
     sp.position = pt.position;
+    sp.spindle_rpm = pc.spindles.rpm_at(&sp.position);
     let (v, a, j) = (k.v, k.a, k.j);
     for i in 0..9 {
         let (ti, ki) = (pt.tangent[i], pt.curvature[i]);
@@ -143,6 +148,7 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    spindles: Spindles,
     hold: FeedHold,
 }
 
@@ -155,6 +161,7 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            spindles: Spindles::default(),
             hold: FeedHold::default(),
         }
     }
@@ -242,6 +249,7 @@ impl Interpolator {
         }
         self.end = piece.piece.end;
         self.line = piece.piece.line;
+        self.spindles = piece.piece.spindles;
     }
 
     /// The last setpoint: at the end point, at rest, on the first grid instant at or after the
@@ -256,6 +264,7 @@ impl Interpolator {
             jerk: [0.0; 9],
             soft: false,
             line: self.line,
+            spindle_rpm: self.spindles.rpm_at(&self.end),
         });
         self.tick += 1;
         t

@@ -11,6 +11,7 @@
 //! prints the result (`machine_show.rs`).
 
 mod cli;
+mod cutting;
 mod diagnostics;
 mod machine_show;
 mod progress;
@@ -18,7 +19,9 @@ mod report;
 mod trace;
 
 use clap::Parser;
-use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand, MotionArgs, VarArgs};
+use cli::{
+    CanonFormat, Cli, Command, CuttingCommand, MachineArgs, MachineCommand, MotionArgs, VarArgs,
+};
 use machine_show::{DataSource, Sources};
 use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
@@ -96,6 +99,9 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             };
             machine_show(&machine, format)
         }
+        Command::Cutting {
+            command: CuttingCommand::Turn(args),
+        } => cutting::turn(&args),
     }
 }
 

@@ -29,6 +29,24 @@ impl From<DialectArg> for stanok_syntax::Dialect {
     }
 }
 
+/// Target dialect of `stanok convert`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum TargetArg {
+    /// LinuxCNC RS274/NGC.
+    Rs274ngc,
+    /// AxiOMA Control.
+    Axioma,
+}
+
+impl From<TargetArg> for stanok_convert::Target {
+    fn from(t: TargetArg) -> Self {
+        match t {
+            TargetArg::Rs274ngc => stanok_convert::Target::Rs274ngc,
+            TargetArg::Axioma => stanok_convert::Target::Axioma,
+        }
+    }
+}
+
 /// Length unit of LinuxCNC tool tables and parameter files.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum UnitsArg {
@@ -219,6 +237,25 @@ pub enum Command {
         /// Output SVG file.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
+        #[command(flatten)]
+        machine: MachineArgs,
+    },
+    /// Convert a program to another dialect: written from its canonical commands (cycles,
+    /// subprograms and compensation expanded; positions absolute in the start frame).
+    Convert {
+        /// The part program.
+        file: PathBuf,
+        #[arg(long, value_enum)]
+        dialect: Option<DialectArg>,
+        /// The dialect to write.
+        #[arg(long, value_enum)]
+        to: TargetArg,
+        /// Output file (default: standard output).
+        #[arg(short = 'o', long = "output")]
+        output: Option<PathBuf>,
+        /// Largest deviation of the chords written for curves the target cannot express, mm.
+        #[arg(long, value_name = "MM", default_value_t = 0.001)]
+        chord_tolerance: f64,
         #[command(flatten)]
         machine: MachineArgs,
     },

@@ -104,7 +104,8 @@ impl Converter {
                 axis: a.axis,
                 turns: a.turns,
             };
-            let mut pts = Vec::new();
+            // Helix::tessellate leaves the start out; `chords` wants it first.
+            let mut pts = vec![a.start.xyz()];
             helix.tessellate(self.opts.chord_tolerance_mm, &mut pts);
             self.chords(src, &a.start, &a.end, &pts, a.feed);
             return;

@@ -24,8 +24,11 @@ const CHORD_TOL_MM: f64 = 0.001;
 
 /// The programs: lines, arcs in G17/G18/G19, helices with turns, full circles, splines (Bézier,
 /// NURBS, Akima, cubic), canned cycles, cutter compensation, frames, polar moves, probing, dwell,
-/// spindle, coolant, tool changes. Paths are relative to `../shared/corpus` (or `examples/` with the
-/// `examples/` prefix).
+/// spindle, coolant, tool changes. Paths are relative to `../shared/corpus`, or to the repository's
+/// `examples/` and this crate's `tests/programs/` (programs written for this test: what the corpus
+/// fragments do not reach — G18/G19 arcs, helices with P in two planes, G5/G5.1/G5.2 in one
+/// program, cycles, dynamic compensation, G92/G10 L2 rotation/G55 frames, G93/G95 feed modes, inch
+/// moves, G33, probing) with those prefixes.
 const ROWS: &[(Dialect, &str)] = &[
     (Dialect::Rs274ngc, "rs274ngc/g01-linear-example-1.ngc"),
     (Dialect::Rs274ngc, "rs274ngc/g02-arc-center-example-1.ngc"),
@@ -46,6 +49,8 @@ const ROWS: &[(Dialect, &str)] = &[
     (Dialect::Rs274ngc, "rs274ngc/g40-example-1.ngc"),
     (Dialect::Rs274ngc, "rs274ngc/derived-g10-l2-rotation.ngc"),
     (Dialect::Rs274ngc, "examples/demo-bolt-circle.ngc"),
+    (Dialect::Rs274ngc, "programs/planes-helices-splines.ngc"),
+    (Dialect::Rs274ngc, "programs/technology-frames-cycles.ngc"),
     (Dialect::Axioma, "examples/demo-plate.nc"),
     (
         Dialect::Axioma,
@@ -127,86 +132,10 @@ const ROWS: &[(Dialect, &str)] = &[
     ),
 ];
 
-/// RS274/NGC programs written for this test: what the corpus fragments do not reach (G18/G19 arcs,
-/// helices with P in two planes, G5/G5.1/G5.2 in one program, cycles, dynamic compensation,
-/// G92/G10 L2 rotation/G55 frames, G93/G95 feed modes, inch moves, G33, probing).
-const INLINE: &[(&str, &str)] = &[
-    (
-        "inline-planes-helices-splines.ngc",
-        "(planes, helices, full circles and splines)
-G21 G90 G94 G17 F600
-G0 X0 Y0 Z5
-G1 Z0
-G3 X10 Y10 I5 J5
-G18 G2 X20 Z-5 I5 K-2.5
-G19 G3 Y20 Z-5 J5 K0
-G17 G2 X20 Y20 Z-10 I-5 J0 P3
-G3 X20 Y20 I5 J0
-G18 G3 X20 Z-10 I0 K3 P2 Y30
-G17 G1 X0 Y0 Z0
-G5 I0 J3 P0 Q-3 X1 Y1
-G5 P0 Q-3 X2 Y2
-G5.1 X4 Y2 I1 J0
-G5.2 P1 L3
-X4 Y6 P1
-X8 Y6 P2
-X8 Y2 P1
-G5.3
-G2 X8 Y2 Z-2 I-1 J-1 P2 F300
-G91 G1 X5 Y-1 Z1
-G90 G0 Z10
-M2
-",
-    ),
-    (
-        "inline-technology-frames-cycles.ngc",
-        "(technology, frames, cycles, compensation, feed modes)
-G21 G90 G94 G17
-T2 M6
-S1200 M3
-M8
-M7
-G0 X0 Y0 Z10
-G64 P0.02 Q0.01
-G81 X10 Y10 Z-5 R2 F150
-X20
-G80
-G83 X30 Y10 Z-10 R2 Q3 F120
-G80
-G61.1
-G0 X0 Y40 Z0
-G41.1 D6 G1 X10 Y50 F500
-G1 X40
-G2 X50 Y40 I0 J-10
-G1 Y30
-G40 G1 X60 Y20
-G61
-G92 X0 Y0
-G1 X5 Y5 F400
-G92.1
-G10 L2 P2 X100 Y50 R30
-G55 G1 X10 Y0
-G3 X0 Y10 I-10 J0
-G54
-G93 G1 X0 Y0 F2
-G94
-G95 G1 X10 Y10 F0.1
-G94
-G4 P1.5
-G20 G1 X1 Y1 F20
-G21
-M9
-M1
-G33 X10 Y10 Z-5 K1.5
-M5
-M0
-G38.3 Z-30 F100
-M30
-",
-    ),
-];
-
 fn path_of(row: &str) -> PathBuf {
+    if let Some(rest) = row.strip_prefix("programs/") {
+        return PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/programs")).join(rest);
+    }
     match row.strip_prefix("examples/") {
         Some(rest) => {
             PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples")).join(rest)
@@ -510,20 +439,12 @@ fn compare(
 fn every_row_round_trips_to_the_same_tool_path_in_both_targets() {
     let mut failures = Vec::new();
     let mut tally = Tally::default();
-    let inline = INLINE.iter().map(|(name, text)| {
-        (
-            Dialect::Rs274ngc,
-            *name,
-            text.to_string(),
-            std::env::temp_dir(),
-        )
-    });
     let files = ROWS.iter().map(|&(dialect, row)| {
         let path = path_of(row);
         let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{row}: {e}"));
         (dialect, row, text, path.parent().unwrap().to_path_buf())
     });
-    for (dialect, row, text, dir) in files.chain(inline) {
+    for (dialect, row, text, dir) in files {
         let dir = dir.as_path();
         let source = interpret_prefix(&text, dialect, dir);
         let moves = source.iter().filter(|c| c.value.motion().is_some()).count();

@@ -297,13 +297,20 @@ impl Converter {
                 self.line(src, &s);
                 self.last = Some(self.fold.pose(start));
             }
-            _ => {
+            (_, pitch) => {
+                // The tap's own feed is pitch × speed; without them, the last feed; without that,
+                // 1 mm/min (the target needs a feed; the warning says so).
+                let feed = match pitch {
+                    Some(p) if p * self.spindle_rpm > 0.0 => p * self.spindle_rpm,
+                    _ if self.last_feed > 0.0 => self.last_feed,
+                    _ => 1.0,
+                };
                 self.cannot(
                     src,
-                    "rigid tap written as two G01 moves (down and back) at the last feed: no spindle synchronisation",
+                    &format!("rigid tap written as two G01 moves (down and back) at F{}: no spindle synchronisation", num(feed)),
                 );
                 let g = if self.rs274() { "G1" } else { "G01" };
-                let f = num(self.last_feed);
+                let f = num(feed);
                 let down = self.axes(bottom);
                 self.line(src, &format!("{g}{down} F{f}"));
                 let up = self.axes(start);

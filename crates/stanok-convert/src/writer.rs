@@ -76,6 +76,8 @@ pub struct Converter {
     pub(crate) sync_pitch: Option<f64>,
     /// Plane code last written by an arc.
     pub(crate) plane_code: Option<&'static str>,
+    /// Main spindle speed last commanded, rpm (a rigid tap's feed where the target has no tapping).
+    pub(crate) spindle_rpm: f64,
     /// Feed of the last feed move, mm/min (for moves the target cannot synchronise).
     pub(crate) last_feed: f64,
     /// Source line of the last "offset change" note.
@@ -100,6 +102,7 @@ impl Converter {
             sync_pitch: None,
             plane_code: None,
             last_feed: 0.0,
+            spindle_rpm: 0.0,
             offset_note_line: 0,
             mist: false,
             flood: false,
@@ -473,6 +476,7 @@ impl Converter {
             }
             Canon::SetSpindleSpeed { spindle, rpm } => {
                 if *spindle == 0 {
+                    self.spindle_rpm = *rpm;
                     self.line(src, &format!("S{}", num(*rpm)))
                 } else if rs {
                     self.cannot(src, &format!("S{} of spindle {spindle}: only the main spindle is converted for RS274/NGC", num(*rpm)))

@@ -20,7 +20,7 @@
 //! * Every output line that comes from a source line carries its line number in a comment.
 //!
 //! What cannot be expressed in the target (an AxiOMA BRISK/SOFT in RS274/NGC, a LinuxCNC digital
-//! output in AxiOMA, a spline that is not a G5.2 curve, …) is written as a comment and reported as
+//! output in AxiOMA, a spline that is no G5.2 or BSPLINE curve, …) is written as a comment and reported as
 //! a [`Warning`]; a spline or a tilted arc becomes chords within the chord tolerance — never
 //! silently dropped.
 #![deny(missing_docs)]

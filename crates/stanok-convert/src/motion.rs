@@ -176,10 +176,17 @@ impl Converter {
                 ),
             );
         } else {
+            if let Some(lines) = self.bspline_lines(sp) {
+                for l in lines {
+                    self.line(src, &l);
+                }
+                self.last = Some(self.fold.pose(&sp.end));
+                return;
+            }
             self.cannot(
                 src,
                 &format!(
-                    "spline written as chords within {} mm (AxiOMA BSPLINE is not shown to give the same curve)",
+                    "spline that is no AxiOMA BSPLINE (degree other than 2 or 3, weights beyond 0-3 times the first, other axes moving, or knots not clamped): written as chords within {} mm",
                     num(self.opts.chord_tolerance_mm)
                 ),
             );
@@ -229,6 +236,66 @@ impl Converter {
             ((t - k0) / (k1 - k0) * span - want).abs() < 1e-9
         });
         uniform.then_some(points)
+    }
+
+    /// The AxiOMA BSPLINE blocks of a Canon NURBS, when it is one (spec axioma-2 §2.4.4):
+    /// degree SD = 2 or 3; the start point is P₀ with weight 1, so the weights are divided by the
+    /// first (the same rational curve) and must stay within 0 < PW ≤ 3; clamped knots, whose
+    /// interior increments become the PL= of the points that own them,
+    /// `t_{i+2} = t_{i+1} + PL_i` for i = p−1 … n−1 (PL of the other points is ignored by the
+    /// control and not written); only X Y Z move. A closing SPLBREAK ends this spline, so that the
+    /// next one starts afresh.
+    fn bspline_lines(&self, sp: &SplineMove) -> Option<Vec<String>> {
+        let p = sp.degree as usize;
+        let n_points = sp.control_points.len();
+        if !(p == 2 || p == 3) || n_points < p + 1 || sp.weights.len() != n_points {
+            return None;
+        }
+        if sp.knots.len() != n_points + p + 1 {
+            return None;
+        }
+        let start = self.fold.pose(&sp.start).to_array();
+        let end = self.fold.pose(&sp.end).to_array();
+        if (3..9).any(|i| (start[i] - end[i]).abs() > 1e-9) {
+            return None;
+        }
+        let k = &sp.knots;
+        let last = k[k.len() - 1];
+        let clamped =
+            k[..=p].iter().all(|&t| t == k[0]) && k[k.len() - p - 1..].iter().all(|&t| t == last);
+        if !clamped || last <= k[0] {
+            return None;
+        }
+        let w0 = sp.weights[0];
+        let weights: Vec<f64> = sp.weights.iter().map(|w| w / w0).collect();
+        if weights.iter().any(|&w| !(w > 0.0 && w <= 3.0)) {
+            return None;
+        }
+        // Knots scaled so that the increments read as the manual's (the curve ignores the scale).
+        let scale = (n_points - p) as f64 / (last - k[0]);
+        let n = n_points - 1;
+        let mut lines = Vec::new();
+        for i in 1..=n {
+            let q = self.fold.point(sp.control_points[i]);
+            let mut l = if i == 1 {
+                format!("BSPLINE SD={p} ")
+            } else {
+                String::new()
+            };
+            l += &format!("X{} Y{} Z{}", num(q[0]), num(q[1]), num(q[2]));
+            if (weights[i] - 1.0).abs() > 1e-12 {
+                l += &format!(" PW={}", num(weights[i]));
+            }
+            if i + 1 >= p && i < n {
+                l += &format!(" PL={}", num((k[i + 2] - k[i + 1]) * scale));
+            }
+            if i == 1 {
+                l += &format!(" F{}", num(sp.feed));
+            }
+            lines.push(l);
+        }
+        lines.push("SPLBREAK".into());
+        Some(lines)
     }
 
     /// Straight feeds through `pts` (machine X Y Z, the first = the start); the other axes move

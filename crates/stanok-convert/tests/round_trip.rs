@@ -361,7 +361,40 @@ struct Tally {
     splines: usize,
     /// Curves replaced by chords.
     chorded: usize,
+    /// Splines that came back as several pieces (AxiOMA BSPLINE emits one rational Bézier per
+    /// knot interval), each on the source curve.
+    spline_pieces: usize,
     probes: usize,
+}
+
+/// The converted splines from `dst[*j]` on that together stand for the source spline `s`: 17
+/// samples of each piece within `TOL_MM` of the source curve, the last piece ending at its end.
+fn spline_pieces(s: &Canon, dst: &[(u32, Canon)], j: &mut usize) -> Result<(), String> {
+    let poly = dense(s).unwrap();
+    let end = s.motion().unwrap().end();
+    loop {
+        let Some((_, Canon::SplineFeed(piece))) = dst.get(*j) else {
+            return Err("spline pieces end before the curve does".into());
+        };
+        *j += 1;
+        let curve = Nurbs::new(
+            piece.degree,
+            &piece.control_points,
+            &piece.weights,
+            &piece.knots,
+        );
+        let (u0, u1) = curve.domain();
+        for k in 0..=16 {
+            let q = curve.point_at(u0 + (u1 - u0) * k as f64 / 16.0);
+            let d = distance_to_polyline(q, &poly);
+            if d > TOL_MM {
+                return Err(format!("spline piece off the source curve by {d:e} mm"));
+            }
+        }
+        if pose_diff(&piece.end, &end) <= TOL_MM {
+            return Ok(());
+        }
+    }
 }
 
 /// Compares the motion streams; chords may stand for one source curve.
@@ -398,6 +431,13 @@ fn compare(
         let curve_as_chords = matches!(s, Canon::ArcFeed(_) | Canon::SplineFeed(_))
             && matches!(d, Canon::StraightFeed(_));
         tally.motions += 1;
+        if let (Canon::SplineFeed(_), Canon::SplineFeed(_)) = (s, d) {
+            if same_motion(s, d).is_err() {
+                spline_pieces(s, &dst, &mut j).map_err(here)?;
+                tally.spline_pieces += 1;
+                continue;
+            }
+        }
         if !curve_as_chords {
             same_motion(s, d).map_err(here)?;
             match s {
@@ -487,12 +527,12 @@ fn every_row_round_trips_to_the_same_tool_path_in_both_targets() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
     eprintln!("{tally:?}");
     // The table covers what it claims: arcs in all three planes, multi-turn helices, splines kept
-    // exact (RS274/NGC G5.2) and written as chords (AxiOMA), probe moves.
+    // exact (RS274/NGC G5.2, AxiOMA BSPLINE, whole or in pieces), probe moves.
     let t = &tally;
     assert!(t.motions > 500, "{t:?}");
     assert!(t.arcs_by_normal.iter().all(|&n| n >= 4), "{t:?}");
     assert!(t.multi_turn >= 8, "{t:?}");
-    assert!(t.splines >= 20 && t.chorded >= 20, "{t:?}");
+    assert!(t.splines + t.spline_pieces >= 60, "{t:?}");
     assert!(t.probes >= 4, "{t:?}");
 }
 

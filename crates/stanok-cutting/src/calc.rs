@@ -137,6 +137,8 @@ fn plan_passes(depth: &DepthInput) -> Vec<(PassKind, f64)> {
 /// Step 0: the grade against table 2.2, and the holder from the centre height (table 2.3).
 fn tool_step(tables: &Tables, input: &TurningInput, grade: &str, carbide: bool) -> Step {
     let mut step = Step::new("tool material and holder (table 2.2, §5.2, table 2.3)");
+    // Table 2.2 has columns for cast iron HB 240 and HB 400-700; a hardness between them goes to
+    // the nearer one (threshold 320, our choice: the document gives no rule).
     let (column, column_name) = match input.material {
         WorkMaterial::GreyIron { hb } | WorkMaterial::MalleableIron { hb } if hb > 320.0 => {
             ("cast_iron_hb400_700", "cast iron HB 400-700")
@@ -627,13 +629,13 @@ fn kv(
     let tool_col = if carbide { "carbide" } else { "HSS" };
     let merged_nv = carbide && row.merged.iter().any(|m| m == "nv_carbide");
     let nv = if carbide { row.nv_carbide } else { row.nv_hss };
+    let nv_column = if carbide { "nv_carbide" } else { "nv_hss" };
     let nv_note = if merged_nv {
         Some("blank as printed: the 1.0 printed in the Cr-Ni row read as applying to all steels (merged cell)")
+    } else if row.doubt_column.as_deref() == Some(nv_column) {
+        row.doubt.as_deref()
     } else {
-        row.doubt.as_deref().filter(|_| {
-            // the doubt is about the column in use
-            (carbide && key.contains("iron")) || (!carbide && !key.contains("iron"))
-        })
+        None
     };
     let k_mv = if let Some(s) = sigma {
         let kr = if carbide { row.kr_carbide } else { row.kr_hss }.unwrap_or(1.0);

@@ -192,6 +192,9 @@ pub struct KmvRow {
     /// OCR doubt.
     #[serde(default)]
     pub doubt: Option<String>,
+    /// The cell the doubt is about (`nv_hss`, `nv_carbide`).
+    #[serde(default)]
+    pub doubt_column: Option<String>,
 }
 
 /// A row of the K_nv list.

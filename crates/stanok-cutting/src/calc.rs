@@ -20,6 +20,16 @@ use crate::{
 };
 use std::f64::consts::PI;
 
+/// Spindle speed n = 1000·v/(π·D), rpm, for a cutting speed v (m/min) on a diameter D (mm).
+pub fn spindle_speed_rpm(v_m_min: f64, diameter_mm: f64) -> f64 {
+    1000.0 * v_m_min / (PI * diameter_mm)
+}
+
+/// Cutting speed v = π·D·n/1000, m/min, of a spindle speed n (rpm) on a diameter D (mm).
+pub fn cutting_speed_m_min(diameter_mm: f64, n_rpm: f64) -> f64 {
+    PI * diameter_mm * n_rpm / 1000.0
+}
+
 /// Runs the lab's method on `input` with `tables` (normally [`Tables::lab`]).
 pub fn calculate(tables: &Tables, input: &TurningInput) -> Result<Calculation, CuttingError> {
     validate(input)?;
@@ -298,7 +308,7 @@ fn one_pass(
             row.cv
         ));
     }
-    let n = 1000.0 * v / (PI * diameter);
+    let n = spindle_speed_rpm(v, diameter);
     v_step.lines.push(format!(
         "n = 1000 · v / (π · D) = 1000 × {v:.2} / (π × {diameter:.3}) = {n:.1} rpm"
     ));
@@ -310,7 +320,7 @@ fn one_pass(
     } else {
         let n_act = nearest_at_or_below(&input.machine_speeds, n)
             .ok_or(CuttingError::NoLowerMachineSpeed(n))?;
-        let v_act = PI * diameter * n_act / 1000.0;
+        let v_act = cutting_speed_m_min(diameter, n_act);
         v_step.lines.push(format!(
             "n_act = {n_act} rpm (the largest machine speed ≤ n)"
         ));

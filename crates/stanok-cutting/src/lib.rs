@@ -24,7 +24,7 @@ mod calc;
 pub mod tables;
 mod text;
 
-pub use calc::calculate;
+pub use calc::{calculate, cutting_speed_m_min, spindle_speed_rpm};
 pub use tables::Tables;
 pub use text::text;
 

@@ -137,6 +137,27 @@ fn example_c_rough_grey_iron() {
     assert!(nv.note.as_deref().unwrap().contains("1.25"), "{nv:?}");
 }
 
+/// Example D: the document's own table of the 2P32 turn-mill program (spec §3.8, §5.8) satisfies
+/// v = π·D·n/1000 and S_min = s·n, within 1 m/min and 1 mm/min as the spec states.
+#[test]
+fn example_d_the_2p32_table_obeys_the_speed_formula() {
+    // (D mm, n rpm, table v m/min, s mm/rev, table S_min mm/min)
+    let rows = [
+        (92.0, 1800.0, 520.0, 0.1, 180.0),
+        (90.0, 2300.0, 650.0, 0.013, 30.0),
+        (12.0, 1300.0, 49.0, 0.4, 520.0),
+        (6.0, 1700.0, 32.0, 0.3, 510.0),
+        (8.0, 1700.0, 43.0, 0.027, 45.0),
+    ];
+    for (d, n, v, s, s_min) in rows {
+        close("v", stanok_cutting::cutting_speed_m_min(d, n), v, 1.0);
+        close("S_min", s * n, s_min, 1.0);
+        // And back: the table's v gives n within 1 m/min's worth of rpm.
+        let n_back = stanok_cutting::spindle_speed_rpm(v, d);
+        close("n", n_back, n, 1000.0 / (std::f64::consts::PI * d));
+    }
+}
+
 /// The machine's feed list corrects the table feed down, and a user feed replaces the table's.
 #[test]
 fn feed_is_corrected_down_to_the_machine() {

@@ -89,11 +89,29 @@ impl Converter {
             let cos = axis[n] / len;
             (cos.abs() > PARALLEL).then_some((plane, cos > 0.0))
         });
-        let Some((plane, ccw)) = found.filter(|_| len > 0.0) else {
+        // AxiOMA moves an arc's centre onto the perpendicular bisector of start and end (as read,
+        // i.e. as printed): a spiral (LinuxCNC accepts start and end radii that differ within its
+        // tolerance), or a short chord whose printed ends tilt the bisector, would then be another
+        // curve. The converter predicts that correction from the printed numbers and writes chords
+        // when it would move the centre by more than 1e-6 mm. RS274/NGC keeps the spiral exactly.
+        let centre_shift_mm = match found {
+            Some((plane, _)) if !self.rs274() => self.axioma_centre_shift(a, plane),
+            _ => 0.0,
+        };
+        let exact = found.filter(|_| len > 0.0 && centre_shift_mm <= 1e-6);
+        let Some((plane, ccw)) = exact else {
+            let why = if found.is_some() && len > 0.0 {
+                format!(
+                    "AxiOMA would move this arc's centre by {} mm onto the chord's bisector (a spiral, or a short chord)",
+                    num(centre_shift_mm)
+                )
+            } else {
+                "arc about an axis that is no plane normal (a rotated frame)".to_string()
+            };
             self.cannot(
                 src,
                 &format!(
-                    "arc about an axis that is no plane normal (a rotated frame): written as chords within {} mm",
+                    "{why}: written as chords within {} mm",
                     num(self.opts.chord_tolerance_mm)
                 ),
             );
@@ -146,6 +164,32 @@ impl Converter {
         }
         s += &format!(" F{}", num(a.feed));
         self.line(src, &s);
+    }
+
+    /// How far AxiOMA's centre correction (interp `arc::axioma_centre_format`) would move the
+    /// centre of `a` as the converter prints it, mm.
+    fn axioma_centre_shift(&self, a: &ArcMove, plane: Plane) -> f64 {
+        let printed = |v: f64| (v * 1e6).round() / 1e6;
+        let (i1, i2, _) = plane.axes();
+        let start = self.fold.point(a.start.xyz());
+        let end = self.fold.point(a.end.xyz());
+        let centre = self.fold.point(a.centre);
+        let s = [printed(start[i1]), printed(start[i2])];
+        let e = [printed(end[i1]), printed(end[i2])];
+        let c = [
+            s[0] + printed(centre[i1] - start[i1]),
+            s[1] + printed(centre[i2] - start[i2]),
+        ];
+        let chord = [e[0] - s[0], e[1] - s[1]];
+        let d = chord[0].hypot(chord[1]);
+        let corrected = if d > 1e-9 {
+            let u = [chord[0] / d, chord[1] / d];
+            let along = (c[0] - 0.5 * (s[0] + e[0])) * u[0] + (c[1] - 0.5 * (s[1] + e[1])) * u[1];
+            [c[0] - along * u[0], c[1] - along * u[1]]
+        } else {
+            c
+        };
+        (corrected[0] - centre[i1]).hypot(corrected[1] - centre[i2])
     }
 
     fn spline(&mut self, src: u32, sp: &SplineMove) {

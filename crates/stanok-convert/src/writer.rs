@@ -526,6 +526,10 @@ impl Converter {
                     self.line(src, "G97")
                 }
             }
+            // The machine's continuous G96 law; the program words that state it came as
+            // SetSpindleMode/SetSpindleSpeed above (RS274/NGC) or as the speeds an AxiOMA control
+            // shows at block ends, which is what a converted program can say.
+            Canon::SetSurfaceSpeedLaw { .. } => {}
             Canon::Mist { on } => self.coolant(src, Some(*on), None),
             Canon::Flood { on } => self.coolant(src, None, Some(*on)),
             Canon::SelectTool { tool } => self.line(src, &format!("T{tool}")),

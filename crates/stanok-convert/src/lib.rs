@@ -21,8 +21,9 @@
 //!
 //! What cannot be expressed in the target (an AxiOMA BRISK/SOFT in RS274/NGC, a LinuxCNC digital
 //! output in AxiOMA, a spline that is no G5.2 or BSPLINE curve, …) is written as a comment and reported as
-//! a [`Warning`]; a spline or a tilted arc becomes chords within the chord tolerance — never
-//! silently dropped.
+//! a [`Warning`]; a curve the target would read as another curve (a spline that is no G5.2 or
+//! BSPLINE, an arc about a tilted axis, an arc whose centre AxiOMA would correct) becomes chords
+//! within the chord tolerance — never silently dropped.
 #![deny(missing_docs)]
 
 mod format;

@@ -125,6 +125,9 @@ const ROWS: &[(Dialect, &str)] = &[
         Dialect::Axioma,
         "axioma/s4_8_1-absolute-centre-turning-example-4_18.nc",
     ),
+    // The lab dialects (corpus/labs) come as rows like these once their interpreters are merged:
+    // (Dialect::Nc31, "labs/nc31-absolute-xz-moves.nc"),
+    // (Dialect::Gost20999, "labs/gost20999-arc-radius-absolute.nc"),
 ];
 
 #[test]

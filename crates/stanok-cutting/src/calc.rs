@@ -85,7 +85,7 @@ fn validate(input: &TurningInput) -> Result<(), CuttingError> {
             let sum: f64 = split.iter().sum();
             if split.is_empty() || (sum - 1.0).abs() > 1e-6 {
                 return Err(CuttingError::BadInput(format!(
-                    "the shares of --split must add up to 1, not {sum}"
+                    "the shares of --split must add up to 1, not {sum:.4}"
                 )));
             }
             if 2.0 * allowance_mm >= input.diameter_mm {
@@ -529,6 +529,13 @@ fn cv_row<'t>(
             _ => "steel",
         };
     let operation = input.operation.cv_operation();
+    if input.operation == Operation::Threading && group != "grey_iron" {
+        return Err(CuttingError::NoFormulaForThreading(
+            "the document gives thread-cutting coefficients only for grey cast iron (table 2.6), \
+             and no formula for thread cutting at all"
+                .into(),
+        ));
+    }
     let row = tables
         .cv
         .iter()

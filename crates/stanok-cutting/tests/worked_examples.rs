@@ -222,6 +222,17 @@ fn missing_data_is_said_not_invented() {
         calculate(&t, &thread),
         Err(CuttingError::NoFormulaForThreading(_))
     ));
+    let steel_thread = TurningInput {
+        operation: Operation::Threading,
+        feed_mm_rev: Some(1.5),
+        ..steel_part()
+    };
+    match calculate(&t, &steel_thread) {
+        Err(CuttingError::NoFormulaForThreading(why)) => {
+            assert!(why.contains("no formula"), "{why}")
+        }
+        other => panic!("{other:?}"),
+    }
     let hss = TurningInput {
         tool: "P6M5".into(),
         ..steel_part()

@@ -24,12 +24,13 @@
 //! * The profile never leaves the piece (s clamped to [0, length]); a piece's last point is its
 //!   exact `end`.
 
-use crate::hold::FeedHold;
+use crate::hold::{FeedHold, HoldSwitch, Phase, OPEN_STANDSTILL};
 use crate::piece::Shape;
 use crate::planner::PlannedPiece;
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
 use crate::segment::Point9;
+use std::sync::Arc;
 
 /// One servo-period setpoint.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,6 +145,7 @@ pub struct Interpolator {
     end: Point9,
     line: u32,
     hold: FeedHold,
+    switch: Option<Arc<HoldSwitch>>,
 }
 
 impl Interpolator {
@@ -156,6 +158,7 @@ impl Interpolator {
             end: at,
             line: 0,
             hold: FeedHold::default(),
+            switch: None,
         }
     }
 
@@ -191,6 +194,11 @@ impl Interpolator {
         self.hold.request(at, standstill);
     }
 
+    /// Connects the operator's feed-hold button, read at every servo instant (see [`crate::hold`]).
+    pub fn set_hold_switch(&mut self, switch: Arc<HoldSwitch>) {
+        self.switch = Some(switch);
+    }
+
     /// Samples one piece: every grid instant in its time interval goes to `out`.
     pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
         let mut phase = self.hold.first_phase(piece);
@@ -215,6 +223,17 @@ impl Interpolator {
                     break;
                 }
                 let k = phase.at(t - phase_start);
+                if let Some(switch) = &self.switch {
+                    if switch.is_held() {
+                        self.hold.press(t);
+                    } else if matches!(phase, Phase::Stand { seconds, .. } if seconds >= OPEN_STANDSTILL)
+                    {
+                        switched = Some((self.hold.next_phase(&phase, t, piece), t));
+                        break;
+                    } else {
+                        self.hold.withdraw();
+                    }
+                }
                 if let Some(next) = self.hold.trigger(t, &phase, k, piece) {
                     switched = Some((next, t));
                     break;

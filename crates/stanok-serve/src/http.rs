@@ -58,6 +58,7 @@ pub fn router(app: Arc<App>) -> Router {
         .route("/api/programs/{name}", get(read_program).put(write_program))
         .route("/api/check", post(check_program))
         .route("/api/load", post(load_program))
+        .route("/api/loaded", get(loaded_program))
         .route("/api/cycle-start", post(cycle_start))
         .route("/api/feed-hold", post(feed_hold))
         .route("/api/stop", post(stop))
@@ -195,6 +196,22 @@ pub struct Loaded {
     dialect: Dialect,
     alarms: Vec<Alarm>,
     estimated_s: f64,
+    preview: Option<Arc<Preview>>,
+}
+
+/// The loaded program, for a page opened while it runs.
+async fn loaded_program(State(app): State<Shared_>) -> Response {
+    let loaded = app.loaded.lock().unwrap_or_else(|e| e.into_inner()).clone();
+    match loaded {
+        Some(l) => Json(json!({
+            "name": l.name,
+            "text": &*l.text,
+            "diagnostics": l.alarms,
+            "preview": l.preview.as_deref(),
+        }))
+        .into_response(),
+        None => Json(json!({ "name": null })).into_response(),
+    }
 }
 
 async fn load_program(State(app): State<Shared_>, Json(p): Json<ProgramText>) -> Response {
@@ -222,13 +239,14 @@ async fn load_program(State(app): State<Shared_>, Json(p): Json<ProgramText>) ->
     let Ok((alarms, pv)) = result else {
         return error(StatusCode::INTERNAL_SERVER_ERROR, "check failed");
     };
-    let pv: Option<Preview> = pv;
+    let pv: Option<Arc<Preview>> = pv.map(Arc::new);
     let loaded = Loaded {
         name: p.name.clone(),
         text,
         dialect,
         alarms: alarms.clone(),
         estimated_s: pv.as_ref().map(|v| v.cycle_time_s).unwrap_or(0.0),
+        preview: pv.clone(),
     };
     *app.loaded.lock().unwrap_or_else(|e| e.into_inner()) = Some(loaded);
     {
@@ -245,7 +263,7 @@ async fn load_program(State(app): State<Shared_>, Json(p): Json<ProgramText>) ->
         }
         s.seq += 1;
     }
-    Json(json!({ "name": p.name, "diagnostics": alarms, "preview": pv })).into_response()
+    Json(json!({ "name": p.name, "diagnostics": alarms, "preview": pv.as_deref() })).into_response()
 }
 
 /// Cycle start: a block search line and a line whose machine state to record are optional.

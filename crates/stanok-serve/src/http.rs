@@ -275,8 +275,16 @@ struct CycleStart {
     mark_line: Option<u32>,
 }
 
-async fn cycle_start(State(app): State<Shared_>, body: Option<Json<CycleStart>>) -> Response {
-    let req = body.map(|Json(b)| b).unwrap_or_default();
+async fn cycle_start(State(app): State<Shared_>, body: axum::body::Bytes) -> Response {
+    // No body (or an empty one) is a plain cycle start.
+    let req: CycleStart = if body.iter().all(u8::is_ascii_whitespace) {
+        CycleStart::default()
+    } else {
+        match serde_json::from_slice(&body) {
+            Ok(r) => r,
+            Err(e) => return error(StatusCode::BAD_REQUEST, format!("cycle start: {e}")),
+        }
+    };
     let shared: &Shared = &app.machine;
     let run_state = shared.status().run_state;
     match run_state {

@@ -470,7 +470,7 @@ fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, j
             // Single block: the machine stops at the end of every block that moved.
             if cmd.span.line != block_line {
                 if block_moved && controls.single_block.load(Ordering::Relaxed) {
-                    sim.drain_motion();
+                    settle(&mut sim, &state, shared);
                     shared.publish(|s| s.run_state = RunState::BlockEnd);
                     if let Woken::Stop = wait_for_operator(shared, rx) {
                         break 'run;
@@ -495,7 +495,7 @@ fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, j
             block_moved |= cmd.value.motion().is_some();
             if let Canon::ProgramStop { optional } = cmd.value {
                 if !optional || controls.optional_stop.load(Ordering::Relaxed) {
-                    sim.drain_motion();
+                    settle(&mut sim, &state, shared);
                     let text = if optional {
                         "M01 optional stop: acknowledge to continue"
                     } else {
@@ -503,6 +503,7 @@ fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, j
                     };
                     shared.publish(|s| {
                         s.run_state = RunState::Prompt;
+                        s.line = cmd.span.line;
                         s.prompt = Some(format!("line {}: {text}", cmd.span.line));
                     });
                     let woken = wait_for_operator(shared, rx);
@@ -518,6 +519,22 @@ fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, j
         }
     }
     finish(shared, &mut sim, &abandoned, failure, search.as_ref());
+}
+
+/// Runs the planned motion to its end and shows the machine at rest there: the interpolator
+/// reaches a stop point exactly at the next servo instant, which belongs to the next piece, so the
+/// last setpoint sampled is one period short of it.
+fn settle(sim: &mut SimMachine, state: &MachineState, shared: &Shared) {
+    sim.drain_motion();
+    if shared.controls.stop.load(Ordering::Relaxed) {
+        return;
+    }
+    let at = state.position;
+    shared.publish(|s| {
+        s.machine_position = at;
+        s.work_position = s.state.work_of(&at);
+        s.feed_actual = 0.0;
+    });
 }
 
 /// Applies one command to the machine and to the published state.
@@ -536,7 +553,7 @@ fn execute<R: std::io::BufRead + std::io::Seek>(
     let edge = modal.edge;
     shared.publish(|s| {
         if let Canon::Message { text } = &cmd.value {
-            s.message = text.clone();
+            s.message = text.trim().to_string();
         }
         s.state = state.clone();
         s.feed_programmed = state.feed;
@@ -557,13 +574,14 @@ fn finish(
     failure: Option<Diagnostic>,
     search: Option<&BlockSearch>,
 ) {
-    let stopped = shared.controls.stop.load(Ordering::Relaxed);
-    if stopped && !abandoned.get() {
+    if shared.controls.stop.load(Ordering::Relaxed) && !abandoned.get() {
         // Stopped while waiting (prompt, block end): nothing is moving; drop the plan.
         abandoned.set(true);
     }
     shared.controls.hold.set(false);
+    // The rest of the motion runs here (paced), so a stop may still come during it.
     let report = sim.finish();
+    let stopped = shared.controls.stop.load(Ordering::Relaxed);
     let not_reached = search.filter(|s| !s.reached()).map(|_| ());
     shared.publish(|s| {
         s.held = false;

@@ -133,7 +133,7 @@ class PathView {
     c.drawImage(this.layer, 0, 0);
     c.setTransform(dpr, 0, 0, dpr, 0, 0);
     if (this.executed.length > 1) {
-      c.strokeStyle = "#0077ff"; c.lineWidth = 3; c.globalAlpha = 0.75;
+      c.strokeStyle = "#0077ff"; c.lineWidth = 2.5; c.globalAlpha = 0.6;
       c.beginPath();
       this.executed.forEach((p, i) => {
         const [sx, sy] = this.project(p);

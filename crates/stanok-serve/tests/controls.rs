@@ -149,9 +149,15 @@ fn single_block_stops_after_every_block_that_moves() {
         );
         let (_, r) = server.call("POST", "/api/cycle-start", Value::Null);
         assert_eq!(r["action"], "continue");
-        // Wait until it left the block end.
+        // Wait until it left this block end (unpaced, it may already stand at the next one).
+        let here = *stops.last().unwrap();
         let t0 = Instant::now();
-        while server.state()["run_state"] == "block_end" && t0.elapsed() < LONG {
+        loop {
+            let s = server.state();
+            if s["run_state"] != "block_end" || xyz(&s) != here {
+                break;
+            }
+            assert!(t0.elapsed() < LONG, "cycle start did not continue");
             std::thread::sleep(Duration::from_millis(2));
         }
     }

@@ -7,8 +7,8 @@
 //!    run is written to `$CARGO_TARGET_TMPDIR/panel/finished-run.png`;
 //! 2. an M00 program: the prompt appears with the machine at X10, stays 0.5 s with nothing moving,
 //!    and only the acknowledge lets it finish at X20 Y5;
-//! 3. a program with an error in line 3: the diagnostic is listed and marked at line 3, and cycle
-//!    start gives an alarm with the machine where it was.
+//! 3. a program with an error in line 3, typed into the editor: the check as you type lists and
+//!    marks it at line 3, and cycle start gives an alarm with the machine where it was.
 //!
 //! Runs at `--time-scale 4` with a token (so every request of the page carries it). Skips loudly
 //! without Chromium unless `STANOK_REQUIRE_BROWSER=1` (see `cdp`).
@@ -207,8 +207,14 @@ fn the_panel_runs_holds_resumes_prompts_and_refuses_a_bad_program_in_a_real_brow
     wait_state(&mut b, "finished", 30);
     assert_eq!(dro(&mut b), [20.0, 5.0, 5.0]);
 
-    // 3. A program with an error: shown at its line, and it does not move.
-    type_program(&mut b, "bad.ngc", "G21 G90\nG0 X1 Y1\nG1 X10\nM2\n");
+    // 3. A program with an error: checked as it is typed (no Load pressed), shown at its line,
+    //    and cycle start (which loads the edited text) refuses it without moving.
+    b.eval(&format!(
+        "(() => {{ const e = document.getElementById('editor'); e.value = {t}; \
+           e.dispatchEvent(new Event('input')); \
+           document.getElementById('program-name').value = 'bad.ngc'; }})()",
+        t = serde_json::json!("G21 G90\nG0 X1 Y1\nG1 X10\nM2\n")
+    ));
     let line = b.wait_until(
         "(() => { const e = document.querySelector('#diagnostics li.error'); return e && e.dataset.line; })()",
         Duration::from_secs(10),

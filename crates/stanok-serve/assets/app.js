@@ -144,6 +144,7 @@ function show(s) {
   $("single-block").checked = s.single_block;
   $("optional-stop").checked = s.optional_stop;
   editor.setCurrentLine(["running", "prompt", "block_end"].includes(s.run_state) ? s.line : 0);
+  view.toolAxis = s.tool_axis;
   if (s.run_state !== "idle") view.setTool(s.machine_position);
 }
 

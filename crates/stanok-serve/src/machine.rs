@@ -121,6 +121,10 @@ pub struct Status {
     pub feed_programmed: f64,
     /// Actual path speed in X Y Z, mm/min.
     pub feed_actual: f64,
+    /// Tool axis, a unit vector in machine coordinates (the page draws it at the tool). Always
+    /// +Z today: no built-in machine has rotary axes that tilt the tool yet; a 5-axis machine's
+    /// kinematics fills it in.
+    pub tool_axis: [f64; 3],
     /// Spindles.
     pub spindles: [SpindleState; 4],
     /// Tool in the spindle.
@@ -176,6 +180,7 @@ impl Status {
             work_position: [0.0; 9],
             feed_programmed: 0.0,
             feed_actual: 0.0,
+            tool_axis: [0.0, 0.0, 1.0],
             spindles: MachineState::default().spindles,
             tool: 0,
             edge: 0,

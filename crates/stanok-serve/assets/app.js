@@ -194,11 +194,11 @@ async function showLoaded() {
   const r = await api("GET", "/api/loaded");
   if (!r.ok || !r.data.name || editor.text()) return;
   $("program-name").value = r.data.name;
+  $("program-select").value = r.data.name;
   editor.setText(r.data.text);
   editor.setDiagnostics(r.data.diagnostics);
   view.setPath(r.data.preview ? r.data.preview.path : []);
 }
 
-refreshList();
-showLoaded();
+refreshList().then(showLoaded);
 connect();

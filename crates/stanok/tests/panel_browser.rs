@@ -194,6 +194,11 @@ fn the_panel_runs_holds_resumes_prompts_and_refuses_a_bad_program_in_a_real_brow
         Duration::from_secs(30),
     );
     assert_eq!(dro(&mut b), [10.0, 0.0, 5.0]);
+    // The block of the stop is the highlighted one.
+    assert_eq!(
+        b.eval("document.querySelector('#highlight .current').dataset.line"),
+        "4"
+    );
     let prompt = b.eval("document.getElementById('prompt-text').textContent");
     assert!(prompt.as_str().unwrap().contains("M00"), "{prompt}");
     std::thread::sleep(Duration::from_millis(500));

@@ -125,3 +125,33 @@ impl ProgramDir {
         std::fs::write(&path, text).map_err(|e| FileError::Io(e.to_string()))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::valid_name;
+
+    #[test]
+    fn only_plain_program_file_names_are_valid() {
+        for ok in ["part.nc", "A-1_b.NGC", "x.gcode", "plate.v2.nc"] {
+            assert!(valid_name(ok), "{ok}");
+        }
+        for bad in [
+            "",
+            ".nc",
+            ".hidden.nc",
+            "../x.nc",
+            "a/b.nc",
+            "a\\b.nc",
+            "/etc/passwd",
+            "C:x.nc",
+            "x.sh",
+            "noext",
+            "a b.nc",
+            "x.nc\0",
+            "..",
+        ] {
+            assert!(!valid_name(bad), "{bad:?}");
+        }
+        assert!(!valid_name(&format!("{}.nc", "a".repeat(130))));
+    }
+}

@@ -331,3 +331,64 @@ pub fn m_vector<R: std::io::BufRead + std::io::Seek>(
         code("coolant", coolant),
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stanok_canon::Pose;
+
+    fn pose(x: f64, y: f64, z: f64) -> Pose {
+        Pose::from_array([x, y, z, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    }
+
+    #[test]
+    fn work_coordinates_undo_tool_offset_g5x_rotation_and_g92_in_that_order() {
+        let mut s = MachineState::default();
+        s.apply(&Canon::SetG5xOffset {
+            index: 2,
+            offset: pose(100.0, 50.0, -20.0),
+        });
+        s.apply(&Canon::UseToolLengthOffset {
+            offset: pose(0.0, 0.0, 30.0),
+        });
+        s.apply(&Canon::SetXyRotation { degrees: 90.0 });
+        s.apply(&Canon::SetG92Offset {
+            offset: pose(1.0, 2.0, 3.0),
+        });
+        // machine − tlo − G5x = (10, 20, 5); rotated by −90°: (20, −10, 5); − G92: (19, −12, 2).
+        let w = s.work_of(&[110.0, 70.0, 15.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
+        for (got, want) in w.iter().zip([19.0, -12.0, 2.0]) {
+            assert!((got - want).abs() < 1e-12, "{w:?}");
+        }
+        assert_eq!(s.g5x_index, 2);
+    }
+
+    #[test]
+    fn the_state_follows_spindle_coolant_tool_and_motion_commands() {
+        let mut s = MachineState::default();
+        s.apply(&Canon::SetSpindleSpeed {
+            spindle: 0,
+            rpm: 1200.0,
+        });
+        s.apply(&Canon::StartSpindle {
+            spindle: 0,
+            direction: SpindleDirection::CounterClockwise,
+        });
+        s.apply(&Canon::Flood { on: true });
+        s.apply(&Canon::SelectTool { tool: 7 });
+        s.apply(&Canon::ChangeTool { tool: 7 });
+        s.apply(&Canon::StraightFeed(stanok_canon::LineMove {
+            start: pose(0.0, 0.0, 0.0),
+            end: pose(5.0, 6.0, 7.0),
+            feed: 100.0,
+        }));
+        assert_eq!(s.spindles[0], SpindleState { rpm: 1200.0, m: 4 });
+        assert!(s.flood && !s.mist);
+        assert_eq!((s.tool, s.selected_tool), (7, 7));
+        assert_eq!(&s.position[..3], &[5.0, 6.0, 7.0]);
+        let mut other = s.clone();
+        assert!(s.same_as(&other));
+        other.position[0] += 1e-6;
+        assert!(!s.same_as(&other));
+    }
+}

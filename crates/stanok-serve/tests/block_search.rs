@@ -170,3 +170,27 @@ fn a_search_line_the_program_never_reaches_is_an_alarm_and_nothing_moves() {
     let (code, _) = server.call("POST", "/api/cycle-start", json!({ "search_line": 99 }));
     assert_eq!(code, 400);
 }
+
+#[test]
+fn a_search_skips_the_motion_before_the_line_and_approaches_its_start_with_one_rapid() {
+    let server = Server::start(options(temp_programs("search-skip")));
+    let text = "G21 G90\nS800 M3\nG1 X100 F600\nG1 Y10\nM2\n";
+    server.call("POST", "/api/load", json!({"name": "t.ngc", "text": text}));
+    let full = run(&server, json!({ "mark_line": 4 }));
+    let search = run(&server, json!({ "search_line": 4 }));
+    assert_eq!(search["run_state"], "finished", "{search}");
+    // Full: 100 mm + 10 mm at 10 mm/s = 11 s. Search: a rapid to X100 (10 000 mm/min: about
+    // 0.7 s with acceleration) and the 10 mm feed (1 s).
+    let (t_full, t_search) = (
+        full["cycle_time_s"].as_f64().unwrap(),
+        search["cycle_time_s"].as_f64().unwrap(),
+    );
+    assert!((t_full - 11.0).abs() < 0.1, "{t_full}");
+    assert!(t_search > 1.5 && t_search < 2.2, "{t_search}");
+    // At line 4 the spindle runs (line 2 was not skipped) and the tool is at the end of line 3.
+    let at = &search["marked_state"];
+    assert_eq!(at["spindles"][0], json!({"rpm": 800.0, "m": 3}));
+    assert_eq!(at["position"][0], 100.0);
+    assert_eq!(at, &full["marked_state"]);
+    assert_eq!(search["final_position"], full["final_position"]);
+}

@@ -331,6 +331,7 @@ async fn cycle_start(State(app): State<Shared_>, body: axum::body::Bytes) -> Res
         }
     }
     shared.controls.hold.set(false);
+    shared.controls.stop.store(false, Ordering::Relaxed);
     {
         let mut s = shared.status();
         s.run_state = RunState::Starting;

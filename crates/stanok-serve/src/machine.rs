@@ -340,10 +340,9 @@ pub fn spawn(config: MachineConfig) -> Arc<Shared> {
 fn machine_loop(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>) {
     while let Ok(event) = rx.recv() {
         match event {
-            Event::Start(job) => {
-                shared.controls.stop.store(false, Ordering::Relaxed);
-                run_job(config, shared, rx, &job);
-            }
+            // The stop switch was cleared by the cycle start that sent this (`http::cycle_start`),
+            // so a stop pressed before the thread picks the job up still counts.
+            Event::Start(job) => run_job(config, shared, rx, &job),
             Event::Acknowledge => shared.publish(|s| s.message.clear()),
             Event::CycleStart => {}
         }

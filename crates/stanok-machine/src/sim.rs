@@ -228,6 +228,28 @@ impl SimMachine {
         self.motion.set_observer(sink);
     }
 
+    /// Runs everything the planner holds to its end, so that the machine stands at the last
+    /// accepted position (the path stops there: an operator's single block or program stop).
+    pub fn drain_motion(&mut self) {
+        self.motion.drain();
+    }
+
+    /// Connects the operator's feed-hold button, read at every servo instant
+    /// ([`stanok_motion::hold::HoldSwitch`]).
+    pub fn set_hold_switch(&mut self, switch: std::sync::Arc<stanok_motion::hold::HoldSwitch>) {
+        self.motion.set_hold_switch(switch);
+    }
+
+    /// Feed override (fraction, 0.001…2) for the commands applied from now on.
+    pub fn set_feed_override(&mut self, fraction: f64) {
+        self.motion.set_feed_override(fraction);
+    }
+
+    /// Rapid override (fraction, 0.001…1) for the commands applied from now on.
+    pub fn set_rapid_override(&mut self, fraction: f64) {
+        self.motion.set_rapid_override(fraction);
+    }
+
     /// The program is over (or stopped at an error): runs the motion still in the planner's
     /// window to its end and returns the full report.
     pub fn finish(&mut self) -> RunReport {

@@ -175,6 +175,48 @@ impl MotionRun {
         stage.apply(cmd, line, &mut sink);
     }
 
+    /// Runs everything pending; the path stops at its current end.
+    pub(crate) fn drain(&mut self) {
+        let Self {
+            stage,
+            monitor,
+            travel,
+            observer,
+            travel_violations,
+            travel_violation_count,
+            ..
+        } = self;
+        let mut sink = |sp: &Setpoint| {
+            execute(
+                sp,
+                monitor,
+                travel,
+                travel_violations,
+                travel_violation_count,
+            );
+            if let Some(o) = observer.as_mut() {
+                o(sp);
+            }
+        };
+        stage.drain(&mut sink);
+    }
+
+    pub(crate) fn set_hold_switch(
+        &mut self,
+        switch: std::sync::Arc<stanok_motion::hold::HoldSwitch>,
+    ) {
+        self.stage.set_hold_switch(switch);
+    }
+
+    pub(crate) fn set_feed_override(&mut self, fraction: f64) {
+        self.stage.set_feed_override(fraction);
+        self.feed_override = fraction;
+    }
+
+    pub(crate) fn set_rapid_override(&mut self, fraction: f64) {
+        self.stage.set_rapid_override(fraction);
+    }
+
     /// Runs what is left; idempotent.
     pub(crate) fn finish(&mut self) {
         if self.cycle_time.is_some() {

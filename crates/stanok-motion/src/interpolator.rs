@@ -24,12 +24,13 @@
 //! * The profile never leaves the piece (s clamped to [0, length]); a piece's last point is its
 //!   exact `end`.
 
-use crate::hold::FeedHold;
+use crate::hold::{FeedHold, HoldSwitch, Phase, OPEN_STANDSTILL};
 use crate::piece::Shape;
 use crate::planner::PlannedPiece;
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
 use crate::segment::{Point9, Spindles};
+use std::sync::Arc;
 
 /// One servo-period setpoint.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -150,6 +151,7 @@ pub struct Interpolator {
     line: u32,
     spindles: Spindles,
     hold: FeedHold,
+    switch: Option<Arc<HoldSwitch>>,
 }
 
 impl Interpolator {
@@ -163,6 +165,7 @@ impl Interpolator {
             line: 0,
             spindles: Spindles::default(),
             hold: FeedHold::default(),
+            switch: None,
         }
     }
 
@@ -198,6 +201,11 @@ impl Interpolator {
         self.hold.request(at, standstill);
     }
 
+    /// Connects the operator's feed-hold button, read at every servo instant (see [`crate::hold`]).
+    pub fn set_hold_switch(&mut self, switch: Arc<HoldSwitch>) {
+        self.switch = Some(switch);
+    }
+
     /// Samples one piece: every grid instant in its time interval goes to `out`.
     pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
         let mut phase = self.hold.first_phase(piece);
@@ -222,6 +230,17 @@ impl Interpolator {
                     break;
                 }
                 let k = phase.at(t - phase_start);
+                if let Some(switch) = &self.switch {
+                    if switch.is_held() {
+                        self.hold.press(t);
+                    } else if matches!(phase, Phase::Stand { seconds, .. } if seconds >= OPEN_STANDSTILL)
+                    {
+                        switched = Some((self.hold.next_phase(&phase, t, piece), t));
+                        break;
+                    } else {
+                        self.hold.withdraw();
+                    }
+                }
                 if let Some(next) = self.hold.trigger(t, &phase, k, piece) {
                     switched = Some((next, t));
                     break;

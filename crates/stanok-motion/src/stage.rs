@@ -72,6 +72,11 @@ impl MotionStage {
         self.interpolator.request_hold(at, standstill);
     }
 
+    /// Connects the operator's feed-hold button (see [`crate::hold::HoldSwitch`]).
+    pub fn set_hold_switch(&mut self, switch: std::sync::Arc<crate::hold::HoldSwitch>) {
+        self.interpolator.set_hold_switch(switch);
+    }
+
     /// Pieces released so far, deviation statistics.
     pub fn stats(&self) -> StageStats {
         self.stats

@@ -259,6 +259,29 @@ pub enum Command {
         #[command(flatten)]
         machine: MachineArgs,
     },
+    /// Operator panel: a web HMI on 127.0.0.1:8080 that runs programs on the simulated machine in
+    /// real time (program, 3D path, DRO, cycle start, feed hold, overrides, single block, block
+    /// search, M00/M01 prompts).
+    Serve {
+        /// Address to listen on. Anything but loopback requires --token.
+        #[arg(long, default_value = "127.0.0.1:8080")]
+        bind: std::net::SocketAddr,
+        /// Access token (at least 16 characters): every request must carry it, as
+        /// `Authorization: Bearer TOKEN` or `?token=TOKEN`.
+        #[arg(long)]
+        token: Option<String>,
+        /// The program directory: the only place the panel reads and writes programs.
+        #[arg(long, value_name = "DIR", default_value = ".")]
+        programs: PathBuf,
+        /// Request size limit (program uploads), MB.
+        #[arg(long, value_name = "MB", default_value_t = 64)]
+        upload_limit: u64,
+        /// Machine time per wall-clock time: 1 = real time, 10 = ten times faster, 0 = unpaced.
+        #[arg(long, default_value_t = 1.0)]
+        time_scale: f64,
+        #[command(flatten)]
+        machine: MachineArgs,
+    },
     /// Machine data: show what a machine is and what its control stores.
     Machine {
         #[command(subcommand)]

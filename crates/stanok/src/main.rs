@@ -80,6 +80,27 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output,
             machine,
         } => plot(&file, dialect.map(Into::into), &output, &machine),
+        Command::Serve {
+            bind,
+            token,
+            programs,
+            upload_limit,
+            time_scale,
+            machine,
+        } => {
+            let machine = match load_machine(&machine) {
+                Ok((m, _)) => m,
+                Err(code) => return Ok(code),
+            };
+            let mut options = stanok_serve::ServeOptions::new(machine, programs);
+            options.bind = bind;
+            options.token = token;
+            options.upload_limit =
+                usize::try_from(upload_limit.saturating_mul(1024 * 1024)).unwrap_or(usize::MAX);
+            options.time_scale = time_scale;
+            stanok_serve::run(options)?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Machine {
             command:
                 MachineCommand::Show {

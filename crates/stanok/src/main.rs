@@ -145,6 +145,8 @@ fn interpreter(
     }
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
+    opts.strip_fixture_comments = args.strip_fixture_comments;
+    opts.labs.correctors.extend(args.corrector.iter().copied());
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -438,7 +440,7 @@ fn canon(
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
-        Dialect::Axioma => CanonFormat::Jsonl,
+        _ => CanonFormat::Jsonl,
     });
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

@@ -737,7 +737,10 @@ impl Exec<'_> {
             }
         }
         let any_axis = programmed.iter().any(Option::is_some);
-        let full_circle_g91 = circular && self.st.incremental;
+        // G91 full circle: centre words and no end point (`N51 G2 G91 I30`).
+        let full_circle_g91 = circular
+            && self.st.incremental
+            && self.words().any(|w| matches!(w.letter, 'I' | 'J' | 'K'));
         if !any_axis && !full_circle_g91 {
             self.check_unused(circular)?;
             return Ok(());

@@ -526,7 +526,7 @@ fn plot(
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, false, args)?;
+    let (mut interp, used) = interpreter(file, dialect, &machine, false, args)?;
     let mut commands: Vec<Spanned<Canon>> = Vec::new();
     let mut failure = None;
     for item in interp.by_ref() {
@@ -545,6 +545,8 @@ fn plot(
     let options = stanok_plot::PlotOptions {
         title,
         reference: programmed_contour(file, dialect, &machine, args, &commands),
+        // The lab lathes (X = radius): the turning drawing's ZX view.
+        lathe: matches!(used, Dialect::Nc31 | Dialect::P2p32),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

@@ -121,7 +121,7 @@ pub fn parse_line(text: &str, at: LineAt, profile: Profile) -> (LabBlock, Vec<Di
     let mut diags = Vec::new();
     let b = text.as_bytes();
     let end = text.trim_end().len();
-    let mut i = skip_blanks(b, 0);
+    let mut i = skip_blanks(b, 0).min(end);
     let err = |diags: &mut Vec<Diagnostic>, s: usize, e: usize, msg: &str| {
         diags.push(Diagnostic::error(
             "lab::syntax",

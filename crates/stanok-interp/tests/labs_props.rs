@@ -1,0 +1,94 @@
+//! Properties of the lab front ends: no input panics or hangs, every diagnostic has a location,
+//! motion is continuous, and a failing unit emits nothing (the run stops before it).
+
+use proptest::prelude::*;
+use stanok_canon::Canon;
+use stanok_interp::{InterpOptions, Interpreter};
+use stanok_syntax::labs::{nc31, words, LineAt};
+use stanok_syntax::Dialect;
+
+/// Lines made of the lab languages' own pieces, so that most of them get past the readers.
+fn lab_line() -> impl Strategy<Value = String> {
+    let piece = prop::sample::select(vec![
+        "N1", "N2", "N10", " ", "*", "#", "~", "-45° ", "+45", "~45°", "BX", "(OACO)", "G", "G0",
+        "G1", "G2", "G3", "G4", "G9", "G12", "G13", "G17", "G18", "G19", "G25", "G28", "G31",
+        "G40", "G41", "G42", "G43", "G44", "G49", "G53", "G54", "G55", "G90", "G91", "G92", "G94",
+        "G95", "X", "Z", "Y", "P", "F", "S", "T", "M", "L", "R", "I", "J", "K", "D", "E", "ω",
+        "10", "-5", "+2000", "15.", ".14", "0100", "0201", "01", "7", "#3.", "R1", "-R2", "M17",
+        "M30", "M89", "P1+", "(c)", ":", "/", "%", "LF", "ПС", "9999999",
+    ]);
+    prop::collection::vec(piece, 0..10).prop_map(|v| v.concat())
+}
+
+fn program() -> impl Strategy<Value = String> {
+    prop::collection::vec(lab_line(), 0..25).prop_map(|v| v.join("\n"))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    #[test]
+    fn readers_never_panic_and_spans_stay_on_their_line(line in "\\PC{0,40}|[NGXZP0-9 *#~+-]{0,30}") {
+        let at = LineAt { line: 3, offset: 100 };
+        let (_, diags) = nc31::parse_line(&line, at);
+        for d in diags {
+            prop_assert_eq!(d.span.line, 3);
+            prop_assert!(d.span.start >= 100 && d.span.end <= 100 + line.len() as u64);
+        }
+        for profile in [words::Profile::Gost20999, words::Profile::P2p32, words::Profile::Mc2101] {
+            let (_, diags) = words::parse_line(&line, at, profile);
+            for d in diags {
+                prop_assert_eq!(d.span.line, 3);
+                prop_assert!(d.span.end <= 100 + line.len() as u64);
+            }
+        }
+    }
+
+    #[test]
+    fn random_lab_programs_run_without_panic_with_continuous_motion(text in program(), d in 0usize..4) {
+        let dialect = Dialect::LABS[d];
+        for check_mode in [false, true] {
+            let mut opts = InterpOptions::new(dialect);
+            opts.continue_after_error = check_mode;
+            opts.labs.correctors.insert(1, 0.5);
+            let mut last = None;
+            let mut errors = 0;
+            for item in Interpreter::from_text(&text, opts) {
+                match item {
+                    Ok(c) => {
+                        if let Some(m) = c.value.motion() {
+                            if let Some(p) = last {
+                                prop_assert_eq!(m.start(), p);
+                            }
+                            last = Some(m.end());
+                        }
+                        if let Canon::ArcFeed(a) = &c.value {
+                            prop_assert!(a.centre.iter().all(|v| v.is_finite()));
+                        }
+                    }
+                    Err(e) => {
+                        errors += 1;
+                        prop_assert!(e.span.line >= 1 || e.code.to_string().contains("no-return")
+                            || e.code.to_string().contains("too-many"), "{e:?}");
+                    }
+                }
+            }
+            if !check_mode {
+                prop_assert!(errors <= 1, "a run stops at its first error");
+            }
+        }
+    }
+}
+
+#[test]
+fn an_endless_nc31_jump_is_stopped() {
+    let mut opts = InterpOptions::new(Dialect::Nc31);
+    opts.max_blocks = 1_000_000;
+    let results: Vec<_> = Interpreter::from_text("N1 X100\nN2 P1\n", opts).collect();
+    let err = results
+        .iter()
+        .find_map(|r| r.as_ref().err())
+        .expect("stopped");
+    assert_eq!(err.code.to_string(), "nc31::too-many-jumps");
+    assert_eq!(err.span.line, 2);
+}

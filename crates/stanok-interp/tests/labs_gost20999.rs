@@ -289,17 +289,129 @@ fn contour_break_program_with_a_zero_radius_runs_the_programmed_rhombus() {
     assert!(r.commands_of(8).contains(&&Canon::ProgramEnd));
 }
 
-#[test]
-fn compensation_with_a_radius_is_reported_not_faked() {
-    let r = run(
+fn comp_run(radius: f64) -> Run {
+    run(
         "gost20999-cutter-comp-contour-break.nc",
         Dialect::Gost20999,
         |o| {
-            o.labs.correctors.insert(30, 2.0);
+            o.initial_position = at(200.0, 100.0, 50.0);
+            o.labs.correctors.insert(30, radius);
+        },
+    )
+}
+
+fn continuous(r: &Run) {
+    let mut last = None;
+    for c in &r.commands {
+        if let Some(m) = c.value.motion() {
+            if let Some(p) = last {
+                assert_eq!(m.start(), p, "continuous at {:?}", c.block_number);
+            }
+            last = Some(m.end());
+        }
+    }
+}
+
+#[test]
+fn contour_break_program_offsets_the_rhombus_by_r() {
+    let s = (158.0, 100.0);
+    // Side tangents and left normals (G41: the offset points left of the motion).
+    let (a, b): (f64, f64) = (126.0, 73.67);
+    let l = a.hypot(b);
+    let (ca, sb) = (a / l, b / l); // 0.8633, 0.5047
+    for radius in [1.0, 2.0] {
+        let r = comp_run(radius);
+        assert!(r.errors.is_empty(), "{:?}", r.errors);
+        continuous(&r);
+        // N1: internal start-up, straight from P0 to S3 = S + R (0.5047, −0.8633).
+        let n1 = r.motions_of(1);
+        assert_eq!(n1.len(), 1);
+        let e = r.end_of(1);
+        xy(
+            e,
+            s.0 + radius * 0.5047,
+            s.1 - radius * 0.8633,
+            1e-4 * radius,
+            "N1 S3",
+        );
+        // N2: the break runs at S3.
+        let e2 = r.end_of(2);
+        xy(e2, e.x, e.y, TOL, "N2 at S3");
+        near(e2.z, 5.0, TOL, "N2 Z");
+        // N3 ends at its S1 = P3 + R (0.5047, −0.8633); N4 starts with the inserted S1 → S2 → S3.
+        let p3 = (s.0 - a, s.1 - b);
+        let e3 = r.end_of(3);
+        xy(e3, p3.0 + radius * sb, p3.1 - radius * ca, 1e-9, "N3 S1");
+        let n4 = r.motions_of(4);
+        assert_eq!(n4.len(), 3, "S1→S2, S2→S3, then N4");
+        let s2 = n4[0].motion().unwrap().end();
+        near(
+            (s2.x - e3.x).hypot(s2.y - e3.y),
+            radius * (60.63f64 / 2.0).to_radians().tan(),
+            1e-3,
+            "|S1S2| at 119.4°",
+        );
+        let s3 = n4[1].motion().unwrap().end();
+        xy(s3, p3.0 - radius * sb, p3.1 - radius * ca, 1e-9, "N4 S3");
+        // Left vertex, 60.6° on the part side: |S1S2| = 1.710 R ≤ R + 1 mm only for R = 1.
+        let n5 = r.motions_of(5);
+        if radius == 1.0 {
+            assert_eq!(n5.len(), 3, "S1 → S2 → S3");
+            let (p, q) = (n5[0].motion().unwrap(), n5[0].motion().unwrap().end());
+            near(
+                (q.x - p.start().x).hypot(q.y - p.start().y),
+                1.710,
+                1e-3,
+                "|S1S2|",
+            );
+        } else {
+            assert_eq!(n5.len(), 4, "S1 → S4 → S5 → S3");
+            let p = n5[0].motion().unwrap();
+            near(
+                (p.end().x - p.start().x).hypot(p.end().y - p.start().y),
+                radius,
+                1e-9,
+                "|S1S4| = R",
+            );
+        }
+        // N6 ends at its own S1 (internal corner with the exit); the break N7 runs there.
+        let e6 = r.end_of(6);
+        xy(e6, s.0 + radius * sb, s.1 + radius * ca, 1e-9, "N6 S1");
+        xy(r.end_of(7), e6.x, e6.y, TOL, "N7 at S1");
+        // N8: G40 exit straight from S1 to P0.
+        assert_eq!(r.motions_of(8).len(), 1);
+        let e8 = r.end_of(8);
+        xy(e8, 200.0, 100.0, 1e-9, "N8 at P0");
+        near(e8.z, 50.0, 1e-9, "N8 Z");
+        // The tool stays outside the rhombus: every corner point is at least R from its vertex.
+        for (_, p) in r.moves() {
+            for v in [(s.0, s.1), p3, (s.0 - 2.0 * a, s.1), (s.0 - a, s.1 + b)] {
+                assert!((p.x - v.0).hypot(p.y - v.1) >= radius - 1e-9);
+            }
+        }
+    }
+}
+
+#[test]
+fn error_19_for_a_short_block_between_internal_corners() {
+    // A notch narrower than the tool: the 1 mm bottom between two internal corners with R = 2.
+    let text = "N1 G1 G90 G17 G41 D1 X10. Y0 F100\nN2 X20.\nN3 Y-5.\nN4 X21.\nN5 Y0\nN6 X30.\nN7 G40 X30. Y10.\n";
+    let r = run_text(text, Dialect::Gost20999, |o| {
+        o.labs.correctors.insert(1, 2.0);
+    });
+    assert_eq!(r.error_codes(), ["E19"]);
+}
+
+#[test]
+fn arcs_under_compensation_with_a_radius_are_refused() {
+    let r = run_text(
+        "N1 G1 G91 G41 D1 X10. F100\nN2 G3 X10. Y10. R10.\n",
+        Dialect::Gost20999,
+        |o| {
+            o.labs.correctors.insert(1, 1.0);
         },
     );
     assert_eq!(r.error_codes(), ["lab::unsupported"]);
-    assert!(r.moves().is_empty());
 }
 
 #[test]

@@ -92,3 +92,63 @@ fn an_endless_nc31_jump_is_stopped() {
     assert_eq!(err.code.to_string(), "nc31::too-many-jumps");
     assert_eq!(err.span.line, 2);
 }
+
+fn polyline() -> impl Strategy<Value = (String, f64)> {
+    let step = (-50i32..50, -50i32..50, 0u8..6);
+    (
+        prop::collection::vec(step, 1..12),
+        prop::bool::ANY,
+        0.0f64..3.0,
+    )
+        .prop_map(|(steps, left, r)| {
+            let mut t = format!(
+                "N1 G1 G91 G17 {} D7 X5. Y1. F100\n",
+                if left { "G41" } else { "G42" }
+            );
+            for (k, (x, y, brk)) in steps.into_iter().enumerate() {
+                if brk == 0 {
+                    t.push_str(&format!("N{} Z-1.\n", k + 2));
+                } else {
+                    t.push_str(&format!("N{} X{x}. Y{y}.\n", k + 2));
+                }
+            }
+            t.push_str("N99 G40 X3. Y-2.\n");
+            (t, r)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// Compensated polylines with breaks: continuous, and the exit ends at the programmed point.
+    #[test]
+    fn compensated_polylines_are_continuous_and_exit_at_the_programmed_point((text, r) in polyline()) {
+        let mut opts = InterpOptions::new(Dialect::Gost20999);
+        opts.labs.correctors.insert(7, r);
+        let mut last = None;
+        let mut ok = true;
+        for item in Interpreter::from_text(&text, opts.clone()) {
+            match item {
+                Ok(c) => if let Some(m) = c.value.motion() {
+                    if let Some(p) = last {
+                        prop_assert_eq!(m.start(), p);
+                    }
+                    last = Some(m.end());
+                },
+                Err(e) => {
+                    prop_assert_eq!(e.code.to_string(), "E19");
+                    ok = false;
+                }
+            }
+        }
+        if ok {
+            // Same program with radius 0 = the programmed end point.
+            opts.labs.correctors.insert(7, 0.0);
+            let zero = Interpreter::from_text(&text, opts)
+                .filter_map(|c| c.ok()?.value.motion().map(|m| m.end()))
+                .last();
+            let (a, b) = (last.unwrap(), zero.unwrap());
+            prop_assert!((a.x - b.x).abs() < 1e-9 && (a.y - b.y).abs() < 1e-9 && (a.z - b.z).abs() < 1e-9);
+        }
+    }
+}

@@ -19,6 +19,7 @@
 //! X word at 1 s per mm-unit ([decide]: X+4000 = 4 s, the document gives no unit). MC2101: 0.01
 //! mm per count and incremental values (the lab's rule, G90 switches it).
 
+use super::iso_comp::{BlockComp, Comp};
 use super::iso_words::{code, dimension, err, number, Pending};
 use super::{Emit, LabState, Program, MAX_JUMPS};
 use crate::InterpOptions;
@@ -43,6 +44,8 @@ pub(crate) struct IsoRun {
     programs: Vec<Program>,
     stack: Vec<CallFrame>,
     jumps: u32,
+    /// Cutter radius compensation: the held move and what came after it.
+    comp: Comp,
     pub state: LabState,
 }
 
@@ -73,6 +76,7 @@ impl IsoRun {
                 repeats_left: 1,
             }],
             jumps: 0,
+            comp: Comp::default(),
             state,
         }
     }
@@ -94,8 +98,11 @@ impl IsoRun {
                         Span::default(),
                     )));
                 }
-                // A program (or fragment) without M2/M30 ends with its text.
-                return Ok((true, None, 0));
+                // A program (or fragment) without M2/M30 ends with its text; a move held for
+                // compensation ends at its own S1.
+                let mut out = Emit::new(Span::default(), None);
+                self.comp.finish(self.state.plane, &mut out.cmds);
+                return Ok((true, Some(out), 0));
             };
             self.stack.last_mut().expect("frame").line += 1;
             let (block, diags) = parse_line(&src.text, src.at, self.profile);
@@ -127,10 +134,24 @@ impl IsoRun {
                 in_sub,
             };
             ex.run().map_err(at_file)?;
+            // Cutter compensation moves the programmed contour's corners (§4.9).
+            let mut comp = self.comp.clone();
+            let before = self.state.radius_comp.0;
+            let after = st.radius_comp.0;
+            if !(comp.idle() && before == 0 && after == 0) {
+                let d = st.radius_comp.1.unwrap_or(0);
+                let bc = BlockComp {
+                    after,
+                    radius: opts.labs.correctors.get(&d).copied().unwrap_or(0.0),
+                    plane: st.plane,
+                };
+                comp.block(&mut out, &bc, block.span).map_err(at_file)?;
+            }
             match ctl {
                 Control::Next => {}
                 Control::End => {
                     self.state = st;
+                    self.comp = comp;
                     return Ok((true, Some(out), 1));
                 }
                 Control::Call(number, times, at) => {
@@ -173,6 +194,7 @@ impl IsoRun {
             }
             // The caller's modal state is not restored on return (§4.10).
             self.state = st;
+            self.comp = comp;
             return Ok((false, Some(out), 1));
         }
     }

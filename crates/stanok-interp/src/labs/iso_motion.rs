@@ -177,18 +177,6 @@ impl Exec<'_> {
             )
             .with_note("start and end cutter compensation with a G0 or G1 block"));
         }
-        if comp != 0 {
-            let d = self.st.radius_comp.1.unwrap_or(0);
-            let r = self.opts.labs.correctors.get(&d).copied().unwrap_or(0.0);
-            if r != 0.0 {
-                return Err(err(
-                    "lab::unsupported",
-                    format!("cutter radius compensation with a radius ({r} mm in D{d}) is not supported yet"),
-                    self.block.span,
-                )
-                .with_note("with a corrector holding 0 the programmed contour is run"));
-            }
-        }
         let any_axis = programmed.iter().any(Option::is_some);
         // G91 full circle: centre words and no end point (`N51 G2 G91 I30`).
         let full_circle_g91 = circular

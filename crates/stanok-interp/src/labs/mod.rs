@@ -31,6 +31,7 @@
 
 mod iso;
 mod iso_arcs;
+mod iso_comp;
 mod iso_motion;
 mod iso_words;
 mod nc31;

@@ -580,3 +580,41 @@ fn subprogram_l01_rounded_rectangle_in_the_same_text_as_its_caller() {
     let r = gost("gost20999-subprogram-l01-rounded-rectangle.nc", [0.0; 3]);
     assert!(r.errors.is_empty() && r.commands.len() == 1, "only Init");
 }
+
+#[test]
+fn g20_with_a_zero_part_radius_is_error_17() {
+    let r = gost_text("N1 G20 G1 X1. F100\n", [0.0; 3]);
+    assert_eq!(r.error_codes(), ["E17"]);
+}
+
+#[test]
+fn g9_stops_exactly_at_the_end_of_its_block_only() {
+    let r = gost_text("N1 G1 G91 G9 X10. F100\nN2 X10.\n", [0.0; 3]);
+    assert!(r.errors.is_empty());
+    let n1 = r.commands_of(1);
+    let stop = n1
+        .iter()
+        .position(|c| {
+            matches!(
+                c,
+                Canon::SetPathMode {
+                    mode: stanok_canon::PathMode::ExactStop,
+                    ..
+                }
+            )
+        })
+        .expect("exact stop");
+    let motion = n1.iter().position(|c| c.motion().is_some()).unwrap();
+    assert!(stop < motion, "set before the move");
+    assert!(matches!(
+        n1.last(),
+        Some(Canon::SetPathMode {
+            mode: stanok_canon::PathMode::Continuous { .. },
+            ..
+        })
+    ));
+    assert!(!r
+        .commands_of(2)
+        .iter()
+        .any(|c| matches!(c, Canon::SetPathMode { .. })));
+}

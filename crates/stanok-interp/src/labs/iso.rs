@@ -23,7 +23,9 @@ use super::iso_comp::{BlockComp, Comp};
 use super::iso_words::{code, dimension, err, number, Pending};
 use super::{Emit, LabState, Program, MAX_JUMPS};
 use crate::InterpOptions;
-use stanok_canon::{AuxTiming, Canon, Diagnostic, Plane, Span, SpindleDirection};
+use stanok_canon::{
+    AuxTiming, Canon, Diagnostic, PathMode, Plane, Span, Spanned, SpindleDirection,
+};
 use stanok_syntax::labs::words::{parse_line, Item, LabBlock, Profile, Word};
 use stanok_syntax::Dialect;
 
@@ -332,7 +334,30 @@ impl Exec<'_> {
             Some((4, at)) => self.dwell(at)?,
             Some((92, at)) => self.set_position(at)?,
             Some((28, _)) => self.home()?,
-            _ => self.motion(&gs, comp_before)?,
+            _ => {
+                // G9 (§4.6): exact stop at the end of this block only.
+                let mark = self.out.cmds.len();
+                self.motion(&gs, comp_before)?;
+                let moved = self.out.cmds[mark..]
+                    .iter()
+                    .any(|c| c.value.motion().is_some());
+                if gs.g9 && moved {
+                    self.out.cmds.insert(
+                        mark,
+                        Spanned {
+                            value: Canon::SetPathMode {
+                                mode: PathMode::ExactStop,
+                                naive_cam_tolerance: None,
+                            },
+                            ..self.out.cmds[mark].clone()
+                        },
+                    );
+                    self.out.push(Canon::SetPathMode {
+                        mode: PathMode::Continuous { tolerance: 0.0 },
+                        naive_cam_tolerance: None,
+                    });
+                }
+            }
         }
         // 6. After motion.
         for w in self
@@ -393,11 +418,19 @@ impl Exec<'_> {
                     gs.one_shot = Some((g as u8, w.span));
                 }
                 20 => {
+                    // The part radius of the XA system is corrector 175 (§4.4): 0 is error 17.
+                    if self.opts.labs.correctors.get(&175).copied().unwrap_or(0.0) == 0.0 {
+                        return Err(Diagnostic::manual(
+                            17,
+                            "G20: the part radius in corrector 175 is 0",
+                            w.span,
+                        ));
+                    }
                     return Err(err(
                         "lab::unsupported",
                         "G20 (the XA coordinate system for compensation on a cylinder) is not supported",
                         w.span,
-                    ))
+                    ));
                 }
                 _ => {
                     return Err(err(

@@ -403,15 +403,31 @@ fn error_19_for_a_short_block_between_internal_corners() {
 }
 
 #[test]
-fn arcs_under_compensation_with_a_radius_are_refused() {
-    let r = run_text(
-        "N1 G1 G91 G41 D1 X10. F100\nN2 G3 X10. Y10. R10.\n",
-        Dialect::Gost20999,
-        |o| {
-            o.labs.correctors.insert(1, 1.0);
-        },
-    );
-    assert_eq!(r.error_codes(), ["lab::unsupported"]);
+fn tangent_arc_under_compensation_is_offset_by_r() {
+    // Outer contour, counter-clockwise, G42 (tool right = outside): line, quarter arc R5, line.
+    let text = "N1 G1 G90 G17 G42 D1 X0 Y0 F100\nN2 X10.\nN3 G3 X15. Y5. R5.\nN4 G1 Y10.\nN5 G40 X20. Y20.\n";
+    let r = run_text(text, Dialect::Gost20999, |o| {
+        o.initial_position = at(-10.0, -10.0, 0.0);
+        o.labs.correctors.insert(1, 1.0);
+    });
+    assert!(r.errors.is_empty(), "{:?}", r.errors);
+    continuous(&r);
+    let a = arc_of(&r, 3);
+    // Tangent junctions are smooth: no inserted moves; the arc runs on radius 5 + 1.
+    assert_eq!(r.motions_of(3).len(), 1);
+    xy(a.start, 10.0, -1.0, 1e-9, "arc start");
+    xy(a.end, 16.0, 5.0, 1e-9, "arc end");
+    near(a.centre[0], 10.0, TOL, "centre x");
+    near(a.centre[1], 5.0, TOL, "centre y");
+    // N4 ends at its S1 (the exit turns 26.57° inwards: an internal corner).
+    xy(r.end_of(4), 16.0, 10.0, 1e-9, "N4 at its S1");
+    xy(r.end_of(5), 20.0, 20.0, TOL, "exit at the programmed point");
+    // The same contour with G41 puts the tool inside: the concave offset of R5 with R = 6 is error 19.
+    let r = run_text(&text.replace("G42 D1", "G41 D1"), Dialect::Gost20999, |o| {
+        o.initial_position = at(-10.0, -10.0, 0.0);
+        o.labs.correctors.insert(1, 6.0);
+    });
+    assert_eq!(r.error_codes(), ["E19"]);
 }
 
 #[test]

@@ -22,8 +22,11 @@
 //! the tool where the held move ends (S2 at an internal corner, S1 otherwise); the inserted corner
 //! moves follow the break. Stanok looks ahead over the break itself, so the manual's I/J/K hint in the
 //! block before a break is accepted but not needed ([decide] §4.9: a missing hint is no error).
-//! Corner moves take the next block's span and feed. Error 19 (iii): a move between two internal
-//! corners no longer than R. Arcs under compensation with R > 0 are not built yet (refused).
+//! Corner moves take the next block's span and feed. Arcs: t1/t2 are the tangents at the junction
+//! points; an arc keeps its centre and gets its start and end moved to the corner points, so at an
+//! internal corner it ends at S2, off its offset circle (the manual's intended inaccuracy δ; the
+//! Canon arc is then a slight spiral). Error 19: a concave arc whose offset radius would be ≤ 0
+//! (rule i), a move between two internal corners no longer than R (rule iii).
 //! Invariant: every released motion starts where the previous one ended.
 
 use super::Emit;
@@ -122,8 +125,74 @@ impl Comp {
         };
         let (s, e) = (plane_of(&m.start(), plane), plane_of(&m.end(), plane));
         let d = sub(e, s);
-        let length = d[0].hypot(d[1]);
-        if length <= 1e-9 {
+        let chord = d[0].hypot(d[1]);
+        let rapid = matches!(c.value, Canon::StraightTraverse(_));
+        let active = self.move_.is_some() || bc.after != 0;
+        // Tangents at the start and the end of the move, in the plane; None = no motion in the
+        // plane (a break).
+        let tangents = match &c.value {
+            Canon::StraightFeed(_) | Canon::StraightTraverse(_) => {
+                (chord > 1e-9).then(|| ([d[0] / chord, d[1] / chord], [d[0] / chord, d[1] / chord]))
+            }
+            Canon::ArcFeed(a) => {
+                let (ia, ib, n) = plane.axes();
+                let cc = [a.centre[ia], a.centre[ib]];
+                let ccw = a.axis[n] > 0.0;
+                let rho = (s[0] - cc[0]).hypot(s[1] - cc[1]);
+                let tan = |q: [f64; 2]| {
+                    let u = sub(q, cc);
+                    let l = u[0].hypot(u[1]).max(1e-300);
+                    if ccw {
+                        [-u[1] / l, u[0] / l]
+                    } else {
+                        [u[1] / l, -u[0] / l]
+                    }
+                };
+                if rho <= 1e-9 {
+                    None
+                } else {
+                    if active {
+                        // Error 19 (i): the offset of a concave arc must keep a radius.
+                        let side = if bc.after != 0 {
+                            bc.after as f64
+                        } else {
+                            self.side
+                        };
+                        let offset = if ccw {
+                            rho - side * bc.radius
+                        } else {
+                            rho + side * bc.radius
+                        };
+                        if offset <= 0.0 && bc.radius > 0.0 {
+                            return Err(Diagnostic::manual(
+                                19,
+                                "the tool radius is not smaller than the radius of a concave arc",
+                                at,
+                            )
+                            .with_note(format!("arc radius {rho:.3} mm, R = {} mm", bc.radius)));
+                        }
+                        if self.move_.is_none() {
+                            return Err(Diagnostic::manual(
+                                35,
+                                "compensation starts with an arc",
+                                at,
+                            )
+                            .with_note("start cutter compensation with a G0 or G1 block"));
+                        }
+                    }
+                    Some((tan(s), tan(e)))
+                }
+            }
+            _ if active => {
+                return Err(Diagnostic::error(
+                    "lab::unsupported",
+                    "this motion cannot run under cutter radius compensation",
+                    at,
+                ))
+            }
+            _ => None,
+        };
+        let Some((t_start, t_end)) = tangents else {
             // No motion in the plane: a break.
             if self.move_.is_some() {
                 self.held.push(c);
@@ -131,26 +200,12 @@ impl Comp {
                 out.push(c);
             }
             return Ok(());
-        }
-        let rapid = matches!(c.value, Canon::StraightTraverse(_));
-        if !matches!(c.value, Canon::StraightFeed(_) | Canon::StraightTraverse(_)) {
-            if bc.radius == 0.0 || (bc.after == 0 && self.move_.is_none()) {
-                // No offset: the held move ends where it was programmed, the arc runs as is.
-                self.move_ = None;
-                out.append(&mut self.held);
-                out.push(c);
-                return Ok(());
-            }
-            return Err(Diagnostic::error(
-                "lab::unsupported",
-                "arcs under cutter radius compensation with a radius are not supported yet",
-                at,
-            )
-            .with_note("compensate a contour of straight lines, or use a corrector holding 0"));
-        }
-        let t = [d[0] / length, d[1] / length];
+        };
+        let length = chord;
+        let t = t_end;
         let feed = match &c.value {
             Canon::StraightFeed(l) => l.feed,
+            Canon::ArcFeed(a) => a.feed,
             _ => 0.0,
         };
         let Some(h) = self.move_.take() else {
@@ -173,7 +228,7 @@ impl Comp {
         let exit = bc.after == 0;
         let side2 = if exit { self.side } else { bc.after as f64 };
         let r = bc.radius;
-        let (end1, inserted, internal) = corner(&h, t, self.side, side2, r, exit);
+        let (end1, inserted, internal) = corner(&h, t_start, self.side, side2, r, exit);
         if internal && h.start_internal && !h.startup && h.length <= r {
             return Err(Diagnostic::manual(
                 19,
@@ -295,14 +350,18 @@ fn patch(c: &mut Canon, plane: Plane, q: [f64; 2], first: bool) {
         }
         set_plane(&mut m.end, plane, q);
     } else if let Canon::ArcFeed(a) = c {
-        set_plane(&mut a.start, plane, q);
+        if !first {
+            set_plane(&mut a.start, plane, q);
+        }
         set_plane(&mut a.end, plane, q);
     }
 }
 
 fn set_start(c: &mut Canon, p: Pose) {
-    if let Canon::StraightFeed(m) | Canon::StraightTraverse(m) = c {
-        m.start = p;
+    match c {
+        Canon::StraightFeed(m) | Canon::StraightTraverse(m) => m.start = p,
+        Canon::ArcFeed(a) => a.start = p,
+        _ => {}
     }
 }
 

@@ -634,3 +634,29 @@ fn g9_stops_exactly_at_the_end_of_its_block_only() {
         .iter()
         .any(|c| matches!(c, Canon::SetPathMode { .. })));
 }
+
+#[test]
+fn a_subprogram_without_m17_is_reported_at_its_end_and_check_goes_on() {
+    let text = "N1 L0201\nN2 G1 G91 X1. F100\nL0200\nN1 G1 G91 Y1. F100\n";
+    let r = gost_text(text, [0.0; 3]);
+    assert_eq!(r.error_codes(), ["lab::no-return"]);
+    assert_eq!(r.errors[0].span.line, 4);
+    let r = run_text(text, Dialect::Gost20999, |o| o.continue_after_error = true);
+    assert_eq!(r.error_codes(), ["lab::no-return"]);
+    assert_eq!(r.end_of(2), at(1.0, 1.0, 0.0), "back in the main program");
+}
+
+#[test]
+fn side_switch_on_the_contour_goes_from_s1_to_s3() {
+    let text = "N1 G1 G90 G17 G41 D1 X10. Y0 F100\nN2 X20.\nN3 G42 X30.\nN4 G40 X40. Y10.\n";
+    let r = run_text(text, Dialect::Gost20999, |o| {
+        o.initial_position = at(0.0, -10.0, 0.0);
+        o.labs.correctors.insert(1, 1.0);
+    });
+    assert!(r.errors.is_empty(), "{:?}", r.errors);
+    // N2 ends at its S1 (left, +Y), N3 starts with S1 → S3 (right, −Y) at X20.
+    xy(r.end_of(2), 20.0, 1.0, 1e-9, "N2 S1");
+    let n3 = r.motions_of(3);
+    assert_eq!(n3.len(), 2);
+    xy(n3[0].motion().unwrap().end(), 20.0, -1.0, 1e-9, "S3");
+}

@@ -332,3 +332,38 @@ fn reader_reads_both_flag_notations() {
     assert_eq!(d[0].code.to_string(), "nc31::syntax");
     assert_eq!(d[0].span.column, 8);
 }
+
+#[test]
+fn nc31_refusals_name_their_frame_and_execute_nothing() {
+    for (text, code, line) in [
+        ("N1 G2\n", "nc31::group-expected", 1),
+        ("N1 X100\nN2 X*\nN3 Z10\n", "nc31::missing-value", 2),
+        ("N1 X10*\nN2 M3\n", "nc31::bad-group", 2),
+        ("N1 M17\n", "nc31::return-in-main", 1),
+        ("N1 X10*\n", "nc31::unterminated-group", 1),
+        ("N1 P77\n", "nc31::no-such-frame", 1),
+        ("N1 G77\n", "nc31::unsupported", 1),
+        (
+            "N1 G2*\nN2 X20*\nN3 Z10*\nN4 P-30*\nN5 P11\n",
+            "nc31::arc-radius",
+            1,
+        ),
+        (
+            "N1 G3*\nN2 X0*\nN3 Z-2000*\nN4 P0*\nN5 P1000\n",
+            "nc31::arc-too-long",
+            1,
+        ),
+    ] {
+        let r = run_text(text, Dialect::Nc31, |_| {});
+        assert_eq!(r.error_codes(), [code], "{text}");
+        assert_eq!(r.errors[0].span.line, line, "{text}");
+    }
+    // A refused group leaves the position where it was.
+    let r = run_text(
+        "N1 X100\nN2 G2*\nN3 X20*\nN4 Z10*\nN5 P-30*\nN6 P11\n",
+        Dialect::Nc31,
+        |_| {},
+    );
+    assert_eq!(r.moves().len(), 1);
+    xz(r.state.position, 0.5, 0.0, TOL, "after N1 only");
+}

@@ -94,10 +94,20 @@ impl IsoRun {
             };
             let Some(src) = self.programs[top.prog].lines.get(top.line) else {
                 if self.stack.len() > 1 {
+                    // Reported at the subprogram's last line; the run goes back to the caller
+                    // (so that `stanok check` goes on instead of reading past the end again).
+                    let span = self.programs[top.prog]
+                        .lines
+                        .iter()
+                        .rev()
+                        .find(|l| !l.text.trim().is_empty())
+                        .map(|l| l.at.span(&l.text, 0, l.text.len()))
+                        .unwrap_or_default();
+                    self.stack.pop();
                     return Err(at_file(Diagnostic::error(
                         "lab::no-return",
                         "the subprogram ends without M17",
-                        Span::default(),
+                        span,
                     )));
                 }
                 // A program (or fragment) without M2/M30 ends with its text; a move held for

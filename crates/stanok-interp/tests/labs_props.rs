@@ -161,3 +161,18 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn a_program_beyond_the_memory_bound_is_refused_not_truncated_silently() {
+    // 16 MiB + a multi-byte character across the bound.
+    let mut text = "N1 X10\n".repeat((16 << 20) / 7);
+    while text.len() < (16 << 20) - 1 {
+        text.push(' ');
+    }
+    text.push('°'); // bytes 16 MiB − 1 and 16 MiB: the bound falls inside it
+    text.push('\n');
+    let first = Interpreter::from_text(&text, InterpOptions::new(Dialect::Nc31))
+        .find_map(|r| r.err())
+        .expect("refused");
+    assert_eq!(first.code.to_string(), "lab::too-large");
+}

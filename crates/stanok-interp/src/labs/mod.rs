@@ -243,6 +243,8 @@ pub(crate) struct LabRun {
     /// Spans of the errors reported so far: `stanok check` goes on after an error, and a jump back
     /// over a bad frame must not report it again.
     reported: Vec<Span>,
+    /// The program is longer than [`MAX_PROGRAM_BYTES`] (reported by the first step).
+    too_large: bool,
 }
 
 enum Front {
@@ -254,8 +256,7 @@ impl LabRun {
     /// Splits the program text into its programs and loads the subprogram library.
     pub fn new(text: &str, opts: &InterpOptions) -> LabRun {
         let dialect = opts.dialect;
-        let text = prepare(text, opts);
-        let mut programs = split_programs(&text, dialect, None);
+        let mut programs = split_programs(&prepare(text, opts), dialect, None);
         programs.extend(library(opts));
         let state = LabState::new(dialect, opts);
         let front = match dialect {
@@ -265,6 +266,7 @@ impl LabRun {
         LabRun {
             front,
             reported: Vec::new(),
+            too_large: text.len() > MAX_PROGRAM_BYTES,
         }
     }
 
@@ -284,6 +286,13 @@ impl LabRun {
         warnings: &mut Vec<Diagnostic>,
         opts: &InterpOptions,
     ) -> Result<(bool, u64), Diagnostic> {
+        if std::mem::take(&mut self.too_large) {
+            return Err(Diagnostic::error(
+                "lab::too-large",
+                format!("a lab program is read into memory: at most {MAX_PROGRAM_BYTES} bytes"),
+                Span::new(0, 0, 1, 1),
+            ));
+        }
         let r = match &mut self.front {
             Front::Nc31(r) => r.step(warnings, opts),
             Front::Iso(r) => r.step(warnings, opts),
@@ -305,7 +314,11 @@ impl LabRun {
 
 /// The text as the reader will see it: the fixture conventions removed when asked for.
 fn prepare(text: &str, opts: &InterpOptions) -> String {
-    let text = &text[..text.len().min(MAX_PROGRAM_BYTES)];
+    let mut cut = text.len().min(MAX_PROGRAM_BYTES);
+    while !text.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    let text = &text[..cut];
     if opts.strip_fixture_comments {
         stanok_syntax::labs::strip_fixture_comments(text)
     } else {

@@ -238,10 +238,25 @@ fn flange_listing_flags_groups_and_per_tool_positions() {
             .1
     };
     let codes = r.error_codes();
-    // N100 L0201 (subprogram 02 not loaded), N101 G25 group, N103–N107 ~S, N144 ~45°, N152 G31,
-    // N185 ~S group, N192 G25 group, N197's jump back bounded.
+    // N100 L0201 (subprogram 02 not loaded), N101 G25 + P2008 (frames N2…N8 do not exist: the
+    // spec's "does not fit the aaabbb pattern"), N103–N107 ~S, N144 ~45°, N152 G31, N185 ~S
+    // group; N192–N194 repeat N101…N189 12 times; N197's jump back is bounded.
     assert_eq!(codes[0], "nc31::no-subprogram");
-    assert_eq!(codes[1], "nc31::unsupported");
+    assert_eq!(codes[1], "nc31::no-such-frame");
+    assert_eq!(r.errors[1].span.line, 50, "N101");
+    assert!(codes.contains(&"nc31::unsupported".to_string()));
+    // The G25 repeat ran the body again: T2's facing move N117 comes 1 + 12 times before the
+    // first jump back (and again after each jump).
+    let m5 = r
+        .commands
+        .iter()
+        .position(|c| c.block_number == Some(196))
+        .expect("N196 M5");
+    let n117 = r.commands[..m5]
+        .iter()
+        .filter(|c| c.block_number == Some(117) && c.value.motion().is_some())
+        .count();
+    assert_eq!(n117, 13, "N117 before N196");
     assert!(codes.contains(&"nc31::unknown-chamfer".to_string()));
     assert!(codes.contains(&"nc31::too-many-jumps".to_string()));
     // T2 (radius = diameter / 2).
@@ -366,4 +381,22 @@ fn nc31_refusals_name_their_frame_and_execute_nothing() {
     );
     assert_eq!(r.moves().len(), 1);
     xz(r.state.position, 0.5, 0.0, TOL, "after N1 only");
+}
+
+#[test]
+fn g25_repeats_a_section_k_more_times_then_goes_on() {
+    // Frames N2…N3 run once in the program flow, then 3 more times by N4–N6, then N7.
+    let text = "N1 X1000\nN2 Z-1000#\nN3 X200#\nN4 G25*\nN5 P002003*\nN6 R3\nN7 Z5000\n";
+    let r = run_text(text, Dialect::Nc31, |_| {});
+    assert!(r.errors.is_empty(), "{:?}", r.errors);
+    let zs: Vec<f64> = r.moves().iter().map(|m| m.1.z).collect();
+    assert_eq!(
+        zs,
+        [0.0, -10.0, -10.0, -20.0, -20.0, -30.0, -30.0, -40.0, -40.0, 50.0]
+    );
+    // X: 5 mm radius, then +1 mm radius per run of N3.
+    near(r.moves()[8].1.x, 9.0, TOL, "four runs of N3");
+    // A section containing its own G25 group is refused.
+    let r = run_text("N1 G25*\nN2 P001003*\nN3 R2\n", Dialect::Nc31, |_| {});
+    assert_eq!(r.error_codes(), ["nc31::bad-repeat"]);
 }

@@ -35,6 +35,7 @@ mod iso_comp;
 mod iso_motion;
 mod iso_words;
 mod nc31;
+mod nc31_moves;
 
 use crate::InterpOptions;
 use stanok_canon::{Canon, Diagnostic, FeedMode, Plane, Pose, Span, Spanned, SpindleDirection};

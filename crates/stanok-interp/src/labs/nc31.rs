@@ -10,7 +10,8 @@
 //!   G2*/G3* X* Z* P* P [F]     arc of less than 90° (§2.6.1)
 //!   G12*/G13* X* Z* [F]        quarter-circle rounding (§2.6.2)
 //!   G94 | G95 | F | S | M | T  modal frames;   P nnn  jump to frame nnn (§2.10)
-//!   G31*, G25*, ~S …*, L, R     recognised, refused as unsupported (the document gives no cycle)
+//!   G25* P aaabbb* [R k]       repeat frames aaa…bbb k more times (§2.10 best reading)
+//!   G31*, ~S …*, R             recognised, refused as unsupported (the document gives no rule)
 //! ```
 //!
 //! Units: X is the diameter in 0.01 mm (radius = value × 0.005 mm), Z and the arc's P words 0.01
@@ -22,31 +23,45 @@
 //! and is modal; an F inside a group is 0.01 mm/min (G94) or 0.01 mm/rev (G95, [decide]: the
 //! document gives no unit) per unit and holds for that group only. RAPID frames keep the modal F.
 
+use super::nc31_moves::{
+    arc_group, axis_target, feed_line, get, line_group, rounding_group, set, traverse,
+};
 use super::{Emit, LabState, Program, MAX_JUMPS};
 use crate::InterpOptions;
-use stanok_canon::{
-    ArcMove, Canon, Diagnostic, FeedMode, LineMove, Plane, Pose, Span, SpindleDirection,
-};
+use stanok_canon::{Canon, Diagnostic, FeedMode, Span, SpindleDirection};
 use stanok_syntax::labs::nc31::{parse_line, Body, Chamfer, Line};
 
 /// Radius mm per unit of an X (diameter) value.
-const X_MM: f64 = 0.005;
+pub(super) const X_MM: f64 = 0.005;
 /// mm per unit of Z and of the arc's P words.
-const Z_MM: f64 = 0.01;
+pub(super) const Z_MM: f64 = 0.01;
 
 pub(crate) struct Nc31Run {
     programs: Vec<Program>,
     /// (program, next line) of the program running and of each caller.
     stack: Vec<(usize, usize)>,
+    /// Active `G25` repeats, innermost last.
+    repeats: Vec<Repeat>,
     jumps: u32,
     pub state: LabState,
 }
 
+/// A `G25* P aaabbb* R k` repeat ([decide] §2.10, the spec's best reading): frames aaa…bbb run k
+/// more times, then the program goes on after the G25 group.
+#[derive(Debug, Clone, Copy)]
+struct Repeat {
+    depth: usize,
+    start: usize,
+    last: usize,
+    left: u32,
+    back: usize,
+}
+
 /// One frame of a group, with its span.
-struct Frame {
-    number: u32,
-    span: Span,
-    body: Body,
+pub(super) struct Frame {
+    pub(super) number: u32,
+    pub(super) span: Span,
+    pub(super) body: Body,
 }
 
 type StepResult = Result<(bool, Option<Emit>, u64), Diagnostic>;
@@ -56,6 +71,7 @@ impl Nc31Run {
         Nc31Run {
             programs,
             stack: vec![(0, 0)],
+            repeats: Vec::new(),
             jumps: 0,
             state,
         }
@@ -149,16 +165,61 @@ impl Nc31Run {
         }
         self.stack.last_mut().expect("frame").1 = line;
         if let Some(d) = error {
+            let _ = self.section_end(first_line, line, d.span);
             return Err(at_file(d));
         }
         let span = group_span(&frames);
         let mut emit = Emit::new(span, Some(frames[0].number));
         let mut st = self.state.clone();
         let mut ctl = Control::Next;
-        execute(&frames, &mut st, &mut emit, &mut ctl, warnings, opts).map_err(at_file)?;
+        let done = execute(&frames, &mut st, &mut emit, &mut ctl, warnings, opts);
+        // A failing unit ends a repeated section too (`stanok check` goes on after it).
+        let repeated = self.section_end(first_line, line, span);
+        done.map_err(at_file)?;
+        repeated.map_err(at_file)?;
         let units = frames.len() as u64;
         match ctl {
             Control::Next => {}
+            Control::Repeat(from, to, times, at) => {
+                let start = self.find_frame(prog, from);
+                let last = self.find_frame(prog, to);
+                let (Some(start), Some(last)) = (start, last) else {
+                    return Err(at_file(Diagnostic::error(
+                        "nc31::no-such-frame",
+                        format!(
+                            "G25 repeats frames N{from}…N{to}, which the program does not have"
+                        ),
+                        at,
+                    )));
+                };
+                if start > last || (start..=last).contains(&first_line) {
+                    return Err(at_file(Diagnostic::error(
+                        "nc31::bad-repeat",
+                        format!(
+                            "G25: N{from}…N{to} is not a section before or after the G25 group"
+                        ),
+                        at,
+                    )));
+                }
+                if times > 0 {
+                    self.count_jump(at).map_err(at_file)?;
+                    if self.repeats.len() >= 5 {
+                        return Err(at_file(Diagnostic::error(
+                            "nc31::nesting",
+                            "G25 repeats nested deeper than 5",
+                            at,
+                        )));
+                    }
+                    self.repeats.push(Repeat {
+                        depth: self.stack.len(),
+                        start,
+                        last,
+                        left: times,
+                        back: line,
+                    });
+                    self.stack.last_mut().expect("frame").1 = start;
+                }
+            }
             Control::End => {
                 self.state = st;
                 return Ok((true, Some(emit), units));
@@ -213,6 +274,33 @@ impl Nc31Run {
         Ok((false, Some(emit), units))
     }
 
+    /// After the unit on lines `first..line`: at the end of a repeated section, run it once more
+    /// or go back after its G25 group.
+    /// Every repetition counts against [`MAX_JUMPS`]; past it the repeat ends with an error.
+    fn section_end(&mut self, first: usize, line: usize, at: Span) -> Result<(), Diagnostic> {
+        let depth = self.stack.len();
+        let Some(rep) = self.repeats.last_mut() else {
+            return Ok(());
+        };
+        if rep.depth != depth || !(first..line).contains(&rep.last) {
+            return Ok(());
+        }
+        rep.left -= 1;
+        let (left, start, back) = (rep.left, rep.start, rep.back);
+        if left == 0 {
+            self.repeats.pop();
+            self.stack.last_mut().expect("frame").1 = back;
+            return Ok(());
+        }
+        self.stack.last_mut().expect("frame").1 = start;
+        if let Err(e) = self.count_jump(at) {
+            self.repeats.pop();
+            self.stack.last_mut().expect("frame").1 = back;
+            return Err(e);
+        }
+        Ok(())
+    }
+
     fn count_jump(&mut self, at: Span) -> Result<(), Diagnostic> {
         self.jumps += 1;
         if self.jumps > MAX_JUMPS {
@@ -236,6 +324,8 @@ impl Nc31Run {
 /// What happens after a group.
 enum Control {
     Next,
+    /// G25: frames (from, to), times.
+    Repeat(u32, u32, u32, Span),
     End,
     Jump(u32, Span),
     Call(u32, Span),
@@ -243,7 +333,7 @@ enum Control {
 }
 
 /// The span from the first frame's start to the last frame's end.
-fn group_span(frames: &[Frame]) -> Span {
+pub(super) fn group_span(frames: &[Frame]) -> Span {
     let (a, b) = (frames[0].span, frames[frames.len() - 1].span);
     Span::new(a.start, b.end, a.line, a.column)
 }
@@ -257,7 +347,7 @@ fn unsupported(what: &str, at: Span) -> Diagnostic {
     .with_note("spec lab-collection §2.9–§2.10")
 }
 
-fn value_of(f: &Frame) -> Result<i64, Diagnostic> {
+pub(super) fn value_of(f: &Frame) -> Result<i64, Diagnostic> {
     f.body.value.ok_or_else(|| {
         Diagnostic::error(
             "nc31::missing-value",
@@ -293,7 +383,7 @@ fn execute(
                 &format!("the canned cycle G{}", value_of(first)?),
                 first.span,
             )),
-            25 => Err(unsupported("the G25 repeat/call group", first.span)),
+            25 => repeat_group(frames, ctl),
             g => Err(Diagnostic::error(
                 "nc31::bad-group",
                 format!("G{g} does not start a group"),
@@ -310,6 +400,44 @@ fn execute(
             b.address_span,
         )),
     }
+}
+
+/// `G25* P aaabbb* [R k]`: repeat frames aaa…bbb k times (1 without R).
+fn repeat_group(frames: &[Frame], ctl: &mut Control) -> Result<(), Diagnostic> {
+    let bad = |at: Span| {
+        Diagnostic::error(
+            "nc31::bad-group",
+            "a repeat group is G25*, P aaabbb* (first and last frame), R k (times)",
+            at,
+        )
+    };
+    let p = frames.get(1).ok_or_else(|| bad(frames[0].span))?;
+    if p.body.address != b'P' || frames.len() > 3 {
+        return Err(bad(p.span));
+    }
+    let v = value_of(p)?;
+    if v < 0 {
+        return Err(bad(p.span));
+    }
+    let times = match frames.get(2) {
+        Some(r) if r.body.address == b'R' => value_of(r)?,
+        Some(r) => return Err(bad(r.span)),
+        None => 1,
+    };
+    if !(0..=999).contains(&times) {
+        return Err(Diagnostic::error(
+            "nc31::bad-repeat",
+            "the repeat count R is 0…999",
+            frames[2].span,
+        ));
+    }
+    *ctl = Control::Repeat(
+        (v / 1000) as u32,
+        (v % 1000) as u32,
+        times as u32,
+        frames[0].span,
+    );
+    Ok(())
 }
 
 /// A frame on its own.
@@ -517,264 +645,4 @@ fn single(
         _ => unreachable!("the reader admits only G F X Z P M S T L R"),
     }
     Ok(())
-}
-
-/// The target of an axis value: X in diameter units → radius, Z in 0.01 mm.
-fn axis_target(axis: usize, v: i64, incremental: bool, current: f64) -> f64 {
-    let mm = v as f64 * if axis == 0 { X_MM } else { Z_MM };
-    if incremental {
-        current + mm
-    } else {
-        mm
-    }
-}
-
-/// `X* Z [F]`, `Z* X [F]`, `X* F`, `Z* F`.
-fn line_group(
-    frames: &[Frame],
-    st: &mut LabState,
-    out: &mut Emit,
-    warnings: &mut Vec<Diagnostic>,
-) -> Result<(), Diagnostic> {
-    // A flag on the group's first frame covers the group (spec §2.5.3 recommendation).
-    let group_incremental = frames[0].body.incremental;
-    let mut end = st.position;
-    let mut seen = [false; 3];
-    let mut rapid = false;
-    let mut feed = None;
-    for (k, f) in frames.iter().enumerate() {
-        let b = &f.body;
-        match b.address {
-            b'X' | b'Z' if feed.is_none() => {
-                let axis = if b.address == b'X' { 0 } else { 2 };
-                if seen[axis] {
-                    return Err(Diagnostic::error(
-                        "nc31::bad-group",
-                        "an axis twice in one group",
-                        f.span,
-                    ));
-                }
-                seen[axis] = true;
-                let v = value_of(f)?;
-                rapid |= b.rapid;
-                let t = axis_target(
-                    axis,
-                    v,
-                    group_incremental || b.incremental,
-                    get(&st.position, axis),
-                );
-                set(&mut end, axis, t);
-            }
-            b'F' if k == frames.len() - 1 && k > 0 => {
-                let v = value_of(f)? as f64;
-                if v <= 0.0 {
-                    return Err(Diagnostic::error(
-                        "nc31::bad-feed",
-                        "F must be positive",
-                        f.span,
-                    ));
-                }
-                feed = Some(v * 0.01);
-            }
-            _ => {
-                return Err(Diagnostic::error(
-                    "nc31::bad-group",
-                    "a line group is X* Z [F] (or Z* X [F], X* F, Z* F)",
-                    f.span,
-                ))
-            }
-        }
-    }
-    if rapid {
-        traverse(st, out, end);
-    } else {
-        // The group's own F holds only inside the group (§2.7).
-        let f = st.path_feed(feed.unwrap_or(st.feed), out.span, warnings);
-        feed_line(st, out, end, f);
-    }
-    Ok(())
-}
-
-/// Checks the group's frame addresses against the expected order; returns the optional last F.
-fn expect_frames(frames: &[Frame], order: &[u8], what: &str) -> Result<Option<f64>, Diagnostic> {
-    let n = order.len();
-    let ok_len = frames.len() == n || frames.len() == n + 1;
-    let bad = |at: Span| {
-        Diagnostic::error(
-            "nc31::bad-group",
-            format!("{what}: the frames must come in the order {}", {
-                let mut s: Vec<String> = order.iter().map(|c| (*c as char).to_string()).collect();
-                s.push("[F]".into());
-                s.join(", ")
-            }),
-            at,
-        )
-    };
-    if !ok_len {
-        return Err(bad(group_span(frames)));
-    }
-    for (f, &a) in frames.iter().zip(order) {
-        if f.body.address != a || f.body.chamfer.is_some() {
-            return Err(bad(f.span));
-        }
-        value_of(f)?;
-    }
-    match frames.get(n) {
-        Some(f) if f.body.address == b'F' => {
-            let v = value_of(f)? as f64;
-            if v <= 0.0 {
-                return Err(Diagnostic::error(
-                    "nc31::bad-feed",
-                    "F must be positive",
-                    f.span,
-                ));
-            }
-            Ok(Some(v * 0.01))
-        }
-        Some(f) => Err(bad(f.span)),
-        None => Ok(None),
-    }
-}
-
-/// The end point of an arc or rounding group in (radius, Z) mm.
-fn group_end(frames: &[Frame], st: &LabState) -> (f64, f64) {
-    let inc = frames[0].body.incremental;
-    let x = &frames[1].body;
-    let z = &frames[2].body;
-    let r = axis_target(0, x.value.unwrap_or(0), inc || x.incremental, st.position.x);
-    let zz = axis_target(2, z.value.unwrap_or(0), inc || z.incremental, st.position.z);
-    (r, zz)
-}
-
-/// `G2*/G3* X* Z* P* P [F]` (spec §2.6.1): centre = start − (P4 on the radius, P5).
-fn arc_group(
-    frames: &[Frame],
-    st: &mut LabState,
-    out: &mut Emit,
-    warnings: &mut Vec<Diagnostic>,
-    opts: &InterpOptions,
-) -> Result<(), Diagnostic> {
-    let feed = expect_frames(frames, b"GXZPP", "an arc group")?;
-    let g2 = frames[0].body.value == Some(2);
-    let (er, ez) = group_end(frames, st);
-    let (sr, sz) = (st.position.x, st.position.z);
-    let pr = frames[3].body.value.unwrap_or(0) as f64 * Z_MM;
-    let pz = frames[4].body.value.unwrap_or(0) as f64 * Z_MM;
-    let (cr, cz) = (sr - pr, sz - pz);
-    let r_start = pr.hypot(pz);
-    let r_end = (er - cr).hypot(ez - cz);
-    if (r_start - r_end).abs() > opts.arc_tolerance_mm || r_start <= 0.0 {
-        return Err(Diagnostic::error(
-            "nc31::arc-radius",
-            "the arc's end point is not on its circle",
-            out.span,
-        )
-        .with_note(format!(
-            "radius at the start {r_start:.4} mm, at the end {r_end:.4} mm (tolerance {} mm)",
-            opts.arc_tolerance_mm
-        )));
-    }
-    let sweep = sweep_deg(g2, (cr, cz), (sr, sz), (er, ez));
-    // The document restricts one group to arcs of less than 90° ([decide]: enforced, with the
-    // rounding groups G12/G13 for quarters).
-    if sweep > 90.0 + 1e-6 {
-        return Err(Diagnostic::error(
-            "nc31::arc-too-long",
-            format!("an arc group turns less than 90°, this one {sweep:.3}°"),
-            out.span,
-        )
-        .with_note("split the arc, or use G12/G13 for a quarter circle"));
-    }
-    let f = st.path_feed(feed.unwrap_or(st.feed), out.span, warnings);
-    arc(st, out, g2, (er, ez), (cr, cz), f);
-    Ok(())
-}
-
-/// `G12*/G13* X* Z* [F]` (spec §2.6.2): a quarter circle tangent to both axes; |Δr| = |ΔZ| = R,
-/// centre (r_S, z_E) or (r_E, z_S), whichever turns 90° in the commanded sense.
-fn rounding_group(
-    frames: &[Frame],
-    st: &mut LabState,
-    out: &mut Emit,
-    warnings: &mut Vec<Diagnostic>,
-    opts: &InterpOptions,
-) -> Result<(), Diagnostic> {
-    let feed = expect_frames(frames, b"GXZ", "a rounding group")?;
-    let g12 = frames[0].body.value == Some(12);
-    let (er, ez) = group_end(frames, st);
-    let (sr, sz) = (st.position.x, st.position.z);
-    let (dr, dz) = (er - sr, ez - sz);
-    // [decide] |Δr| ≠ |ΔZ| is refused: the CNC computes the radius from a quarter circle.
-    if (dr.abs() - dz.abs()).abs() > opts.arc_tolerance_mm || dr.abs() < 1e-9 {
-        return Err(Diagnostic::error(
-            "nc31::rounding-not-quarter",
-            "a rounding needs equal radial and axial travel",
-            out.span,
-        )
-        .with_note(format!("Δr = {dr:.3} mm, ΔZ = {dz:.3} mm")));
-    }
-    let centre = [(sr, ez), (er, sz)]
-        .into_iter()
-        .find(|&c| (sweep_deg(g12, c, (sr, sz), (er, ez)) - 90.0).abs() < 1e-3)
-        .unwrap_or((sr, ez));
-    let f = st.path_feed(feed.unwrap_or(st.feed), out.span, warnings);
-    arc(st, out, g12, (er, ez), centre, f);
-    Ok(())
-}
-
-/// Sweep in degrees from s to e about c, counter-clockwise in the Z-right/X-up view when `ccw`.
-/// Points are (r, z).
-fn sweep_deg(ccw: bool, c: (f64, f64), s: (f64, f64), e: (f64, f64)) -> f64 {
-    // Plane coordinates (Z, X): CCW from +Z towards +X.
-    let a = stanok_geom::ccw_sweep([c.1, c.0], [s.1, s.0], [e.1, e.0], 1e-9).to_degrees();
-    if ccw {
-        a
-    } else {
-        (360.0 - a) % 360.0
-    }
-}
-
-fn get(p: &Pose, axis: usize) -> f64 {
-    p.to_array()[axis]
-}
-
-fn set(p: &mut Pose, axis: usize, v: f64) {
-    let mut a = p.to_array();
-    a[axis] = v;
-    *p = Pose::from_array(a);
-}
-
-fn traverse(st: &mut LabState, out: &mut Emit, end: Pose) {
-    out.push(Canon::StraightTraverse(LineMove {
-        start: st.position,
-        end,
-        feed: 0.0,
-    }));
-    st.position = end;
-}
-
-fn feed_line(st: &mut LabState, out: &mut Emit, end: Pose, feed: f64) {
-    out.push(Canon::StraightFeed(LineMove {
-        start: st.position,
-        end,
-        feed,
-    }));
-    st.position = end;
-}
-
-/// An arc in the ZX plane; `ccw` about +Y (Z towards X).
-fn arc(st: &mut LabState, out: &mut Emit, ccw: bool, e: (f64, f64), c: (f64, f64), feed: f64) {
-    let mut end = st.position;
-    end.x = e.0;
-    end.z = e.1;
-    out.push(Canon::ArcFeed(ArcMove {
-        start: st.position,
-        end,
-        centre: [c.0, st.position.y, c.1],
-        axis: [0.0, if ccw { 1.0 } else { -1.0 }, 0.0],
-        turns: 1,
-        plane: Plane::ZX,
-        feed,
-    }));
-    st.position = end;
 }

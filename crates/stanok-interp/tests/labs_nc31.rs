@@ -245,6 +245,10 @@ fn flange_listing_flags_groups_and_per_tool_positions() {
     assert_eq!(codes[1], "nc31::no-such-frame");
     assert_eq!(r.errors[1].span.line, 50, "N101");
     assert!(codes.contains(&"nc31::unsupported".to_string()));
+    // As printed, N189 ends with `*`: N190 P192 closes the ~S group (refused with it), so the data
+    // frame N191 `P 21000` runs as a jump to a frame that does not exist.
+    let n191 = r.errors.iter().find(|d| d.span.line == 138).expect("N191");
+    assert_eq!(n191.code.to_string(), "nc31::no-such-frame");
     // The G25 repeat ran the body again: T2's facing move N117 comes 1 + 12 times before the
     // first jump back (and again after each jump).
     let m5 = r

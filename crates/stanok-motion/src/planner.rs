@@ -11,7 +11,10 @@
 //! (`entry`). `entry_max` is 0 when the piece starts from rest (an exact stop), otherwise the lower
 //! of the two pieces' `v_max` — pieces join with a continuous tangent (the path builder blended the
 //! corners), so the speed only has to be continuous. Speeds are related by the piece's reach
-//! function: BRISK √(v² + 2aL), SOFT the S-curve distance inverted ([`crate::profile_scurve::reach`]).
+//! function: BRISK √(v² + 2aL), SOFT the S-curve distance inverted and made
+//! monotone ([`crate::profile_scurve::reach`]: the exact S-curve reach falls as the start speed
+//! rises below a²/2j, which would let a later raise lower an earlier, already released bound).
+//! Both passes and the locking below rely on reach being non-decreasing in v.
 //!
 //! On every push:
 //! 1. **Reverse pass**, from the tail (whose exit is 0: the path may end there) back to the piece

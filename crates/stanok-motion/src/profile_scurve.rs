@@ -126,13 +126,47 @@ fn sane(x: f64) -> f64 {
     }
 }
 
-/// The highest speed w ≥ v with D(v → w) ≤ `length` (and so, read backwards, the highest entry
-/// speed from which a piece can slow down to v). Closed form, no iteration over the distance:
+/// The planner's reach: the highest speed w ≥ v with D(v → w) ≤ `length` (and so, read
+/// backwards, the highest entry speed from which a piece can slow down to v), made monotone.
+///
+/// ## Why monotone
+/// With zero acceleration at both ends of a ramp, the exact reach w(v) is *not* increasing in v:
+/// a faster start reaches a lower top speed while v < v*. (Differentiating (w² − v²)/a +
+/// (v + w)·a/j = 2L, the full-acceleration ramp, gives dw/dv = 0 at v = a²/2j; differentiating
+/// (v + w)·√(w − v) = L·√j, the jerk-only ramp, gives it at w = 3v.) The look-ahead planner needs
+/// the opposite: raising a later boundary speed must never lower an earlier one's bound, or a speed
+/// it has already released stops being able to slow down to its successor (seen as a piece
+/// squeezed out of shape: finite-difference acceleration 2× the limit). So this returns
+/// w(max(v, v*)) with v* the minimiser of w, which is
+/// * ≤ w(v) — every pair it allows is feasible, since any target in [v, w(v)] is reachable
+///   (D grows with the target speed) — and
+/// * non-decreasing in v.
+///
+/// v*: the jerk-only minimum v_j = (L·√j / (4√2))^(2/3) (from w = 3v, Δ = 2v) when its ramp stays
+/// below a (2·v_j ≤ a²/j); otherwise the full-acceleration minimum a²/2j.
+pub fn reach(v: f64, length: f64, a: f64, j: f64) -> f64 {
+    let (a, j) = (sane(a), sane(j));
+    if length.is_nan() || length <= 0.0 || !v.is_finite() {
+        return v.max(0.0);
+    }
+    let v_jerk = (length * j.sqrt() / (4.0 * std::f64::consts::SQRT_2)).powf(2.0 / 3.0);
+    let v_star = if 2.0 * v_jerk <= a * a / j {
+        v_jerk
+    } else {
+        0.5 * a * a / j
+    };
+    let w = reach_exact(v.max(v_star), length, a, j);
+    // Never below the start speed (a start above v* gives w ≥ v by construction).
+    w.max(v.max(0.0))
+}
+
+/// The highest speed w ≥ v with D(v → w) ≤ `length` (exact, not monotone in v: see [`reach`]).
+/// Closed form, no iteration over the distance:
 /// * if L ≥ D at Δ = a²/j (the ramp reaches a): (2v + Δ)(Δ/a + a/j) = 2L, a quadratic in Δ;
 /// * otherwise, with x = √(Δ/j) (half the ramp time): j·x³ + 2v·x = L, a convex increasing cubic,
 ///   solved by Newton's method from min(∛(L/j), L/2v), which lies above the root, so the iterates
 ///   fall monotonically onto it (8 steps: far below 1e-15 relative).
-pub fn reach(v: f64, length: f64, a: f64, j: f64) -> f64 {
+fn reach_exact(v: f64, length: f64, a: f64, j: f64) -> f64 {
     let (a, j) = (sane(a), sane(j));
     let v = v.max(0.0);
     if length.is_nan() || length <= 0.0 || !v.is_finite() {
@@ -295,6 +329,56 @@ mod tests {
         }
     }
 
+    /// The planner's reach is monotone, never above the exact reach (so every pair it allows is
+    /// feasible, to 1e-6 of L, unless Δv < 1e-7·v, where Δv itself is rounding), equal to it above v*, and at v = 0 equal to
+    /// the exact reach's minimum over all
+    /// start speeds (20 000 linear and 300 logarithmic starts) — in both ramp regimes.
+    #[test]
+    fn reach_is_the_monotone_hull_of_the_exact_reach() {
+        for (l, a, j) in [
+            (2.683, 883.9, 5000.0), // the blend of the failing arc case: full-acceleration minimum
+            (0.01, 1000.0, 20_000.0), // jerk-only minimum
+            (100.0, 1000.0, 20_000.0),
+            (1e-6, 1000.0, 20_000.0),
+            (5.0, 50.0, 1e6),
+        ] {
+            let mut prev = 0.0;
+            let mut min_exact = f64::INFINITY;
+            for k in 0..20_000 {
+                let v = k as f64 * 0.05;
+                let (m, e) = (reach(v, l, a, j), reach_exact(v, l, a, j));
+                assert!(
+                    m >= prev,
+                    "{l} {a} {j}: not monotone at v = {v}: {m} < {prev}"
+                );
+                assert!(
+                    m <= e * (1.0 + 1e-12),
+                    "{l} {a} {j}: above the exact reach at {v}"
+                );
+                assert!(
+                    ramp_distance(v, m, a, j) <= l * (1.0 + 1e-6) || m - v <= 1e-7 * v,
+                    "{l} {a} {j} v {v}: D {} m {m} e {e}",
+                    ramp_distance(v, m, a, j)
+                );
+                prev = m;
+                min_exact = min_exact.min(e);
+            }
+            // reach(0) is the exact reach's minimum: not above the grid's, and a local minimum.
+            let r0 = reach(0.0, l, a, j);
+            assert!(
+                r0 <= min_exact * (1.0 + 1e-12),
+                "{l} {a} {j}: {r0} vs {min_exact}"
+            );
+            for k in 0..=300 {
+                let v = 10f64.powf(-12.0 + k as f64 * 0.05);
+                assert!(
+                    reach_exact(v, l, a, j) >= r0 * (1.0 - 1e-12),
+                    "{l} {a} {j}: below at {v}"
+                );
+            }
+        }
+    }
+
     #[test]
     fn reach_inverts_the_distance() {
         for (v, l) in [
@@ -305,7 +389,7 @@ mod tests {
             (5.0, 7.5),
             (0.0, 7.5),
         ] {
-            let w = reach(v, l, 1000.0, 20_000.0);
+            let w = reach_exact(v, l, 1000.0, 20_000.0);
             let d = ramp_distance(v, w, 1000.0, 20_000.0);
             assert!(d <= l && (d - l).abs() <= 1e-9 * l.max(1.0), "{v} {l}: {d}");
         }

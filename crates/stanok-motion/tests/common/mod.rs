@@ -127,6 +127,19 @@ impl<'a> PathCursor<'a> {
         PathCursor { points, at: 0 }
     }
 
+    /// The distance from `q` to the polyline, exact when it is at most `bound`: the window search
+    /// can only over-estimate (it takes a minimum over real chords, but may miss the nearest one
+    /// where the path passes near an earlier part of itself), so a result above `bound` is
+    /// checked against every chord.
+    pub fn distance_within(&mut self, q: &Point9, bound: f64) -> f64 {
+        let d = self.distance(q);
+        if d <= bound {
+            d
+        } else {
+            dist_to_polyline(q, self.points)
+        }
+    }
+
     pub fn distance(&mut self, q: &Point9) -> f64 {
         let n = self.points.len();
         if n < 2 {

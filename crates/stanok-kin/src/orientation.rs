@@ -14,7 +14,8 @@
 //! * [`slerp`]: the great-circle interpolation of ORIVECT.
 //! * [`reduce_180`]: an angle word reduced into [−180, 180] (spec axioma-4 §5.4).
 
-use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+pub use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Rotation3, Unit};
 
 /// A vector shorter than this is taken as zero (a programmed vector, or a projection that vanishes
 /// at a singular pose).

@@ -66,9 +66,10 @@ fn the_millturn_reproduces_mazatrol_oracle_a_after_n40() {
 
 #[test]
 fn kinematics_naming_a_missing_axis_is_refused() {
-    let text = BUILTIN_FIVE_AXIS[0]
-        .1
-        .replace("name = \"C\"\nkind = \"rotary\"", "name = \"A\"\nkind = \"rotary\"");
+    let text = BUILTIN_FIVE_AXIS[0].1.replace(
+        "name = \"C\"\nkind = \"rotary\"",
+        "name = \"A\"\nkind = \"rotary\"",
+    );
     let err = MachineData::from_toml_str(&text, "x.toml").unwrap_err();
     assert!(format!("{err:?}").contains("rotary axis C"), "{err:?}");
 }

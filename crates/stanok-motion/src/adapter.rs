@@ -22,14 +22,21 @@
 //! shuttle, dwell (stop, then stand), waiting for an input, spindle orientation, a feed-mode change,
 //! the start and the end of spindle synchronisation, and around probe moves and rigid taps.
 //!
+//! ## Tool-centre-point control
+//! `SetToolCentrePoint` stops the path; while it is on, every segment is handed to
+//! [`crate::tcp`] for its ORIVECT geometry, joint-rate speed and acceleration caps and an exact
+//! stop at its end.
+//!
 //! Invariant: no input panics; non-finite coordinates make a segment that the path builder drops.
 
 use crate::limits::MotionConfig;
 use crate::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry, SPLINE_CHORD_TOLERANCE};
 use stanok_canon::{
-    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, PathMode, Pose, SplineMove,
+    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, OrientationInterpolation, PathMode,
+    Pose, SplineMove,
 };
 use stanok_geom::{Helix, Nurbs};
+use stanok_kin::FiveAxis;
 
 /// The slowest override the planner accepts (a 0 % override is a feed hold, not a speed).
 const MIN_OVERRIDE: f64 = 1e-3;
@@ -44,6 +51,10 @@ pub struct CanonAdapter {
     spindle_rpm: f64,
     spindle_pitch: Option<f64>,
     override_enabled: bool,
+    /// The machine's kinematics with the active tool, while tool-centre-point control is on.
+    tcp: Option<FiveAxis>,
+    /// ORIAXES or ORIVECT.
+    orientation: OrientationInterpolation,
 }
 
 /// Length the feed applies to (spec axioma-2 §3.2) and the 9-D length, of a straight move.
@@ -73,7 +84,31 @@ impl CanonAdapter {
             spindle_rpm: 0.0,
             spindle_pitch: None,
             override_enabled: true,
+            tcp: None,
+            orientation: OrientationInterpolation::Axes,
         }
+    }
+
+    /// The kinematics of tool-centre-point control, while it is on.
+    pub fn tcp(&self) -> Option<&FiveAxis> {
+        self.tcp.as_ref()
+    }
+
+    /// A segment under tool-centre-point control: ORIVECT geometry, joint-rate caps, exact stop
+    /// (see [`crate::tcp`]).
+    fn under_tcp(&self, input: PlannerInput) -> PlannerInput {
+        let (Some(kin), PlannerInput::Segment(mut seg)) = (&self.tcp, input.clone()) else {
+            return input;
+        };
+        if self.orientation == OrientationInterpolation::Vector
+            && !matches!(seg.geometry, SegmentGeometry::Polyline(_))
+        {
+            if let Some(g) = crate::tcp::vector_polyline(&seg, kin) {
+                seg.geometry = g;
+            }
+        }
+        crate::tcp::limit_segment(&mut seg, kin, &self.config.axes);
+        PlannerInput::Segment(seg)
     }
 
     /// Changes the feed override (fraction, 0…2) for the segments adapted from now on.
@@ -118,6 +153,7 @@ impl CanonAdapter {
         line: u32,
     ) -> PathSegment {
         PathSegment {
+            acceleration_cap: f64::INFINITY,
             start: start.to_array(),
             end: end.to_array(),
             geometry,
@@ -236,10 +272,22 @@ impl CanonAdapter {
         let stop =
             |out: &mut dyn FnMut(PlannerInput)| out(PlannerInput::Stop { dwell_s: 0.0, line });
         match cmd {
-            Canon::StraightTraverse(m) => out(self.line(m, true, line)),
-            Canon::StraightFeed(m) => out(self.line(m, false, line)),
-            Canon::ArcFeed(a) => out(self.arc(a, line)),
-            Canon::SplineFeed(sp) => out(self.spline(sp, line)),
+            Canon::StraightTraverse(m) => out(self.under_tcp(self.line(m, true, line))),
+            Canon::StraightFeed(m) => out(self.under_tcp(self.line(m, false, line))),
+            Canon::ArcFeed(a) => out(self.under_tcp(self.arc(a, line))),
+            Canon::SplineFeed(sp) => out(self.under_tcp(self.spline(sp, line))),
+            // The switch stops the path; the stage re-expresses the position (stage.rs).
+            Canon::SetToolCentrePoint {
+                active,
+                tool_offset,
+            } => {
+                stop(out);
+                self.tcp = match (&self.config.kinematics, active) {
+                    (Some(k), true) => Some(k.clone().with_tool_offset(*tool_offset)),
+                    _ => None,
+                };
+            }
+            Canon::SetOrientationInterpolation { mode } => self.orientation = *mode,
             // The probe stops where it makes (or loses) contact, at rest.
             Canon::StraightProbe {
                 motion, contact, ..

@@ -106,6 +106,9 @@ pub struct InterpOptions {
     pub axioma: AxiomaMachineParams,
     /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
     pub optional_stop: bool,
+    /// The machine's 5-axis kinematics (without a tool) when it allows tool-centre-point control
+    /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
+    pub five_axis: Option<stanok_kin::FiveAxis>,
 }
 
 impl InterpOptions {
@@ -133,6 +136,7 @@ impl InterpOptions {
             g92_persistence: true,
             axioma: AxiomaMachineParams::default(),
             optional_stop: true,
+            five_axis: None,
         }
     }
 }

@@ -218,6 +218,11 @@ impl Words {
         }
     }
 
+    /// The value of a letter without marking it used.
+    pub fn peek(&self, letter: u8) -> Option<Val> {
+        self.has(letter).then(|| self.letter[idx(letter)])
+    }
+
     /// True if the letter was written (does not mark it used).
     pub fn has(&self, letter: u8) -> bool {
         self.present & (1 << idx(letter)) != 0

@@ -103,7 +103,29 @@ impl CanonAdapter {
         if self.orientation == OrientationInterpolation::Vector
             && !matches!(seg.geometry, SegmentGeometry::Polyline(_))
         {
-            if let Some(g) = crate::tcp::vector_polyline(&seg, kin) {
+            if let Some((g, omega)) = crate::tcp::vector_polyline(&seg, kin) {
+                // Orientation-only: F is the vector's angular speed (duration Ω / F); the
+                // polyline's 9-D length runs in the same time.
+                let tip_moves = (0..3).any(|i| seg.start[i] != seg.end[i]);
+                if let (false, SegmentGeometry::Polyline(p)) = (tip_moves, &g) {
+                    let length: f64 = p
+                        .windows(2)
+                        .map(|w| {
+                            (0..9)
+                                .map(|i| (w[1][i] - w[0][i]).powi(2))
+                                .sum::<f64>()
+                                .sqrt()
+                        })
+                        .sum();
+                    let straight = (0..9)
+                        .map(|i| (seg.end[i] - seg.start[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    if straight > 0.0 && omega > 0.0 {
+                        // path_speed = F·(straight/straight) now; want length / (Ω / F).
+                        seg.path_speed *= length / omega;
+                    }
+                }
                 seg.geometry = g;
             }
         }

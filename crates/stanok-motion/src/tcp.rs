@@ -19,7 +19,9 @@
 //! 2. **Orientation** ([`vector_polyline`]): under ORIVECT the tool vector turns on the great
 //!    circle, so the segment becomes a polyline whose rotary values follow the great circle,
 //!    sampled every [`ORIVECT_STEP_DEG`] and solved by continuity with the previous sample (the
-//!    tip points stay on the programmed line). Under ORIAXES the rotary values are already linear.
+//!    tip points stay on the programmed line). An orientation-only block then runs at F as the
+//!    vector's angular speed: duration Ω / F (spec axioma-4 §4.8 [P]). Under ORIAXES the rotary
+//!    values are already linear.
 //! 3. **Every servo cycle** ([`TcpMap::joints`], called by the stage on each setpoint): the pose
 //!    goes through the inverse kinematics; joint velocity = J·v and acceleration = J·a + vᵀ∇²q·v,
 //!    by central differences of the inverse kinematics along v and a (step [`FD_STEP_S`]); jerk
@@ -186,9 +188,9 @@ pub fn limit_segment(seg: &mut PathSegment, kin: &FiveAxis, axes: &[AxisLimit; 9
 
 /// The ORIVECT form of a straight or circular segment (module doc, step 2): a polyline whose tip
 /// points follow the programmed curve and whose rotary values follow the great circle of the tool
-/// vector. None when the orientation does not change or cannot be followed (the axes then move
-/// linearly, as under ORIAXES).
-pub fn vector_polyline(seg: &PathSegment, kin: &FiveAxis) -> Option<SegmentGeometry> {
+/// vector, and the great-circle angle Ω in degrees. None when the orientation does not change or
+/// cannot be followed (the axes then move linearly, as under ORIAXES).
+pub fn vector_polyline(seg: &PathSegment, kin: &FiveAxis) -> Option<(SegmentGeometry, f64)> {
     let start = Pose::from_array(seg.start);
     let end = Pose::from_array(seg.end);
     let t0 = vec3(kin.tool_vector(&start));
@@ -215,7 +217,7 @@ pub fn vector_polyline(seg: &PathSegment, kin: &FiveAxis) -> Option<SegmentGeome
         return None;
     }
     points.push(seg.end);
-    Some(SegmentGeometry::Polyline(points))
+    Some((SegmentGeometry::Polyline(points), omega))
 }
 
 fn vec3(v: [f64; 3]) -> stanok_kin::orientation::Vector3<f64> {

@@ -145,6 +145,12 @@ fn interpreter(
     }
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
+    // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
+    opts.five_axis = machine
+        .kinematics
+        .as_ref()
+        .filter(|k| k.tcp_allowed)
+        .and_then(|_| machine.five_axis());
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

@@ -29,6 +29,7 @@ mod axioma_chain;
 mod ctx;
 mod flow;
 mod frame;
+mod mazatrol;
 mod params;
 mod predefined;
 mod rs274;
@@ -197,14 +198,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let state = ModalState {
             motion: match opts.dialect {
                 Dialect::Rs274ngc => MotionMode::None,
-                Dialect::Axioma => MotionMode::Rapid,
+                Dialect::Axioma | Dialect::Mazatrol => MotionMode::Rapid,
             },
             plane: Plane::XY,
             distance: DistanceMode::Absolute,
             arc_distance: DistanceMode::Incremental,
             units: match opts.dialect {
                 Dialect::Rs274ngc => opts.initial_units,
-                Dialect::Axioma => LengthUnits::Millimetres,
+                Dialect::Axioma | Dialect::Mazatrol => LengthUnits::Millimetres,
             },
             feed_mode: FeedMode::UnitsPerMinute,
             feed: 0.0,
@@ -221,13 +222,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
             mist: false,
             flood: false,
             g5x_index: match opts.dialect {
-                Dialect::Rs274ngc => 1,
+                Dialect::Rs274ngc | Dialect::Mazatrol => 1,
                 Dialect::Axioma => 0,
             },
             frame: WorkFrame::default(),
             xy_rotation_deg: 0.0,
             axioma: axioma_chain::AxiomaChain::default(),
             axioma_diameter: [false; 9],
+            mazatrol: Default::default(),
             polar: state::Polar::default(),
             length_comp: state::LengthComp::Off,
             edge: 0,
@@ -253,6 +255,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
             state.xy_rotation_deg = rotation;
             if opts.control.offsets.g92_applied {
                 state.frame.set_shift(opts.control.offsets.g92);
+            }
+        }
+        if opts.dialect == Dialect::Mazatrol {
+            // Mazatrol: the work offset of G54 (page 1) is in force from the start.
+            if let Some(z) = opts.control.offsets.zero.first().and_then(|p| p.first()) {
+                state.frame.set_origin(z.offset);
             }
         }
         Interpreter {
@@ -552,7 +560,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         let target = match dialect {
             Dialect::Axioma => &mut self.axioma_held,
-            Dialect::Rs274ngc => &mut self.queue,
+            Dialect::Rs274ngc | Dialect::Mazatrol => &mut self.queue,
         };
         let mark = target.len();
         let span = self.block.span();
@@ -633,6 +641,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
                 Dialect::Axioma => axioma::execute(&mut cx),
+                Dialect::Mazatrol => mazatrol::execute(&mut cx),
             }
         };
         let outcome = match result {

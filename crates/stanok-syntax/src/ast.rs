@@ -21,6 +21,9 @@ pub enum Dialect {
     Axioma,
     /// LinuxCNC RS274/NGC (`.ngc`).
     Rs274ngc,
+    /// Mazatrol EIA/ISO with tool tip point control G43.4/G43.5 (chosen with `--dialect mazatrol`;
+    /// lexed as ISO words like RS274/NGC).
+    Mazatrol,
 }
 
 impl Dialect {

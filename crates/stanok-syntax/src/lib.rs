@@ -156,7 +156,9 @@ impl BlockParser {
             Dialect::Axioma => {
                 axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
             }
-            Dialect::Rs274ngc => rs274::parse_line(text, block, &mut self.pending),
+            Dialect::Rs274ngc | Dialect::Mazatrol => {
+                rs274::parse_line(text, block, &mut self.pending)
+            }
         }
     }
 

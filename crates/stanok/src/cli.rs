@@ -18,6 +18,8 @@ pub enum DialectArg {
     Axioma,
     /// LinuxCNC RS274/NGC.
     Rs274ngc,
+    /// Mazatrol EIA/ISO, tool tip point control G43.4/G43.5.
+    Mazatrol,
 }
 
 impl From<DialectArg> for stanok_syntax::Dialect {
@@ -25,6 +27,7 @@ impl From<DialectArg> for stanok_syntax::Dialect {
         match d {
             DialectArg::Axioma => stanok_syntax::Dialect::Axioma,
             DialectArg::Rs274ngc => stanok_syntax::Dialect::Rs274ngc,
+            DialectArg::Mazatrol => stanok_syntax::Dialect::Mazatrol,
         }
     }
 }

@@ -11,6 +11,7 @@ fn dialect_name(d: Dialect) -> &'static str {
     match d {
         Dialect::Axioma => "axioma",
         Dialect::Rs274ngc => "rs274ngc",
+        Dialect::Mazatrol => "mazatrol",
     }
 }
 

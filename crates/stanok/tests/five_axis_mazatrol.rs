@@ -1,0 +1,365 @@
+//! Mazatrol tool tip point control (corpus/mazatrol): the oracle fixtures on the machines their
+//! headers state (built-in `millturn-bc` for oracles A, B, C; `5axis-ac-table` for oracle D), with
+//! H1 = 100 mm and the headers' work offsets, through interpreter → simulated machine → servo
+//! trace. Asserted: the machine positions of the headers (1e-6; X of the mill-turn is a diameter),
+//! the tip held in rotary-only blocks (1e-6 mm), the alarms of the error fixtures, and zero limit
+//! violations.
+
+mod five_axis_harness;
+use five_axis_harness::*;
+use stanok_canon::setup::{ControlData, Tool, ToolEdge, ToolKind, ZeroOffset};
+use stanok_canon::Pose;
+use stanok_kin::Kinematics;
+use stanok_syntax::Dialect;
+
+const A: usize = 3;
+const B: usize = 4;
+const C: usize = 5;
+const TOL: f64 = 1e-6;
+
+fn control(work_offset: [f64; 3]) -> ControlData {
+    let mut c = ControlData::default();
+    c.tools.tools.insert(
+        1,
+        Tool {
+            number: 1,
+            kind: ToolKind::Milling,
+            edges: vec![ToolEdge {
+                length: [100.0, 0.0, 0.0],
+                ..Default::default()
+            }],
+            ..Default::default()
+        },
+    );
+    c.offsets.zero[0][0] = ZeroOffset {
+        offset: Pose {
+            x: work_offset[0],
+            y: work_offset[1],
+            z: work_offset[2],
+            ..Pose::ZERO
+        },
+        rotation_xy: 0.0,
+    };
+    c
+}
+
+fn fixture(name: &str, machine: &str, w: [f64; 3], start: Pose) -> Run {
+    run(
+        &corpus_text(&format!("mazatrol/{name}")),
+        Dialect::Mazatrol,
+        machine,
+        control(w),
+        start,
+    )
+}
+
+fn millturn(name: &str, start: Pose) -> Run {
+    fixture(name, "millturn-bc", [0.0, 0.0, -400.0], start)
+}
+
+fn pose(x: f64, y: f64, z: f64, a: f64, b: f64, c: f64) -> Pose {
+    Pose {
+        x,
+        y,
+        z,
+        a,
+        b,
+        c,
+        ..Pose::ZERO
+    }
+}
+
+#[test]
+fn oracle_a_type1_millturn() {
+    let r = millturn(
+        "g43_4-type1-oracle-millturn-bc.nc",
+        pose(0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    );
+    r.ok();
+    assert_axes(
+        r.end_of("N20"),
+        [-145.7395026, 20.0, -368.3697513],
+        &[(B, 45.0), (C, 0.0)],
+        TOL,
+        "N20",
+    );
+    assert_axes(
+        r.end_of("N30"),
+        [-185.7395026, 0.0, -378.3697513],
+        &[(B, 45.0), (C, 90.0)],
+        TOL,
+        "N30",
+    );
+    assert_axes(
+        r.end_of("N40"),
+        [-39.0, 0.0, -555.5],
+        &[(B, 90.0), (C, 90.0)],
+        TOL,
+        "N40",
+    );
+    assert_axes(
+        r.end_of("N50"),
+        [-239.0, 0.0, -555.5],
+        &[(B, 90.0), (C, 90.0)],
+        TOL,
+        "N50",
+    );
+    // N30 at s = 0.5: Xm −174.0237739, Ym 14.1421356 (C 45), not the joint-linear (−165.74, 10).
+    let mid = r
+        .block("N30")
+        .into_iter()
+        .min_by(|a, b| {
+            (a.joints[C] - 45.0)
+                .abs()
+                .total_cmp(&(b.joints[C] - 45.0).abs())
+        })
+        .unwrap();
+    assert!((mid.joints[C] - 45.0).abs() < 0.2, "{mid:?}");
+    let tool = r.machine.five_axis().unwrap().with_tool_length(100.0);
+    // C is linear in the path parameter s = C/90; the tip is at table (0, 20, 5 − 10 s).
+    let s = mid.joints[C] / 90.0;
+    let want = tool
+        .inverse(&pose(
+            0.0,
+            20.0,
+            -395.0 - 10.0 * s,
+            0.0,
+            45.0,
+            mid.joints[C],
+        ))
+        .unwrap();
+    assert_axes(
+        mid.joints,
+        [want[0], want[1], want[2]],
+        &[],
+        1e-6,
+        "N30 middle",
+    );
+    assert_axes(
+        mid.joints,
+        [-174.0237739, 14.1421356, -373.3697513],
+        &[],
+        0.5,
+        "N30 middle",
+    );
+    // N40 turns B with the tip held at table (0, 20, −5).
+    for sp in r.block("N40") {
+        let tip = tool.forward(&sp.joints).unwrap();
+        assert!(
+            (tip.y - 20.0).abs() < 1e-6 && tip.x.abs() < 1e-6 && (tip.z + 405.0).abs() < 1e-6,
+            "{tip:?}"
+        );
+    }
+    // N30: C needs 9000 deg/min at F1000; its 3600 deg/min limit stretches the block to ≥ 1.5 s
+    // (the kin stage plans C at 90 % of its limit with half its acceleration: about 1.83 s).
+    let d = r.duration_of("N30");
+    assert!((1.5..2.0).contains(&d), "N30 lasts {d} s");
+}
+
+#[test]
+fn oracle_b_type2_millturn() {
+    let r = millturn("g43_5-type2-oracle-millturn-bc.nc", Pose::ZERO);
+    r.ok();
+    assert_axes(
+        r.end_of("N20"),
+        [-145.7395026, 20.0, -368.3697513],
+        &[(B, 45.0), (C, 0.0)],
+        TOL,
+        "N20",
+    );
+    assert_axes(
+        r.end_of("N30"),
+        [-105.7395026, 0.0, -368.3697513],
+        &[(B, 45.0), (C, -90.0)],
+        TOL,
+        "N30",
+    );
+    assert_axes(
+        r.end_of("N40"),
+        [-185.7395026, 0.0, -368.3697513],
+        &[(B, 45.0), (C, -90.0)],
+        TOL,
+        "N40",
+    );
+    assert_axes(
+        r.end_of("N50"),
+        [-327.1608589, 0.0, -439.0804294],
+        &[(B, 45.0), (C, -90.0)],
+        TOL,
+        "N50",
+    );
+    // N40: 40 mm at F1000 = 2.4 s.
+    let d = r.duration_of("N40");
+    assert!((2.4..2.5).contains(&d), "N40 lasts {d} s");
+}
+
+#[test]
+fn type2_omitted_components_and_ignored_rotary_words() {
+    let r = millturn("g43_5-type2-omission-and-rotary-ignored.nc", Pose::ZERO);
+    r.ok();
+    assert_axes(
+        r.end_of("N20"),
+        [-145.7395026, 20.0, -368.3697513],
+        &[(B, 45.0), (C, 0.0)],
+        TOL,
+        "N20",
+    );
+    // B90 is not executed.
+    assert_axes(
+        r.end_of("N30"),
+        [-145.7395026, 10.0, -368.3697513],
+        &[(B, 45.0), (C, 0.0)],
+        TOL,
+        "N30",
+    );
+    assert_axes(
+        r.end_of("N40"),
+        [-125.7395026, 0.0, -368.3697513],
+        &[(B, 45.0), (C, -90.0)],
+        TOL,
+        "N40",
+    );
+}
+
+#[test]
+fn oracle_c_independent_start_and_cancel() {
+    let r = millturn(
+        "g43_4-type1-oracle-independent-start.nc",
+        pose(-100.0, 0.0, -300.0, 0.0, 30.0, 0.0),
+    );
+    r.ok();
+    assert_axes(
+        r.end_of("N20"),
+        [0.0, 0.0, -213.3974596],
+        &[(B, 30.0), (C, 0.0)],
+        TOL,
+        "N20",
+    );
+    assert_axes(
+        r.end_of("N30"),
+        [-100.0, 0.0, -300.0],
+        &[(B, 30.0)],
+        TOL,
+        "N30",
+    );
+}
+
+#[test]
+fn oracle_d_trunnion_g91_and_note_6() {
+    let r = fixture(
+        "g43_4-type1-oracle-trunnion-ac.nc",
+        "5axis-ac-table",
+        [500.0, 250.0, -450.0],
+        pose(500.0, 250.0, -200.0, 0.0, 0.0, 0.0),
+    );
+    assert_axes(
+        r.end_of("N20"),
+        [500.0, 250.0, -300.0],
+        &[(A, 0.0), (C, 0.0)],
+        TOL,
+        "N20",
+    );
+    assert_axes(
+        r.end_of("N30"),
+        [500.0, 208.6602540, -308.3974596],
+        &[(A, 30.0), (C, 0.0)],
+        TOL,
+        "N30",
+    );
+    assert_axes(
+        r.end_of("N40"),
+        [480.0, 200.0, -313.3974596],
+        &[(A, 30.0), (C, 90.0)],
+        TOL,
+        "N40",
+    );
+    assert_axes(
+        r.end_of("N50"),
+        [480.0, 250.0, -300.0],
+        &[(A, 0.0), (C, 90.0)],
+        TOL,
+        "N50",
+    );
+    // N30 at s = 0.5 (A15, tip (0, 5, 50)): 500, 228.9477246, −302.1133221.
+    let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+    let mid = kin
+        .inverse(&pose(500.0, 255.0, -400.0, 15.0, 0.0, 0.0))
+        .unwrap();
+    assert_axes(
+        mid,
+        [500.0, 228.9477246, -302.1133221],
+        &[],
+        TOL,
+        "N30 middle",
+    );
+    assert!(r
+        .block("N30")
+        .iter()
+        .any(|s| (s.joints[A] - 15.0).abs() < 0.2 && (s.joints[1] - 228.9477246).abs() < 0.3));
+    // N50 holds the tip at table (0, 20, 50) while A turns.
+    for sp in r.block("N50") {
+        let tip = kin.forward(&sp.joints).unwrap();
+        assert!(
+            (tip.x - 500.0).abs() < 1e-6
+                && (tip.y - 270.0).abs() < 1e-6
+                && (tip.z + 400.0).abs() < 1e-6,
+            "{tip:?}"
+        );
+    }
+    // N60: C45 while the tool is parallel to C → ILLEGAL NUMBER INPUT, no motion.
+    let d = r.error.as_ref().expect("Note 6 alarm");
+    assert_eq!(d.code.to_string(), "mazatrol::illegal-number-input");
+    assert_eq!(d.span.line, r.line_of("N60"));
+    assert!(r.block("N60").is_empty());
+    assert_eq!(r.report.violation_count, 0);
+}
+
+fn error_of(name: &str) -> (Run, stanok_canon::Diagnostic) {
+    let r = millturn(name, Pose::ZERO);
+    let d = r
+        .error
+        .clone()
+        .unwrap_or_else(|| panic!("{name}: no error"));
+    (r, d)
+}
+
+#[test]
+fn alarms_of_the_error_fixtures() {
+    for (name, code, block) in [
+        (
+            "err-g43_4-with-other-gcode.nc",
+            "mazatrol::ttpc-with-other-g-code",
+            "N20",
+        ),
+        ("err-g49-not-alone.nc", "mazatrol::g49-not-alone", "N30"),
+        (
+            "err-tseries-g02-in-ttpc.nc",
+            "mazatrol::code-not-allowed-in-ttpc",
+            "N30",
+        ),
+        (
+            "err-type2-reverse-direction.nc",
+            "mazatrol::illegal-number-input",
+            "N30",
+        ),
+    ] {
+        let (r, d) = error_of(name);
+        assert_eq!(d.code.to_string(), code, "{name}: {d:?}");
+        assert_eq!(d.span.line, r.line_of(block), "{name}");
+        // Nothing of the bad block moved.
+        assert!(r.block(block).is_empty(), "{name}");
+    }
+}
+
+#[test]
+fn ttpc_on_a_three_axis_machine_is_refused() {
+    let r = run(
+        "G01 F1000\nG43.4 X0 Y0 Z50. H1\n",
+        Dialect::Mazatrol,
+        "mill",
+        control([0.0; 3]),
+        Pose::ZERO,
+    );
+    let d = r.error.expect("option alarm");
+    assert_eq!(d.code.to_string(), "mazatrol::option-not-installed");
+}

@@ -153,14 +153,16 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     span,
                 ))
             }
-            _ => return Err(cx.err(
-                "interp::unsupported",
-                format!(
+            _ => {
+                return Err(cx.err(
+                    "interp::unsupported",
+                    format!(
                     "{} is not supported by the Mazatrol front end (tool tip point control only)",
                     g_name(code)
                 ),
-                span,
-            )),
+                    span,
+                ))
+            }
         }
     }
     for &(code, _) in &gs {

@@ -14,6 +14,7 @@
 //! | `chain.rs` | [`FiveAxis`]: the one rotary-chain model all of them are instances of |
 //! | `orientation.rs` | Euler ZY'Z'', roll-pitch-yaw, vectors, signed angles, great-circle interpolation |
 //! | `data.rs` | [`KinematicsData`]: the `[kinematics]` section of the machine-data TOML |
+//! | `fat.rs` | [`from_fat`]: the Balt-System `FAT=` characterization line (TT, DD, DT) |
 //!
 //! Architecture invariant: kinematics never sees the planner's buffer, offsets, units or G-code.
 //! Invariant (property-tested for every machine type in `tests/props.rs`): `forward(inverse(p)) = p`
@@ -23,6 +24,7 @@
 mod cartesian;
 mod chain;
 mod data;
+mod fat;
 mod head_head;
 mod head_table;
 mod millturn;
@@ -32,6 +34,7 @@ mod table_table;
 pub use cartesian::Cartesian;
 pub use chain::{Carrier, FiveAxis, RotaryAxis};
 pub use data::{KinematicsData, MachineType};
+pub use fat::{from_fat, FatError};
 pub use head_head::head_head;
 pub use head_table::head_table;
 pub use millturn::millturn_bc;

@@ -26,6 +26,7 @@
 mod arc;
 mod axioma;
 mod axioma_chain;
+mod balt;
 mod ctx;
 mod flow;
 mod frame;
@@ -198,14 +199,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let state = ModalState {
             motion: match opts.dialect {
                 Dialect::Rs274ngc => MotionMode::None,
-                Dialect::Axioma | Dialect::Mazatrol => MotionMode::Rapid,
+                Dialect::Axioma | Dialect::Mazatrol | Dialect::Balt => MotionMode::Rapid,
             },
             plane: Plane::XY,
             distance: DistanceMode::Absolute,
             arc_distance: DistanceMode::Incremental,
             units: match opts.dialect {
                 Dialect::Rs274ngc => opts.initial_units,
-                Dialect::Axioma | Dialect::Mazatrol => LengthUnits::Millimetres,
+                Dialect::Axioma | Dialect::Mazatrol | Dialect::Balt => LengthUnits::Millimetres,
             },
             feed_mode: FeedMode::UnitsPerMinute,
             feed: 0.0,
@@ -222,7 +223,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             mist: false,
             flood: false,
             g5x_index: match opts.dialect {
-                Dialect::Rs274ngc | Dialect::Mazatrol => 1,
+                Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => 1,
                 Dialect::Axioma => 0,
             },
             frame: WorkFrame::default(),
@@ -230,6 +231,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma: axioma_chain::AxiomaChain::default(),
             axioma_diameter: [false; 9],
             mazatrol: Default::default(),
+            balt: Default::default(),
             polar: state::Polar::default(),
             length_comp: state::LengthComp::Off,
             edge: 0,
@@ -257,7 +259,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 state.frame.set_shift(opts.control.offsets.g92);
             }
         }
-        if opts.dialect == Dialect::Mazatrol {
+        if matches!(opts.dialect, Dialect::Mazatrol | Dialect::Balt) {
             // Mazatrol: the work offset of G54 (page 1) is in force from the start.
             if let Some(z) = opts.control.offsets.zero.first().and_then(|p| p.first()) {
                 state.frame.set_origin(z.offset);
@@ -560,7 +562,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         let target = match dialect {
             Dialect::Axioma => &mut self.axioma_held,
-            Dialect::Rs274ngc | Dialect::Mazatrol => &mut self.queue,
+            Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => &mut self.queue,
         };
         let mark = target.len();
         let span = self.block.span();
@@ -642,6 +644,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
                 Dialect::Axioma => axioma::execute(&mut cx),
                 Dialect::Mazatrol => mazatrol::execute(&mut cx),
+                Dialect::Balt => balt::execute(&mut cx),
             }
         };
         let outcome = match result {

@@ -144,7 +144,7 @@ impl Words {
                             if self.present & (1 << i) != 0 {
                                 let prev = self.letter[i];
                                 match dialect {
-                                    Dialect::Rs274ngc | Dialect::Mazatrol => {
+                                    Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => {
                                         return Err(Diagnostic::error(
                                             "rs274::multiple-words",
                                             format!(

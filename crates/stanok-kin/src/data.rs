@@ -16,6 +16,9 @@
 //! max = inf
 //! max_velocity = 3600.0       # deg/min
 //! ```
+//!
+//! Instead of `[[kinematics.rotary]]`, a Balt-System machine may give its characterization line:
+//! `fat = "C,0,0,0,A,0,0,0"` (cvu-five-axis.md §4; see `fat.rs`).
 
 use crate::{Carrier, FiveAxis, KinError, RotaryAxis};
 use serde::{Deserialize, Serialize};
@@ -55,6 +58,10 @@ pub struct KinematicsData {
     /// The rotary orientation axes.
     #[serde(default)]
     pub rotary: Vec<RotaryAxis>,
+    /// A Balt-System characterization line (the text after `FAT=`, cvu-five-axis.md §4.2):
+    /// when given, it defines the rotary axes (machine data fills in their limits).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fat: Option<String>,
 }
 
 fn plus_z() -> [f64; 3] {
@@ -67,6 +74,17 @@ fn yes() -> bool {
 impl KinematicsData {
     /// The machine, checked against its type: None for a Cartesian machine.
     pub fn build(&self) -> Result<Option<FiveAxis>, KinError> {
+        if let (Some(fat), true) = (&self.fat, self.rotary.is_empty()) {
+            let machine = crate::from_fat(fat).map_err(|e| {
+                KinError::Degenerate(format!("FAT error {}: {}", e.code, e.message))
+            })?;
+            let data = KinematicsData {
+                rotary: machine.rotary_axes().cloned().collect(),
+                fat: None,
+                ..self.clone()
+            };
+            return data.build();
+        }
         let heads = self
             .rotary
             .iter()

@@ -86,7 +86,7 @@ pub struct MachineData {
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
-pub const BUILTIN_FIVE_AXIS: [(&str, &str); 5] = [
+pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
     (
         "5axis-bc-head",
         include_str!("../../../machines/5axis-bc-head.toml"),
@@ -106,6 +106,10 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 5] = [
     (
         "millturn-bc",
         include_str!("../../../machines/millturn-bc.toml"),
+    ),
+    (
+        "5axis-cvu-tt",
+        include_str!("../../../machines/5axis-cvu-tt.toml"),
     ),
 ];
 
@@ -501,6 +505,15 @@ fn validate_kinematics(
     axes: &[AxisData],
 ) -> Result<KinematicsData, Invalid> {
     let mut data = k.get_ref().clone();
+    if let (Some(fat), true) = (&data.fat, data.rotary.is_empty()) {
+        let machine = stanok_kin::from_fat(fat).map_err(|e| {
+            (
+                format!("kinematics: FAT error {}: {}", e.code, e.message),
+                k.span(),
+            )
+        })?;
+        data.rotary = machine.rotary_axes().cloned().collect();
+    }
     for r in &mut data.rotary {
         let Some(axis) = axes.iter().find(|a| a.name == r.name.to_ascii_uppercase()) else {
             return Err((

@@ -24,6 +24,8 @@ pub enum Dialect {
     /// Mazatrol EIA/ISO with tool tip point control G43.4/G43.5 (chosen with `--dialect mazatrol`;
     /// lexed as ISO words like RS274/NGC).
     Mazatrol,
+    /// Balt-System NC, 5-axis CVU=1/CVU=3 programs (chosen with `--dialect balt`).
+    Balt,
 }
 
 impl Dialect {
@@ -114,6 +116,9 @@ pub enum Keyword {
     Stable,
     /// Insertion depth of 3D tool compensation (`ISD=`, CUT3DC).
     Isd,
+    // Balt-System assignment statements (`CVU=1`, `MOVST=2`).
+    Cvu,
+    Movst,
 }
 
 impl Keyword {
@@ -133,6 +138,8 @@ impl Keyword {
                 | Keyword::Ftable
                 | Keyword::Stable
                 | Keyword::Isd
+                | Keyword::Cvu
+                | Keyword::Movst
         )
     }
 }

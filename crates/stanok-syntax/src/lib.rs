@@ -65,6 +65,7 @@
 
 mod ast;
 mod axioma;
+mod balt;
 mod expr;
 mod lexer;
 mod number;
@@ -159,6 +160,7 @@ impl BlockParser {
             Dialect::Rs274ngc | Dialect::Mazatrol => {
                 rs274::parse_line(text, block, &mut self.pending)
             }
+            Dialect::Balt => balt::parse_line(text, block, &mut self.pending),
         }
     }
 

@@ -20,6 +20,8 @@ pub enum DialectArg {
     Rs274ngc,
     /// Mazatrol EIA/ISO, tool tip point control G43.4/G43.5.
     Mazatrol,
+    /// Balt-System NC, 5-axis CVU programs.
+    Balt,
 }
 
 impl From<DialectArg> for stanok_syntax::Dialect {
@@ -28,6 +30,7 @@ impl From<DialectArg> for stanok_syntax::Dialect {
             DialectArg::Axioma => stanok_syntax::Dialect::Axioma,
             DialectArg::Rs274ngc => stanok_syntax::Dialect::Rs274ngc,
             DialectArg::Mazatrol => stanok_syntax::Dialect::Mazatrol,
+            DialectArg::Balt => stanok_syntax::Dialect::Balt,
         }
     }
 }

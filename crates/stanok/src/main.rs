@@ -444,7 +444,7 @@ fn canon(
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
-        Dialect::Axioma | Dialect::Mazatrol => CanonFormat::Jsonl,
+        Dialect::Axioma | Dialect::Mazatrol | Dialect::Balt => CanonFormat::Jsonl,
     });
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());

@@ -12,6 +12,7 @@ fn dialect_name(d: Dialect) -> &'static str {
         Dialect::Axioma => "axioma",
         Dialect::Rs274ngc => "rs274ngc",
         Dialect::Mazatrol => "mazatrol",
+        Dialect::Balt => "balt",
     }
 }
 

@@ -1,0 +1,309 @@
+//! Balt-System NC: continuous 5-axis machining CVU=1 / CVU=0 (cvu-five-axis.md §3, §6).
+//!
+//! Built: `CVU=1` / `CVU=0`, G0/G1, G90/G91 (G91 moves X Y Z only; A B C are always absolute in
+//! CVU=1, §6.3), X Y Z + A B C (rotary angles) and X Y Z + I J K (surface normal = tool axis from
+//! the tip toward the spindle, normalised; rejected below length 1e-6), F, S, `T t.c` with M6, M3/
+//! M4/M5, M0/M1/M2/M30, `(DIS,"text")`. The machine is the `[kinematics]` of the machine data —
+//! with `fat = "…"` the manual's characterization line (`stanok_kin::from_fat`).
+//!
+//! * `CVU=1` (precondition: the tool along Z, §3) emits `SetToolCentrePoint` with c0 = L·e_z, L =
+//!   the length of corrector c of the last `T t.c` (tool table entry c, its first edge; AMB-6), and
+//!   re-expresses the position as the tip the axes hold: nothing moves (§6.1).
+//! * In CVU=1 the tip follows the programmed line in part coordinates while the rotary axes move
+//!   linearly (the kin stage turns every servo setpoint into machine axes); an IJK block's angles
+//!   come from `FiveAxis::orient` (both solutions, travel limits, least motion, continuity; a
+//!   singular pose keeps the free axis, §5.7–§5.8).
+//! * `CVU=0` switches back: the position is the machine axes again; nothing moves.
+//!
+//! Not built (refused with a diagnostic): G2/G3 and splines `(BSP …)(ESP)` in CVU=1, CVU=3 with
+//! `(LCS …)` and MOVST, E parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
+//! G60–G62, G20/G21, G72–G74, G81–G86, G89) are `balt::prohibited-in-cvu`.
+
+use crate::ctx::Ctx;
+use crate::rs274::Outcome;
+use crate::state::{DistanceMode, MotionMode};
+use stanok_canon::{Canon, Diagnostic, Pose};
+use stanok_kin::{FiveAxis, Kinematics};
+use stanok_syntax::{ColSpan, CommentKind, Keyword};
+
+/// The Balt-System modal state (Copy: restored with `ModalState` when a block fails).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BaltState {
+    /// CVU=1 is on.
+    pub cvu: bool,
+    /// Tool length of the active corrector, mm.
+    pub length: f64,
+}
+
+fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
+    cx.opts.five_axis.clone().ok_or_else(|| {
+        cx.err(
+            "balt::no-five-axis-kinematics",
+            "CVU needs a machine with 5-axis kinematics (a [kinematics] section, e.g. fat = \"C,0,0,0,A,0,0,0\")",
+            at,
+        )
+        .with_note("choose e.g. --machine 5axis-cvu-tt")
+    })
+}
+
+/// One block.
+pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
+    // Mnemonic blocks.
+    for c in cx.block.comments.clone() {
+        if c.kind != CommentKind::Paren {
+            continue;
+        }
+        let text = cx.block.slice(c.text).to_string();
+        let name: String = text
+            .split(',')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_ascii_uppercase();
+        match name.as_str() {
+            "DIS" => {
+                let msg = text
+                    .split_once(',')
+                    .map(|x| x.1.trim().trim_matches('"').to_string())
+                    .unwrap_or_default();
+                cx.out.push(Canon::Message { text: msg });
+            }
+            // Display and plane settings of the control's screen: no effect on motion.
+            "UCG" | "UAV" | "DPI" | "UAO" => {}
+            _ => {
+                return Err(cx.err(
+                    "interp::unsupported",
+                    format!(
+                        "({name} …) is not supported (CVU=3 frames and CVU splines are not built)"
+                    ),
+                    c.text,
+                ))
+            }
+        }
+    }
+    let mut cvu_word = None;
+    for &(kw, _, val, span) in &cx.words.keywords {
+        match kw {
+            Keyword::Cvu => cvu_word = Some((val.map_or(-1.0, |v| v.v), span)),
+            _ => {
+                return Err(cx.err(
+                    "interp::unsupported",
+                    format!(
+                        "{} is not supported (CVU=3 and MOVST are not built)",
+                        cx.block.slice(span)
+                    ),
+                    span,
+                ))
+            }
+        }
+    }
+    let gs = cx.words.g.clone();
+    for &(code, span) in &gs {
+        let prohibited = matches!(
+            code,
+            400 | 410 | 420 | 600 | 610 | 620 | 200 | 210 | 720 | 730 | 740 | 810..=860 | 890
+        );
+        match code {
+            0 => cx.st.motion = MotionMode::Rapid,
+            10 => cx.st.motion = MotionMode::Linear,
+            900 => cx.st.distance = DistanceMode::Absolute,
+            910 => cx.st.distance = DistanceMode::Incremental,
+            // G27: used by the manual's programs, not defined there; no motion effect here.
+            270 => {}
+            _ if prohibited && cx.st.balt.cvu => {
+                return Err(cx.err(
+                    "balt::prohibited-in-cvu",
+                    format!("G{} is prohibited while CVU=1 is active", code / 10),
+                    span,
+                ))
+            }
+            _ => {
+                return Err(cx.err(
+                    "interp::unsupported",
+                    format!(
+                        "G{} is not supported by the Balt-System front end",
+                        code as f64 / 10.0
+                    ),
+                    span,
+                ))
+            }
+        }
+    }
+    if let Some(f) = cx.words.take(b'F') {
+        cx.st.feed = cx.mm(f.v);
+        cx.out.push(Canon::SetFeedRate { feed: cx.st.feed });
+    }
+    if let Some(s) = cx.words.take(b'S') {
+        cx.out.push(Canon::SetSpindleSpeed {
+            spindle: 0,
+            rpm: s.v,
+        });
+    }
+    // T t.c: tool t, corrector c (AMB-6: the corrector is the tool table entry of the length).
+    let tool = cx.words.take(b'T');
+    let ms = cx.words.m.clone();
+    for &(m, span) in &ms {
+        match m {
+            6 => {
+                let Some(t) = tool else {
+                    return Err(cx.err("balt::m6-without-t", "M6 needs T<tool>.<corrector>", span));
+                };
+                let number = t.v.trunc() as u32;
+                let corrector = ((t.v.fract() * 10.0).round()) as u32;
+                cx.out.push(Canon::ChangeTool { tool: number });
+                cx.st.current_tool = number;
+                cx.st.balt.length = cx
+                    .opts
+                    .control
+                    .tools
+                    .get(corrector)
+                    .and_then(|t| t.edges.first())
+                    .map_or(0.0, |e| e.length[0] + e.length_wear[0]);
+            }
+            3 | 4 => cx.out.push(Canon::StartSpindle {
+                spindle: 0,
+                direction: if m == 3 {
+                    stanok_canon::SpindleDirection::Clockwise
+                } else {
+                    stanok_canon::SpindleDirection::CounterClockwise
+                },
+            }),
+            5 => cx.out.push(Canon::StopSpindle { spindle: 0 }),
+            0 | 1 | 2 | 30 => {}
+            _ => {
+                return Err(cx.err(
+                    "interp::unsupported",
+                    format!("M{m} is not supported by the Balt-System front end"),
+                    span,
+                ))
+            }
+        }
+    }
+    if let Some((v, span)) = cvu_word {
+        switch(cx, v, span)?;
+    } else if cx.has_axis_words() || cx.words.any(b"IJK") {
+        motion(cx)?;
+    }
+    let mut outcome = Outcome::Continue;
+    for &(m, _) in &ms {
+        match m {
+            0 | 1 => cx.out.push(Canon::ProgramStop { optional: m == 1 }),
+            2 | 30 => {
+                cx.out.push(Canon::ProgramEnd);
+                outcome = Outcome::End;
+            }
+            _ => {}
+        }
+    }
+    cx.check_all_used()?;
+    Ok(outcome)
+}
+
+/// CVU=1 / CVU=0 (§6.1): nothing moves, the position changes meaning.
+fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
+    let base = kinematics(cx, span)?;
+    let c0 = [0.0, 0.0, cx.st.balt.length];
+    match v as i64 {
+        1 if v == 1.0 => {
+            if cx.st.balt.cvu {
+                return Ok(());
+            }
+            let t = base.tool_vector(&cx.st.position);
+            if (t[2] - 1.0).abs() > 1e-9 {
+                return Err(cx
+                    .err(
+                        "balt::cvu-precondition",
+                        "CVU=1 needs the tool along Z, pointing to −Z",
+                        span,
+                    )
+                    .with_note("turn the rotary axes to the tool's zero orientation first"));
+            }
+            let tip = base
+                .with_tool_offset(c0)
+                .forward(&cx.st.position.to_array())
+                .map_err(|e| cx.err("balt::kinematics", e.to_string(), span))?;
+            cx.out.push(Canon::SetToolCentrePoint {
+                active: true,
+                tool_offset: c0,
+            });
+            cx.st.position = tip;
+            cx.st.balt.cvu = true;
+        }
+        0 if v == 0.0 => {
+            if !cx.st.balt.cvu {
+                return Ok(());
+            }
+            let joints = base
+                .with_tool_offset(c0)
+                .inverse(&cx.st.position)
+                .map_err(|e| cx.err("balt::kinematics", e.to_string(), span))?;
+            cx.out.push(Canon::SetToolCentrePoint {
+                active: false,
+                tool_offset: [0.0; 3],
+            });
+            cx.st.position = Pose::from_array(joints);
+            cx.st.balt.cvu = false;
+        }
+        _ => {
+            return Err(cx.err(
+                "interp::unsupported",
+                format!("CVU={v} is not supported (CVU=1 and CVU=0 are built)"),
+                span,
+            ))
+        }
+    }
+    Ok(())
+}
+
+/// A G0/G1 block: X Y Z (G91: incremental, XYZ only in CVU=1) with A B C or I J K.
+fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
+    let at = cx.whole();
+    let ijk = [b'I', b'J', b'K'].map(|l| cx.words.take(l));
+    let rotary_words = [b'A', b'B', b'C'].map(|l| cx.words.peek(l));
+    let (end, _) = cx.end_point()?;
+    let mut e = end.to_array();
+    if cx.st.balt.cvu && cx.st.distance == DistanceMode::Incremental {
+        // §6.3: G91 applies to X Y Z only; angles are absolute.
+        for (k, w) in rotary_words.iter().enumerate() {
+            if let Some(w) = w {
+                e[3 + k] = w.v;
+            }
+        }
+    }
+    if ijk.iter().any(Option::is_some) {
+        if rotary_words.iter().any(Option::is_some) {
+            return Err(cx.err(
+                "balt::angles-and-normal",
+                "give the tool axis either by the rotary angles or by I J K, not both",
+                at,
+            ));
+        }
+        let v = ijk.map(|w| w.map_or(0.0, |w| w.v));
+        let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        if len < 1e-6 {
+            return Err(cx.err("balt::zero-normal", "the normal I J K is zero", at));
+        }
+        let kin = kinematics(cx, at)?;
+        let oriented = kin
+            .orient([v[0] / len, v[1] / len, v[2] / len], &cx.st.position)
+            .map_err(|err| {
+                cx.err(
+                    "balt::orientation-unreachable",
+                    format!("the tool axis I J K cannot be reached: {err}"),
+                    at,
+                )
+            })?;
+        e[3..6].copy_from_slice(&oriented.to_array()[3..6]);
+    }
+    let rapid = cx.st.motion == MotionMode::Rapid;
+    let feed = cx.st.feed;
+    if !rapid && feed <= 0.0 {
+        return Err(cx.err(
+            "balt::feed-missing",
+            "feed move without F (the first block after CVU=1 must program F)",
+            at,
+        ));
+    }
+    cx.straight(rapid, Pose::from_array(e), if rapid { 0.0 } else { feed });
+    Ok(())
+}

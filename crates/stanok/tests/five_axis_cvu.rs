@@ -1,0 +1,259 @@
+//! Balt-System CVU=1 (corpus/cvu): the oracles of cvu-five-axis.md §8 on the machines they state
+//! (FAT lines; L = 100 from the corrector), through interpreter → simulated machine → servo
+//! trace. The fragments of examples 1 and 2 get what their headers say a harness must add: a tool
+//! with its corrector, `CVU=1` and an F before them. Asserted: machine positions Q (1e-6), the
+//! tip held by rotate-in-place blocks and on the programmed line at every setpoint (1e-6 mm), and
+//! zero limit violations.
+
+mod five_axis_harness;
+use five_axis_harness::*;
+use stanok_canon::setup::{ControlData, Tool, ToolEdge, ToolKind};
+use stanok_canon::Pose;
+use stanok_kin::Kinematics;
+use stanok_machine::MachineData;
+use stanok_syntax::Dialect;
+
+const A: usize = 3;
+const C: usize = 5;
+const TOL: f64 = 1e-6;
+
+/// Corrector `c` = tool table entry `c` with L = 100.
+fn control(corrector: u32) -> ControlData {
+    let mut c = ControlData::default();
+    c.tools.tools.insert(
+        corrector,
+        Tool {
+            number: corrector,
+            kind: ToolKind::Milling,
+            edges: vec![ToolEdge {
+                length: [100.0, 0.0, 0.0],
+                ..Default::default()
+            }],
+            ..Default::default()
+        },
+    );
+    c
+}
+
+fn machine(fat: &str, corrector: u32) -> MachineData {
+    let mut m = MachineData::builtin("5axis-cvu-tt").unwrap();
+    let mut k = m.kinematics.clone().unwrap();
+    k.fat = Some(fat.to_string());
+    k.rotary.clear();
+    let data = stanok_kin::from_fat(fat).unwrap();
+    k.kind = match (
+        data.rotary_axes()
+            .filter(|a| a.carrier == stanok_kin::Carrier::Head)
+            .count(),
+        data.rotary_axes().count(),
+    ) {
+        (2, _) => stanok_kin::MachineType::HeadHead,
+        (0, _) => stanok_kin::MachineType::TableTable,
+        _ => stanok_kin::MachineType::HeadTable,
+    };
+    k.rotary = data.rotary_axes().cloned().collect();
+    for r in &mut k.rotary {
+        let axis = m.axis(r.name).unwrap();
+        (r.min, r.max, r.max_velocity) = (axis.min, axis.max, axis.max_velocity);
+    }
+    m.kinematics = Some(k);
+    m.control = control(corrector);
+    m
+}
+
+fn fragment(name: &str) -> String {
+    let body: String = corpus_text(&format!("cvu/{name}"))
+        .lines()
+        .filter(|l| !l.starts_with(';'))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    format!("T1.1 M6\nCVU=1\nG1 F1000\n{body}CVU=0\nM30\n")
+}
+
+fn at_gauge(z: f64) -> Pose {
+    Pose { z, ..Pose::ZERO }
+}
+
+#[test]
+fn oracle_o1_rotate_in_place_on_every_fat_variant() {
+    for (fat, want) in [
+        ("C,0,0,0,A,0,0,0", [38.302222, -32.139380, 86.602540]),
+        ("C,0,0,20,A,0,-150,0", [111.076444, -73.204203, 66.506351]),
+        ("A,1,0,-50,C,1,10,0", [3.572124, 31.634139, 89.471048]),
+        ("C,1,10,0,A,0,0,0", [3.572124, -42.339556, 86.602540]),
+    ] {
+        let r = run_on(
+            &fragment("example-1-rotate-a-c.nc"),
+            Dialect::Balt,
+            machine(fat, 1),
+            at_gauge(100.0),
+        );
+        r.ok();
+        assert_axes(
+            r.end_of("N1"),
+            [0.0, 0.0, 100.0],
+            &[(A, 0.0), (C, 0.0)],
+            TOL,
+            fat,
+        );
+        assert_axes(r.end_of("N2"), want, &[(A, 30.0), (C, 50.0)], TOL, fat);
+        // The tip stays at the part zero at every setpoint of N2.
+        let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+        let sps = r.block("N2");
+        assert!(sps.len() > 10);
+        for sp in sps {
+            let tip = kin.forward(&sp.joints).unwrap().xyz();
+            assert!(tip.iter().all(|v| v.abs() < 1e-6), "{fat}: tip {tip:?}");
+        }
+    }
+}
+
+#[test]
+fn oracle_o2_simultaneous_five_axis_line() {
+    let r = run_on(
+        &fragment("example-2-simultaneous-five-axis.nc"),
+        Dialect::Balt,
+        machine("C,0,0,0,A,0,0,0", 1),
+        at_gauge(100.0),
+    );
+    r.ok();
+    assert_axes(
+        r.end_of("N2"),
+        [69.061835, -53.456972, 136.592583],
+        &[(A, 15.0), (C, -25.0)],
+        TOL,
+        "N2",
+    );
+    // The tip runs on the line (0,0,0)–(80,−30,40); at s = 0.5 Q = (37.174896, −27.743220,
+    // 119.144486), 2.6 mm away from the chord of the machine positions.
+    let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+    let mut seen_mid = false;
+    for sp in r.block("N2") {
+        let tip = kin.forward(&sp.joints).unwrap().xyz();
+        let s = tip[0] / 80.0;
+        assert!(
+            (tip[1] + 30.0 * s).abs() < 1e-6 && (tip[2] - 40.0 * s).abs() < 1e-6,
+            "{tip:?}"
+        );
+        assert!(
+            (sp.joints[A] - 15.0 * s).abs() < 1e-6,
+            "A follows the path parameter"
+        );
+        if (s - 0.5).abs() < 0.002 {
+            seen_mid = true;
+            let want = kin
+                .inverse(&Pose {
+                    x: tip[0],
+                    y: tip[1],
+                    z: tip[2],
+                    a: 15.0 * s,
+                    c: -25.0 * s,
+                    ..Pose::ZERO
+                })
+                .unwrap();
+            assert_axes(sp.joints, [want[0], want[1], want[2]], &[], 1e-6, "middle");
+            assert_axes(
+                sp.joints,
+                [37.174896, -27.743220, 119.144486],
+                &[],
+                0.2,
+                "middle",
+            );
+        }
+    }
+    assert!(seen_mid);
+}
+
+#[test]
+fn oracle_o3_ijk_dome() {
+    let text = corpus_text("cvu/example-4-ijk-dome-surface.nc");
+    let r = run_on(
+        &text,
+        Dialect::Balt,
+        machine("C,0,0,0,A,0,0,0", 8),
+        at_gauge(100.0),
+    );
+    r.ok();
+    for (n, q, a, c) in [
+        ("N16", [0.0, 0.0, 100.0], 0.0, 0.0),
+        ("N17", [0.0, 0.0, 101.0], 0.0, 0.0),
+        ("N19", [0.0, 8.983441, 99.784499], -2.5817, 0.0),
+        ("N38", [0.0, 141.244678, 41.494678], -45.0, 0.0),
+        ("N39", [-10.076571, 141.052179, 41.302179], -45.0717, 4.0510),
+        ("N56", [-141.239338, 99.878775, 0.128775], -59.9975, 54.7315),
+        (
+            "N69",
+            [-141.245250, 22.415257, 39.689069],
+            -45.7220,
+            80.9982,
+        ),
+        ("N73", [-141.244678, 0.0, 41.494678], -45.0, 90.0),
+        ("N74", [-162.457678, 0.0, 62.707678], -45.0, 90.0),
+    ] {
+        let got = r.end_of(n);
+        assert_axes(got, q, &[], TOL, n);
+        assert!(
+            (got[A] - a).abs() < 1e-4 && (got[C] - c).abs() < 1e-4,
+            "{n}: {got:?}"
+        );
+    }
+}
+
+#[test]
+fn fat_variants_are_validated_at_load() {
+    let text = include_str!("../../../machines/5axis-cvu-tt.toml")
+        .replace("fat = \"C,0,0,0,A,0,0,0\"", "fat = \"C,0,0,0,A,1,0,0\"");
+    let err = MachineData::from_toml_str(&text, "x.toml").unwrap_err();
+    assert!(format!("{err:?}").contains("FAT error 142"), "{err:?}");
+}
+
+#[test]
+fn prohibited_codes_and_precondition() {
+    let m = || machine("C,0,0,0,A,0,0,0", 1);
+    let r = run_on(
+        "T1.1 M6\nCVU=1\nG1 G41 X10 F100\n",
+        Dialect::Balt,
+        m(),
+        at_gauge(100.0),
+    );
+    let d = r.error.clone().expect("G41 under CVU=1");
+    assert_eq!(d.code.to_string(), "balt::prohibited-in-cvu");
+    assert_eq!(d.span.line, 3);
+    // CVU=1 with the tool tilted.
+    let r = run_on(
+        "T1.1 M6\nG1 A10 F100\nCVU=1\n",
+        Dialect::Balt,
+        m(),
+        at_gauge(100.0),
+    );
+    let d = r.error.clone().expect("precondition");
+    assert_eq!(d.code.to_string(), "balt::cvu-precondition");
+    assert_eq!(d.span.line, 3);
+}
+
+#[test]
+fn g91_moves_xyz_only_and_angles_stay_absolute() {
+    let text = "T1.1 M6\nCVU=1\nG1 G91 X10 A20 F1000\nX10 A20\nCVU=0\n";
+    let r = run_on(
+        text,
+        Dialect::Balt,
+        machine("C,0,0,0,A,0,0,0", 1),
+        at_gauge(100.0),
+    );
+    r.ok();
+    let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+    let want = kin
+        .inverse(&Pose {
+            x: 20.0,
+            a: 20.0,
+            ..Pose::ZERO
+        })
+        .unwrap();
+    assert_axes(
+        r.end_of("X10 A20"),
+        [want[0], want[1], want[2]],
+        &[(A, 20.0)],
+        TOL,
+        "block 4",
+    );
+}

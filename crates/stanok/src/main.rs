@@ -15,6 +15,7 @@ mod diagnostics;
 mod machine_show;
 mod progress;
 mod report;
+mod tool_axis;
 mod trace;
 
 use clap::Parser;
@@ -549,6 +550,7 @@ fn plot(
     let options = stanok_plot::PlotOptions {
         title,
         reference: programmed_contour(file, dialect, &machine, args, &commands),
+        tool_axis: tool_axis::ticks(&commands, machine.five_axis().as_ref()),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

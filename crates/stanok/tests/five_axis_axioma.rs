@@ -549,3 +549,45 @@ fn example_12_10_fragments_direct_axes() {
         }
     }
 }
+
+#[test]
+fn plot_draws_tool_axis_ticks_under_traori() {
+    // Example 12.1 plotted on the 5-axis head: the tip path (a point) and five tool-axis ticks of
+    // 10 mm.
+    let dir = std::env::temp_dir().join("stanok-five-axis-plot");
+    std::fs::create_dir_all(&dir).unwrap();
+    let tools = dir.join("tools.toml");
+    std::fs::write(
+        &tools,
+        "[[tool]]\nnumber = 2\nkind = \"milling\"\n[[tool.edge]]\nlength = [100.0, 0.0, 0.0]\n",
+    )
+    .unwrap();
+    let out = dir.join("rot.svg");
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/corpus/axioma/s12_2_2-traori-rotate-in-place-example-12_1.nc"
+    );
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_stanok"))
+        .args(["plot", file, "-o"])
+        .arg(&out)
+        .args(["--machine", "5axis-bc-head", "--tools"])
+        .arg(&tools)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let svg = std::fs::read_to_string(&out).unwrap();
+    // One tool-axis path per view (four views); the ticks' geometry is unit-tested in
+    // `tool_axis.rs` (the last one from (0, 0, −100) to (−9.659258, 0, −97.411810)).
+    assert_eq!(svg.matches("class=\"tool-axis\"").count(), 4, "{svg}");
+    // Without the 5-axis machine there is no tick (and TRAORI is refused: 654).
+    let plain = dir.join("plain.svg");
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_stanok"))
+        .args(["plot", file, "-o"])
+        .arg(&plain)
+        .status()
+        .unwrap();
+    assert!(!status.success());
+    assert!(!std::fs::read_to_string(&plain)
+        .unwrap()
+        .contains("tool-axis"));
+}

@@ -257,3 +257,69 @@ fn g91_moves_xyz_only_and_angles_stay_absolute() {
         "block 4",
     );
 }
+
+#[test]
+fn oracle_o4_half_circle_on_three_kinematics() {
+    // Example 2 of §3.4 (corpus example-5): the tip on a half circle of radius 1 in YZ, A = the
+    // polar angle, L = 5 (corrector 4), all axes through the origin, GOST signs. A goes to 180°,
+    // so the A travel is opened to ±360° for this run.
+    let text = corpus_text("cvu/example-5-circle-yz-a-c.nc");
+    let g1_lines: Vec<u32> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.trim_start().starts_with("G1"))
+        .map(|(i, _)| i as u32 + 1)
+        .collect();
+    assert_eq!(g1_lines.len(), 9);
+    let tt_dt = [
+        [0.0, 0.0, 6.0],
+        [0.0, -2.828534, 4.242534],
+        [0.0, -4.0, 0.0],
+        [0.0, -2.828534, -4.242534],
+        [0.0, 0.0, -6.0],
+    ];
+    let dd = [
+        [0.0, 0.0, 6.0],
+        [0.0, 0.999849, 5.0],
+        [0.0, 0.0, 4.0],
+        [0.0, -0.999849, 5.0],
+        [0.0, 0.0, 6.0],
+    ];
+    for (fat, want) in [
+        ("C,0,,,A,0,,", tt_dt),
+        ("C,1,,,A,0,,", tt_dt),
+        ("A,1,,,C,1,,", dd),
+    ] {
+        let mut m = machine(fat, 4);
+        let mut c = ControlData::default();
+        c.tools.tools.insert(
+            4,
+            Tool {
+                number: 4,
+                kind: ToolKind::Milling,
+                edges: vec![ToolEdge {
+                    length: [5.0, 0.0, 0.0],
+                    ..Default::default()
+                }],
+                ..Default::default()
+            },
+        );
+        m.control = c;
+        for a in m.axes.iter_mut().filter(|a| a.name == 'A') {
+            (a.min, a.max) = (-360.0, 360.0);
+        }
+        for r in &mut m.kinematics.as_mut().unwrap().rotary {
+            if r.name == 'A' {
+                (r.min, r.max) = (-360.0, 360.0);
+            }
+        }
+        let r = run_on(&text, Dialect::Balt, m, Pose::ZERO);
+        r.ok();
+        // The way out (points 0…4) and back (5…8 mirror 3…0).
+        for (k, line) in g1_lines.iter().enumerate() {
+            let point = if k <= 4 { k } else { 8 - k };
+            let got = r.end_at_line(*line, &format!("{fat} G1 #{k}"));
+            assert_axes(got, want[point], &[(A, 45.0 * point as f64)], 1e-6, fat);
+        }
+    }
+}

@@ -125,7 +125,12 @@ impl Run {
     /// of its last motion command (exact; the servo grid rarely falls on a block end). Under TCP
     /// (exact stop) the last setpoint of the block must be within 0.01 mm/deg of it.
     pub fn end_of(&self, n: &str) -> [f64; 9] {
-        let line = self.line_of(n);
+        self.end_at_line(self.line_of(n), n)
+    }
+
+    /// [`Run::end_of`] for the block on source line `line` (`what` names it in messages).
+    pub fn end_at_line(&self, line: u32, what: &str) -> [f64; 9] {
+        let n = what;
         let base = self.machine.five_axis();
         let mut kin = None;
         let mut end = None;
@@ -155,7 +160,13 @@ impl Run {
             // Without TCP a G64 block blends into the next one: no stop at its end.
             return end;
         }
-        let Some(last) = self.block(n).last().map(|s| s.joints) else {
+        let Some(last) = self
+            .setpoints
+            .iter()
+            .rev()
+            .find(|s| s.line == line)
+            .map(|s| s.joints)
+        else {
             // A block that moves nothing (it is already there) has no setpoint of its own.
             return end;
         };

@@ -25,7 +25,7 @@ mod span;
 pub use canon::{
     AccelerationProfile, ArcMove, AuxTiming, Canon, FeedMode, LengthUnits, LineMove, LogAction,
     Motion, OrientationInterpolation, PathMode, Plane, Pose, ProbeKind, SpindleDirection,
-    SplineMove, AXIS_LETTERS,
+    SplineMove, SurfaceSpeedLaw, AXIS_LETTERS,
 };
 pub use diag::{DiagCode, Diagnostic, Severity};
 pub use span::{Span, Spanned};

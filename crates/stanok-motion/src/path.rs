@@ -31,7 +31,9 @@
 
 use crate::limits::MotionConfig;
 use crate::piece::{arc_limits, line_limits, Piece, Shape};
-use crate::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry, SPLINE_CHORD_TOLERANCE};
+use crate::segment::{
+    PathSegment, PlannerInput, Point9, SegmentGeometry, Spindles, SPLINE_CHORD_TOLERANCE,
+};
 use stanok_canon::PathMode;
 
 /// Chord and blend tolerance inside arcs and splines under exact-stop and exact-path modes, mm.
@@ -66,6 +68,7 @@ struct Chord {
     accel_cap: f64,
     soft: bool,
     line: u32,
+    spindles: Spindles,
     chord_tolerance: f64,
     end_rule: EndRule,
     entry_stop: bool,
@@ -81,6 +84,8 @@ pub struct PathBuilder {
     stop_next: bool,
     /// End of the last chord received (exact programmed point).
     position: Point9,
+    /// The spindle speed of the last segment received (dwells keep it).
+    spindles: Spindles,
     scratch: Vec<Point9>,
 }
 
@@ -105,6 +110,7 @@ impl PathBuilder {
             pending: None,
             stop_next: true,
             position: [0.0; 9],
+            spindles: Spindles::default(),
             scratch: Vec::new(),
         }
     }
@@ -125,7 +131,7 @@ impl PathBuilder {
             PlannerInput::Stop { dwell_s, line } => {
                 self.flush(out);
                 if dwell_s > 0.0 {
-                    out(dwell_piece(self.position, dwell_s, line));
+                    out(dwell_piece(self.position, dwell_s, line, self.spindles));
                 }
                 self.stop_next = true;
             }
@@ -254,6 +260,7 @@ impl PathBuilder {
         }
         let dir = delta.map(|d| d / length);
         self.position = *b;
+        self.spindles = seg.spindles;
         let mut next = Chord {
             start: *a,
             end: *b,
@@ -264,6 +271,7 @@ impl PathBuilder {
             accel_cap: seg.acceleration_cap,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
+            spindles: seg.spindles,
             chord_tolerance,
             end_rule,
             entry_stop: false,
@@ -345,6 +353,7 @@ impl PathBuilder {
             soft,
             entry_stop: false,
             line: next.line,
+            spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
         });
@@ -375,6 +384,7 @@ impl PathBuilder {
             soft: c.soft,
             entry_stop: c.entry_stop && c.start_trim == 0.0,
             line: c.line,
+            spindles: c.spindles,
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
         });
@@ -391,7 +401,7 @@ fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
     }
 }
 
-fn dwell_piece(at: Point9, seconds: f64, line: u32) -> Piece {
+fn dwell_piece(at: Point9, seconds: f64, line: u32, spindles: Spindles) -> Piece {
     Piece {
         end: at,
         shape: Shape::Dwell { at, seconds },
@@ -402,6 +412,7 @@ fn dwell_piece(at: Point9, seconds: f64, line: u32) -> Piece {
         soft: false,
         entry_stop: true,
         line,
+        spindles,
         deviation: 0.0,
         tolerance: 0.0,
     }

@@ -42,6 +42,7 @@ pub fn line(
         path_mode: mode,
         profile,
         line: 1,
+        spindles: Default::default(),
     })
 }
 

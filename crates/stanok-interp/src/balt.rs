@@ -15,8 +15,19 @@
 //!   singular pose keeps the free axis, §5.7–§5.8).
 //! * `CVU=0` switches back: the position is the machine axes again; nothing moves.
 //!
-//! Not built (refused with a diagnostic): G2/G3 and splines `(BSP …)(ESP)` in CVU=1, CVU=3 with
-//! `(LCS …)` and MOVST, E parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
+//! * `CVU=3` (positional machining in a tilted plane, §5.10, §6.8): tool-centre-point control as
+//!   in CVU=1, and X Y Z are coordinates of the local frame `(LCS,1,X…,Y…,Z…,A…,B…,C…)`: part
+//!   point P = o + R_L·p_local, with R_L the rotation the machine's rotary axes at the LCS angles
+//!   give the tool (`FiveAxis::orientation_frame`, so local +Z is the tool axis once the axes stand
+//!   at those angles). Omitted words and G91 act on the local coordinates. A block that moves
+//!   rotary axes only follows `MOVST`: 1 (the default, decision) keeps the tip on the part as in
+//!   CVU=1; 2 keeps the linear axes still (TCP is switched off for the block, so the machine axes
+//!   move exactly as programmed) and the tip is then where forward kinematics puts it.
+//!   `(LCS,0)` cancels the frame. Decision (the spec proposes otherwise): the frame maps X Y Z
+//!   only while CVU=3 is on; under CVU=0 the words are the machine's linear axes.
+//!
+//! Not built (refused with a diagnostic): G2/G3 and splines `(BSP …)(ESP)` in CVU=1, E
+//! parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
 //! G60–G62, G20/G21, G72–G74, G81–G86, G89) are `balt::prohibited-in-cvu`.
 
 use crate::ctx::Ctx;
@@ -29,10 +40,91 @@ use stanok_syntax::{ColSpan, CommentKind, Keyword};
 /// The Balt-System modal state (Copy: restored with `ModalState` when a block fails).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct BaltState {
-    /// CVU=1 is on.
+    /// CVU=1 or CVU=3 is on (tool-centre-point control).
     pub cvu: bool,
+    /// CVU=3: X Y Z are local-frame coordinates.
+    pub cvu3: bool,
+    /// MOVST=1 or 2; 0 = never set, which acts as 1.
+    pub movst: u8,
+    /// The local frame of `(LCS,1,…)`, until `(LCS,0)`.
+    pub lcs: Option<Lcs>,
+    /// CVU=3: the last programmed local X Y Z. Omitted words keep these, not the tip's actual
+    /// local coordinates: after a MOVST=2 rotation the tip has left the programmed point, and the
+    /// manual's square (§6.8, O5) goes on from the programmed corner. None = take the tip's.
+    pub local: Option<[f64; 3]>,
     /// Tool length of the active corrector, mm.
     pub length: f64,
+}
+
+/// A CVU=3 local frame: part point = origin + rotation·local (rotation row-major).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lcs {
+    /// o, part coordinates, mm.
+    pub origin: [f64; 3],
+    /// R_L.
+    pub rotation: [[f64; 3]; 3],
+}
+
+impl Lcs {
+    /// o + R_L·p.
+    pub fn part_point(&self, p: [f64; 3]) -> [f64; 3] {
+        let r = &self.rotation;
+        std::array::from_fn(|i| self.origin[i] + (0..3).map(|j| r[i][j] * p[j]).sum::<f64>())
+    }
+
+    /// R_Lᵀ·(P − o).
+    pub fn local_point(&self, p: [f64; 3]) -> [f64; 3] {
+        let r = &self.rotation;
+        let d: [f64; 3] = std::array::from_fn(|i| p[i] - self.origin[i]);
+        std::array::from_fn(|j| (0..3).map(|i| r[i][j] * d[i]).sum::<f64>())
+    }
+}
+
+/// `(LCS,1,X xo,Y yo,Z zo,A a,B b,C c)` / `(LCS,0)` (§5.10). A field is a letter and a number
+/// (an empty number is 0, §2); an angle of a rotary axis the machine lacks must be 0.
+fn lcs(cx: &mut Ctx<'_>, text: &str, at: ColSpan) -> Result<(), Diagnostic> {
+    let bad = |cx: &Ctx<'_>, why: String| {
+        cx.err("balt::lcs", format!("(LCS …): {why}"), at)
+            .with_note("the form is (LCS,1,X…,Y…,Z…,A…,B…,C…) or (LCS,0)")
+    };
+    let mut fields = text.split(',').skip(1).map(str::trim);
+    match fields.next() {
+        Some("0") => {
+            cx.st.balt.lcs = None;
+            cx.st.balt.local = None;
+            return Ok(());
+        }
+        Some("1") => {}
+        other => return Err(bad(cx, format!("the frame number {other:?} is not 0 or 1"))),
+    }
+    let mut v = [0.0; 9];
+    for f in fields.filter(|f| !f.is_empty()) {
+        let letter = f.as_bytes()[0].to_ascii_uppercase();
+        let Some(slot) = b"XYZABC".iter().position(|&c| c == letter) else {
+            return Err(bad(cx, format!("unknown field {f:?}")));
+        };
+        let num = f[1..].trim();
+        v[slot] = if num.is_empty() {
+            0.0
+        } else {
+            num.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(cx, format!("{f:?} is not a number")))?
+        };
+    }
+    let kin = kinematics(cx, at)?;
+    for (k, name) in ['A', 'B', 'C'].iter().enumerate() {
+        if v[3 + k] != 0.0 && !kin.rotary_axes().any(|a| a.name.eq_ignore_ascii_case(name)) {
+            return Err(bad(cx, format!("the machine has no {name} axis")));
+        }
+    }
+    cx.st.balt.local = None;
+    cx.st.balt.lcs = Some(Lcs {
+        origin: [v[0], v[1], v[2]],
+        rotation: kin.orientation_frame(&Pose::from_array(v)),
+    });
+    Ok(())
 }
 
 fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
@@ -68,14 +160,13 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     .unwrap_or_default();
                 cx.out.push(Canon::Message { text: msg });
             }
+            "LCS" => lcs(cx, &text, c.text)?,
             // Display and plane settings of the control's screen: no effect on motion.
             "UCG" | "UAV" | "DPI" | "UAO" => {}
             _ => {
                 return Err(cx.err(
                     "interp::unsupported",
-                    format!(
-                        "({name} …) is not supported (CVU=3 frames and CVU splines are not built)"
-                    ),
+                    format!("({name} …) is not supported (CVU splines are not built)"),
                     c.text,
                 ))
             }
@@ -85,13 +176,20 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     for &(kw, _, val, span) in &cx.words.keywords {
         match kw {
             Keyword::Cvu => cvu_word = Some((val.map_or(-1.0, |v| v.v), span)),
+            Keyword::Movst => match val.map(|v| v.v) {
+                Some(m) if m == 1.0 || m == 2.0 => cx.st.balt.movst = m as u8,
+                _ => {
+                    return Err(cx.err(
+                        "balt::movst",
+                        format!("{} is not MOVST=1 or MOVST=2", cx.block.slice(span)),
+                        span,
+                    ))
+                }
+            },
             _ => {
                 return Err(cx.err(
                     "interp::unsupported",
-                    format!(
-                        "{} is not supported (CVU=3 and MOVST are not built)",
-                        cx.block.slice(span)
-                    ),
+                    format!("{} is not supported", cx.block.slice(span)),
                     span,
                 ))
             }
@@ -204,12 +302,15 @@ fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
     let base = kinematics(cx, span)?;
     let c0 = [0.0, 0.0, cx.st.balt.length];
     match v as i64 {
-        1 if v == 1.0 => {
+        1 | 3 if v == 1.0 || v == 3.0 => {
+            cx.st.balt.cvu3 = v == 3.0;
+            cx.st.balt.local = None;
             if cx.st.balt.cvu {
                 return Ok(());
             }
             let t = base.tool_vector(&cx.st.position);
-            if (t[2] - 1.0).abs() > 1e-9 {
+            // The manual states the precondition for CVU=1 (§3); CVU=3 positions the axes itself.
+            if v == 1.0 && (t[2] - 1.0).abs() > 1e-9 {
                 return Err(cx
                     .err(
                         "balt::cvu-precondition",
@@ -243,11 +344,12 @@ fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
             });
             cx.st.position = Pose::from_array(joints);
             cx.st.balt.cvu = false;
+            cx.st.balt.cvu3 = false;
         }
         _ => {
             return Err(cx.err(
                 "interp::unsupported",
-                format!("CVU={v} is not supported (CVU=1 and CVU=0 are built)"),
+                format!("CVU={v} is not supported (CVU=0, CVU=1 and CVU=3 are built)"),
                 span,
             ))
         }
@@ -260,7 +362,31 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
     let at = cx.whole();
     let ijk = [b'I', b'J', b'K'].map(|l| cx.words.take(l));
     let rotary_words = [b'A', b'B', b'C'].map(|l| cx.words.peek(l));
-    let (end, _) = cx.end_point()?;
+    let linear_words = cx.words.any(b"XYZ");
+    let lcs = cx.st.balt.lcs.filter(|_| cx.st.balt.cvu3);
+    let (end, _) = match lcs {
+        // CVU=3: the words (and G91, and omitted words) act on the local coordinates.
+        Some(l) => {
+            let part = cx.st.position;
+            let mut local = part.to_array();
+            let p = cx
+                .st
+                .balt
+                .local
+                .unwrap_or_else(|| l.local_point([local[0], local[1], local[2]]));
+            local[..3].copy_from_slice(&p);
+            cx.st.position = Pose::from_array(local);
+            let r = cx.end_point();
+            cx.st.position = part;
+            let (end, given) = r?;
+            let mut e = end.to_array();
+            cx.st.balt.local = Some([e[0], e[1], e[2]]);
+            let p = l.part_point([e[0], e[1], e[2]]);
+            e[..3].copy_from_slice(&p);
+            (Pose::from_array(e), given)
+        }
+        None => cx.end_point()?,
+    };
     let mut e = end.to_array();
     if cx.st.balt.cvu && cx.st.distance == DistanceMode::Incremental {
         // §6.3: G91 applies to X Y Z only; angles are absolute.
@@ -304,6 +430,44 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
             at,
         ));
     }
-    cx.straight(rapid, Pose::from_array(e), if rapid { 0.0 } else { feed });
+    let feed = if rapid { 0.0 } else { feed };
+    if cx.st.balt.cvu3 && cx.st.balt.movst == 2 && !linear_words {
+        return rotate_with_linear_axes_still(cx, e, rapid, feed, at);
+    }
+    cx.straight(rapid, Pose::from_array(e), feed);
+    Ok(())
+}
+
+/// CVU=3, MOVST=2, a block without X Y Z (§6.8): the linear axes stay where they are while the
+/// rotary axes turn. TCP is switched off for the block (the kin stage re-expresses the position
+/// as machine axes and back, nothing moves at the switches), the block moves the rotary axes in
+/// machine coordinates, and the tip afterwards is forward(Q, new angles).
+fn rotate_with_linear_axes_still(
+    cx: &mut Ctx<'_>,
+    end: [f64; 9],
+    rapid: bool,
+    feed: f64,
+    at: ColSpan,
+) -> Result<(), Diagnostic> {
+    let c0 = [0.0, 0.0, cx.st.balt.length];
+    let kin = kinematics(cx, at)?.with_tool_offset(c0);
+    let mut joints = kin
+        .inverse(&cx.st.position)
+        .map_err(|e| cx.err("balt::kinematics", e.to_string(), at))?;
+    cx.out.push(Canon::SetToolCentrePoint {
+        active: false,
+        tool_offset: [0.0; 3],
+    });
+    cx.st.position = Pose::from_array(joints);
+    joints[3..].copy_from_slice(&end[3..]);
+    cx.straight(rapid, Pose::from_array(joints), feed);
+    let tip = kin
+        .forward(&joints)
+        .map_err(|e| cx.err("balt::kinematics", e.to_string(), at))?;
+    cx.out.push(Canon::SetToolCentrePoint {
+        active: true,
+        tool_offset: c0,
+    });
+    cx.st.position = tip;
     Ok(())
 }

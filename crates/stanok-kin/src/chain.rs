@@ -304,6 +304,19 @@ impl FiveAxis {
 
     /// t = R_Wᵀ·R_H·b for the rotary values of `pose`, in the table-fixed frame.
     pub fn tool_vector_at(&self, pose: &Pose) -> [f64; 3] {
+        (self.orientation_rotation(pose) * self.base).into()
+    }
+
+    /// R = R_Wᵀ·R_H: the rotation the rotary axes at `pose` give the tool relative to the
+    /// workpiece (R_H = head rotations outer → inner, R_W = table rotations outer → inner), so
+    /// that the tool vector is R·b. Row-major. Used for the Balt-System CVU=3 local frame, whose
+    /// rotation is built "with the same formula as u" (cvu-five-axis.md §5.10).
+    pub fn orientation_frame(&self, pose: &Pose) -> [[f64; 3]; 3] {
+        let m = self.orientation_rotation(pose).into_inner();
+        std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]))
+    }
+
+    fn orientation_rotation(&self, pose: &Pose) -> Rotation3<f64> {
         let v = pose.to_array();
         let r_h = self.head.iter().fold(Rotation3::identity(), |r, a| {
             r * a.rotation(Self::angle(&v, a))
@@ -311,7 +324,7 @@ impl FiveAxis {
         let r_w = self.table.iter().fold(Rotation3::identity(), |r, a| {
             r * a.rotation(Self::angle(&v, a))
         });
-        (r_w.transpose() * r_h * self.base).into()
+        r_w.transpose() * r_h
     }
 
     /// The (u, v) reduction of the two rotary axes, or None with fewer than two.

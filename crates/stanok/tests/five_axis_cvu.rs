@@ -323,3 +323,155 @@ fn oracle_o4_half_circle_on_three_kinematics() {
         }
     }
 }
+
+/// Source line (1-based) of the first line of `text` whose trimmed text is `block`.
+fn line_of_text(text: &str, block: &str) -> u32 {
+    text.lines()
+        .position(|l| l.trim() == block)
+        .unwrap_or_else(|| panic!("no line {block:?}")) as u32
+        + 1
+}
+
+#[test]
+fn oracle_o5_cvu3_tilted_plane_with_movst_2() {
+    // corpus example-8: (LCS,1,X30,Y50,Z20,A45,C30), CVU=3, MOVST=2, a 50 × 50 square in the
+    // local XY plane; L = 100 (the header's machine data: corrector 1 selected before the
+    // program). Oracle O5 of §8: Q on TT C+A (zero offsets) and DD A+C (axes through the origin).
+    let text = format!(
+        "T1.1 M6\n{}",
+        corpus_text("cvu/example-8-cvu3-tilted-plane-lcs.nc")
+    );
+    let first = line_of_text(&text, "G1XY50ZF1000");
+    let orient = line_of_text(&text, "G1A45C30F1000");
+    let square = ["G1X50Z", "G1Y0Z", "G1X0Z", "G1XY50Z"].map(|b| line_of_text(&text, b));
+    let back = line_of_text(&text, "G1A0C0");
+    let last = line_of_text(&text, "G1X0Y0");
+    let before = [12.322330, 80.618622, 155.355339];
+    for (fat, corners) in [
+        (
+            "C,0,0,0,A,0,0,0",
+            [
+                [90.978940, 44.381378, 126.066017],
+                [108.656609, 13.762756, 90.710678],
+                [65.355339, -11.237244, 90.710678],
+                [47.677670, 19.381378, 126.066017],
+            ],
+        ),
+        (
+            "A,1,,,C,1,,",
+            [
+                [100.980762, 84.154156, 94.130116],
+                [100.980762, 34.154156, 94.130116],
+                [50.980762, 34.154156, 94.130116],
+                [50.980762, 84.154156, 94.130116],
+            ],
+        ),
+    ] {
+        let r = run_on(&text, Dialect::Balt, machine(fat, 1), Pose::ZERO);
+        r.ok();
+        let at = |line: u32, what: &str| r.end_at_line(line, &format!("{fat} {what}"));
+        assert_axes(
+            at(first, "G1XY50Z"),
+            before,
+            &[(A, 0.0), (C, 0.0)],
+            TOL,
+            fat,
+        );
+        // MOVST=2: the linear axes stand still while A and C turn, at every setpoint.
+        assert_axes(
+            at(orient, "G1A45C30"),
+            before,
+            &[(A, 45.0), (C, 30.0)],
+            TOL,
+            fat,
+        );
+        let sps: Vec<_> = r.setpoints.iter().filter(|s| s.line == orient).collect();
+        assert!(sps.len() > 10, "{fat}: {} setpoints", sps.len());
+        for sp in sps {
+            assert_axes(sp.joints, before, &[], TOL, fat);
+        }
+        for (k, (&line, want)) in square.iter().zip(corners).enumerate() {
+            assert_axes(at(line, "corner"), want, &[(A, 45.0), (C, 30.0)], TOL, fat);
+            // Sides 1–3 keep the tip in the local plane z = 0 at every setpoint (R_L's third
+            // column is the tool axis u; local z = u·(P − o)). Side 0 starts where MOVST=2 left
+            // the tip, off the plane.
+            if k == 0 {
+                continue;
+            }
+            let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+            let u = [
+                0.353553390593,
+                -0.612372435696,
+                std::f64::consts::FRAC_1_SQRT_2,
+            ];
+            for sp in r.setpoints.iter().filter(|s| s.line == line) {
+                let p = kin.forward(&sp.joints).unwrap().xyz();
+                let z = u[0] * (p[0] - 30.0) + u[1] * (p[1] - 50.0) + u[2] * (p[2] - 20.0);
+                assert!(z.abs() < 1e-6, "{fat} side {k}: local z {z}");
+            }
+        }
+        // G1A0C0 under MOVST=2: the linear axes stay at the last corner.
+        assert_axes(
+            at(back, "G1A0C0"),
+            corners[3],
+            &[(A, 0.0), (C, 0.0)],
+            TOL,
+            fat,
+        );
+        // After CVU=0 the words are machine axes (decision: the frame maps only in CVU=3).
+        assert_axes(
+            at(last, "G1X0Y0"),
+            [0.0, 0.0, corners[3][2]],
+            &[(A, 0.0), (C, 0.0)],
+            TOL,
+            fat,
+        );
+    }
+}
+
+#[test]
+fn cvu3_movst_1_keeps_the_tip_and_lcs_errors() {
+    // MOVST=1: the orientation block holds the tip at local (0,50,0) → part (12.32, 80.62, 55.36)
+    // and the axes end on O5's TT row for (0,50,0).
+    let text = "T1.1 M6\nG0X0Y0Z0A0C0\n(LCS,1,X30,Y50,Z20,A45,C30)\nCVU=3\nMOVST=1\nG1XY50ZF1000\nG1A45C30\nCVU=0\nM30\n";
+    let r = run_on(
+        text,
+        Dialect::Balt,
+        machine("C,0,0,0,A,0,0,0", 1),
+        Pose::ZERO,
+    );
+    r.ok();
+    assert_axes(
+        r.end_at_line(7, "G1A45C30"),
+        [47.677670, 19.381378, 126.066017],
+        &[(A, 45.0), (C, 30.0)],
+        TOL,
+        "MOVST=1",
+    );
+    let kin = r.machine.five_axis().unwrap().with_tool_length(100.0);
+    for sp in r.setpoints.iter().filter(|s| s.line == 7) {
+        let p = kin.forward(&sp.joints).unwrap().xyz();
+        let want = [12.322330, 80.618622, 55.355339];
+        assert!((0..3).all(|i| (p[i] - want[i]).abs() < 1e-5), "tip {p:?}");
+    }
+    // A B angle on an A-C machine, and a bad frame number: named errors at the comment.
+    for (bad, col) in [("(LCS,1,X30,B10)", 2), ("(LCS,2)", 2)] {
+        let text = format!("T1.1 M6\n{bad}\nM30\n");
+        let r = run_on(
+            &text,
+            Dialect::Balt,
+            machine("C,0,0,0,A,0,0,0", 1),
+            Pose::ZERO,
+        );
+        let e = r.error.expect(bad);
+        assert_eq!(e.code.to_string(), "balt::lcs", "{bad}: {e:?}");
+        assert_eq!((e.span.line, e.span.column), (2, col), "{bad}");
+    }
+    let r = run_on(
+        "MOVST=5\n",
+        Dialect::Balt,
+        machine("C,0,0,0,A,0,0,0", 1),
+        Pose::ZERO,
+    );
+    assert_eq!(r.error.expect("MOVST=5").code.to_string(), "balt::movst");
+}

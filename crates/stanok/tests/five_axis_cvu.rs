@@ -475,3 +475,140 @@ fn cvu3_movst_1_keeps_the_tip_and_lcs_errors() {
     );
     assert_eq!(r.error.expect("MOVST=5").code.to_string(), "balt::movst");
 }
+
+/// [`machine`] for any FAT pair: a rotary axis the base machine lacks (B) is added as a copy of
+/// its A axis, and every rotary travel is opened to ±360° (the half-circle programs turn to 180°).
+fn machine_any(fat: &str, corrector: u32) -> MachineData {
+    let mut base = MachineData::builtin("5axis-cvu-tt").unwrap();
+    for name in ['A', 'B', 'C'] {
+        if base.axis(name).is_none() {
+            let mut a = base.axis('A').unwrap().clone();
+            a.name = name;
+            base.axes.push(a);
+        }
+    }
+    base.axes
+        .sort_by_key(|a| "XYZABCUVW".find(a.name).unwrap_or(9));
+    for a in base.axes.iter_mut().filter(|a| "ABC".contains(a.name)) {
+        (a.min, a.max) = (-360.0, 360.0);
+    }
+    let mut m = base;
+    let mut k = m.kinematics.clone().unwrap();
+    let chain = stanok_kin::from_fat(fat).unwrap();
+    k.fat = Some(fat.to_string());
+    k.kind = match (
+        chain
+            .rotary_axes()
+            .filter(|a| a.carrier == stanok_kin::Carrier::Head)
+            .count(),
+        chain.rotary_axes().count(),
+    ) {
+        (2, _) => stanok_kin::MachineType::HeadHead,
+        (0, _) => stanok_kin::MachineType::TableTable,
+        _ => stanok_kin::MachineType::HeadTable,
+    };
+    k.rotary = chain.rotary_axes().cloned().collect();
+    for r in &mut k.rotary {
+        let axis = m.axis(r.name).unwrap();
+        (r.min, r.max, r.max_velocity) = (axis.min, axis.max, axis.max_velocity);
+    }
+    m.kinematics = Some(k);
+    let mut c = ControlData::default();
+    c.tools.tools.insert(
+        corrector,
+        Tool {
+            number: corrector,
+            kind: ToolKind::Milling,
+            edges: vec![ToolEdge {
+                length: [5.0, 0.0, 0.0],
+                ..Default::default()
+            }],
+            ..Default::default()
+        },
+    );
+    m.control = c;
+    m
+}
+
+/// Runs a §3.4 half-circle program (9 G1 blocks: points 0…4 out, 3…0 back) on each FAT line and
+/// asserts Q at every G1 block and the angle axis `angle` at 45° per point (1e-6).
+fn half_circle(file: &str, angle: usize, cases: &[(&str, [[f64; 3]; 5])]) {
+    let text = corpus_text(&format!("cvu/{file}"));
+    let g1_lines: Vec<u32> = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.trim_start().starts_with("G1"))
+        .map(|(i, _)| i as u32 + 1)
+        .collect();
+    assert_eq!(g1_lines.len(), 9);
+    for (fat, want) in cases {
+        let r = run_on(&text, Dialect::Balt, machine_any(fat, 4), Pose::ZERO);
+        r.ok();
+        for (k, line) in g1_lines.iter().enumerate() {
+            let point = if k <= 4 { k } else { 8 - k };
+            let got = r.end_at_line(*line, &format!("{fat} G1 #{k}"));
+            assert_axes(got, want[point], &[(angle, 45.0 * point as f64)], TOL, fat);
+        }
+    }
+}
+
+#[test]
+fn example_6_half_circle_yz_on_a_b_machines() {
+    // With B = 0 the tool axis is Rx(A)·e_z on all six FAT lines: A on the head gives the TT/DT
+    // column of O4, A on the table its DD column (the header of corpus example-6).
+    let head = [
+        [0.0, 0.0, 6.0],
+        [0.0, -2.828534, 4.242534],
+        [0.0, -4.0, 0.0],
+        [0.0, -2.828534, -4.242534],
+        [0.0, 0.0, -6.0],
+    ];
+    let table = [
+        [0.0, 0.0, 6.0],
+        [0.0, 0.999849, 5.0],
+        [0.0, 0.0, 4.0],
+        [0.0, -0.999849, 5.0],
+        [0.0, 0.0, 6.0],
+    ];
+    half_circle(
+        "example-6-circle-yz-a-b.nc",
+        A,
+        &[
+            ("A,0,,,B,0,,", head),
+            ("B,0,,,A,0,,", head),
+            ("B,1,,,A,0,,", head),
+            ("A,1,,,B,0,,", table),
+            ("A,1,,,B,1,,", table),
+            ("B,1,,,A,1,,", table),
+        ],
+    );
+}
+
+#[test]
+fn example_7_half_circle_xz_on_b_c_machines_as_printed() {
+    // As printed, C carries the angle and B stays 0 (AMB-18): TT turns the vertical tool about
+    // its own axis (no compensation); DT and DD carry the tip round machine Z with the table.
+    let tt = [
+        [0.0, 0.0, 6.0],
+        [0.707, 0.0, 5.707],
+        [1.0, 0.0, 5.0],
+        [0.707, 0.0, 4.293],
+        [0.0, 0.0, 4.0],
+    ];
+    let table = [
+        [0.0, 0.0, 6.0],
+        [0.499924, -0.499924, 5.707],
+        [0.0, -1.0, 5.0],
+        [-0.499924, -0.499924, 4.293],
+        [0.0, 0.0, 4.0],
+    ];
+    half_circle(
+        "example-7-circle-xz-b-c.nc",
+        C,
+        &[
+            ("C,0,,,B,0,,", tt),
+            ("C,1,,,B,0,,", table),
+            ("B,1,,,C,1,,", table),
+        ],
+    );
+}

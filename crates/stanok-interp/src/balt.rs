@@ -26,8 +26,9 @@
 //!   `(LCS,0)` cancels the frame. Decision (the spec proposes otherwise): the frame maps X Y Z
 //!   only while CVU=3 is on; under CVU=0 the words are the machine's linear axes.
 //!
-//! Not built (refused with a diagnostic): G2/G3 and splines `(BSP …)(ESP)` in CVU=1, E
-//! parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
+//! * G02/G03 with R in the `(DPI,…)` plane: balt_arc.rs.
+//!
+//! Not built (refused with a diagnostic): splines `(BSP …)(ESP)` in CVU=1, E parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
 //! G60–G62, G20/G21, G72–G74, G81–G86, G89) are `balt::prohibited-in-cvu`.
 
 use crate::ctx::Ctx;
@@ -54,6 +55,8 @@ pub struct BaltState {
     pub local: Option<[f64; 3]>,
     /// Tool length of the active corrector, mm.
     pub length: f64,
+    /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (balt_arc.rs).
+    pub plane_reversed: bool,
 }
 
 /// A CVU=3 local frame: part point = origin + rotation·local (rotation row-major).
@@ -161,8 +164,9 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 cx.out.push(Canon::Message { text: msg });
             }
             "LCS" => lcs(cx, &text, c.text)?,
-            // Display and plane settings of the control's screen: no effect on motion.
-            "UCG" | "UAV" | "DPI" | "UAO" => {}
+            "DPI" => crate::balt_arc::dpi(cx, &text, c.text)?,
+            // Display settings of the control's screen: no effect on motion.
+            "UCG" | "UAV" | "UAO" => {}
             _ => {
                 return Err(cx.err(
                     "interp::unsupported",
@@ -204,6 +208,8 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         match code {
             0 => cx.st.motion = MotionMode::Rapid,
             10 => cx.st.motion = MotionMode::Linear,
+            20 => cx.st.motion = MotionMode::ArcCw,
+            30 => cx.st.motion = MotionMode::ArcCcw,
             900 => cx.st.distance = DistanceMode::Absolute,
             910 => cx.st.distance = DistanceMode::Incremental,
             // G27: used by the manual's programs, not defined there; no motion effect here.
@@ -429,6 +435,9 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
             "feed move without F (the first block after CVU=1 must program F)",
             at,
         ));
+    }
+    if matches!(cx.st.motion, MotionMode::ArcCw | MotionMode::ArcCcw) {
+        return crate::balt_arc::arc(cx, e, feed, at);
     }
     let feed = if rapid { 0.0 } else { feed };
     if cx.st.balt.cvu3 && cx.st.balt.movst == 2 && !linear_words {

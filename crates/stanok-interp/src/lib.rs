@@ -27,6 +27,7 @@ mod arc;
 mod axioma;
 mod axioma_chain;
 mod balt;
+mod balt_arc;
 mod ctx;
 mod flow;
 mod frame;

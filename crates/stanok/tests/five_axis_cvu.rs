@@ -612,3 +612,91 @@ fn example_7_half_circle_xz_on_b_c_machines_as_printed() {
         ],
     );
 }
+
+#[test]
+fn cvu1_circle_in_yz_keeps_the_tip_on_the_arc() {
+    // §6.4: G02 with R in the (DPI,Y,Z) plane under CVU=1, A turning with the arc parameter —
+    // example 5's half circle as one circle block (R−1: exactly 180° takes the minus sign).
+    // L = 5. The motion stage runs an arc as chords of at most 1 µm sag (path.rs,
+    // INTERNAL_TOLERANCE) with the rotary axes linear in the arc parameter at the chord points,
+    // so at every setpoint: the tip in the plane x = 0 (1e-9 mm), within 1e-3 mm of the circle
+    // y² + z² = 1 on the +Y side, and A equal to the tip's polar angle within 0.01°; the block
+    // ends exactly on O4's point 4 (1e-6).
+    let text = "T1.4M6\n(DPI,Y,Z)\nCVU=1\nG1 X0 Y0 Z1 A0 C0 F60\nG2 Y0 Z-1 R-1 A180\nCVU=0\nM30\n";
+    for (fat, end) in [
+        ("C,0,,,A,0,,", [0.0, 0.0, -6.0]),
+        ("A,1,,,C,1,,", [0.0, 0.0, 6.0]),
+    ] {
+        let r = run_on(text, Dialect::Balt, machine_any(fat, 4), Pose::ZERO);
+        r.ok();
+        assert_axes(
+            r.end_at_line(5, "G2"),
+            end,
+            &[(A, 180.0), (C, 0.0)],
+            TOL,
+            fat,
+        );
+        let kin = r.machine.five_axis().unwrap().with_tool_length(5.0);
+        let sps: Vec<_> = r.setpoints.iter().filter(|s| s.line == 5).collect();
+        assert!(sps.len() > 100, "{fat}: {} setpoints", sps.len());
+        for sp in sps {
+            let p = kin.forward(&sp.joints).unwrap().xyz();
+            let radius = p[1].hypot(p[2]);
+            assert!(
+                p[0].abs() < 1e-9 && (radius - 1.0).abs() < 1e-3,
+                "{fat}: tip {p:?}"
+            );
+            assert!(p[1] > -1e-6, "{fat}: tip {p:?} left the +Y half");
+            let polar = p[1].max(0.0).atan2(p[2]).to_degrees();
+            assert!(
+                (sp.joints[A] - polar).abs() < 0.01,
+                "{fat}: A {} at {p:?}",
+                sp.joints[A]
+            );
+        }
+    }
+}
+
+#[test]
+fn balt_circle_errors() {
+    // A chord longer than 2|R|, a missing R, and G02 in CVU=3: `balt::arc` / unsupported, with
+    // the position of the word or block.
+    let m = || machine("C,0,0,0,A,0,0,0", 1);
+    let cases = [
+        ("G1X0Y0Z0F100\nG2X10Y0R2\n", "balt::arc", 2, 8),
+        ("G1X0Y0Z0F100\nG3X10Y0\n", "balt::arc", 2, 1),
+        (
+            "T1.1M6\n(LCS,1,X0,Y0,Z0,A0,C0)\nCVU=3\nG2X10Y0R5F100\n",
+            "interp::unsupported",
+            4,
+            1,
+        ),
+    ];
+    for (text, code, line, column) in cases {
+        let r = run_on(text, Dialect::Balt, m(), Pose::ZERO);
+        let e = r.error.unwrap_or_else(|| panic!("{text}: no error"));
+        assert_eq!(e.code.to_string(), code, "{text}: {e:?}");
+        assert_eq!((e.span.line, e.span.column), (line, column), "{text}");
+    }
+    // A circle without CVU: the centre from R (quarter circle, centre (0,10)).
+    let r = run_on(
+        "G1X10Y0Z0F600\nG3X0Y10R10\nM30\n",
+        Dialect::Balt,
+        m(),
+        Pose::ZERO,
+    );
+    r.ok();
+    let arc = r
+        .canon
+        .iter()
+        .find_map(|c| match c {
+            stanok_canon::Canon::ArcFeed(a) => Some(*a),
+            _ => None,
+        })
+        .unwrap();
+    assert!(
+        (arc.centre[0]).abs() < 1e-12 && (arc.centre[1]).abs() < 1e-12,
+        "{arc:?}"
+    );
+    assert_eq!(arc.axis, [0.0, 0.0, 1.0]);
+}

@@ -28,7 +28,9 @@
 //!
 //! * G02/G03 with R in the `(DPI,…)` plane: balt_arc.rs.
 //!
-//! Not built (refused with a diagnostic): splines `(BSP …)(ESP)` in CVU=1, E parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
+//! * Splines `(BSP …)`, G06 nodes, `(ESP)`: balt_spline.rs.
+//!
+//! Not built (refused with a diagnostic): E parameters. The codes the manual prohibits under CVU=1 (§3.3.1: G40–G42,
 //! G60–G62, G20/G21, G72–G74, G81–G86, G89) are `balt::prohibited-in-cvu`.
 
 use crate::ctx::Ctx;
@@ -57,6 +59,8 @@ pub struct BaltState {
     pub length: f64,
     /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (balt_arc.rs).
     pub plane_reversed: bool,
+    /// G06 (spline nodes, balt_spline.rs) until G00–G03.
+    pub spline: bool,
 }
 
 /// A CVU=3 local frame: part point = origin + rotation·local (rotation row-major).
@@ -165,6 +169,8 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             }
             "LCS" => lcs(cx, &text, c.text)?,
             "DPI" => crate::balt_arc::dpi(cx, &text, c.text)?,
+            "BSP" => crate::balt_spline::begin(cx, &text, c.text)?,
+            "ESP" => crate::balt_spline::end(cx, c.text)?,
             // Display settings of the control's screen: no effect on motion.
             "UCG" | "UAV" | "UAO" => {}
             _ => {
@@ -206,10 +212,16 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             400 | 410 | 420 | 600 | 610 | 620 | 200 | 210 | 720 | 730 | 740 | 810..=860 | 890
         );
         match code {
-            0 => cx.st.motion = MotionMode::Rapid,
-            10 => cx.st.motion = MotionMode::Linear,
-            20 => cx.st.motion = MotionMode::ArcCw,
-            30 => cx.st.motion = MotionMode::ArcCcw,
+            0 | 10 | 20 | 30 => {
+                cx.st.balt.spline = false;
+                cx.st.motion = match code {
+                    0 => MotionMode::Rapid,
+                    10 => MotionMode::Linear,
+                    20 => MotionMode::ArcCw,
+                    _ => MotionMode::ArcCcw,
+                };
+            }
+            60 => cx.st.balt.spline = true,
             900 => cx.st.distance = DistanceMode::Absolute,
             910 => cx.st.distance = DistanceMode::Incremental,
             // G27: used by the manual's programs, not defined there; no motion effect here.
@@ -427,7 +439,7 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
             })?;
         e[3..6].copy_from_slice(&oriented.to_array()[3..6]);
     }
-    let rapid = cx.st.motion == MotionMode::Rapid;
+    let rapid = cx.st.motion == MotionMode::Rapid && !cx.st.balt.spline;
     let feed = cx.st.feed;
     if !rapid && feed <= 0.0 {
         return Err(cx.err(
@@ -436,9 +448,21 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
             at,
         ));
     }
+    if cx.st.balt.spline {
+        return crate::balt_spline::node(cx, Pose::from_array(e), feed, at);
+    }
     if matches!(cx.st.motion, MotionMode::ArcCw | MotionMode::ArcCcw) {
+        if cx.axioma.balt_spline.open {
+            return Err(cx.manual(
+                477,
+                "Incongruent profile: G02/G03 inside a spline definition (BSP … ESP)",
+                at,
+            ));
+        }
         return crate::balt_arc::arc(cx, e, feed, at);
     }
+    let here = cx.st.position.xyz();
+    crate::balt_spline::straight_block(cx, here, [e[0], e[1], e[2]], at)?;
     let feed = if rapid { 0.0 } else { feed };
     if cx.st.balt.cvu3 && cx.st.balt.movst == 2 && !linear_words {
         return rotate_with_linear_axes_still(cx, e, rapid, feed, at);

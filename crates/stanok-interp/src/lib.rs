@@ -28,6 +28,7 @@ mod axioma;
 mod axioma_chain;
 mod balt;
 mod balt_arc;
+mod balt_spline;
 mod ctx;
 mod flow;
 mod frame;

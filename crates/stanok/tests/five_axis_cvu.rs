@@ -700,3 +700,85 @@ fn balt_circle_errors() {
     );
     assert_eq!(arc.axis, [0.0, 0.0, 1.0]);
 }
+
+#[test]
+fn example_3_spline_passes_through_every_node() {
+    // corpus example-3: (BSP,X,Y,Z,A,C,1), G1 start block, G06 nodes on the unit circle in YZ
+    // with A = the node's angle, (ESP). L = 5 (corrector 4 selected first; the header names no
+    // tool). Only the nodes are oracles: each node block is one spline piece ending exactly at
+    // its node (Canon), the trace reaches the machine axes of that node (harness: last setpoint
+    // within 0.01, the inverse kinematics exact), where the tip is the node (1e-9 mm) and the
+    // tool axis the GOST u = (0, −sin a, cos a) (1e-9); no limit is exceeded.
+    let text = format!(
+        "T1.4M6\n{}",
+        corpus_text("cvu/example-3-spline-circle-yz.nc")
+    );
+    let nodes: Vec<(u32, [f64; 3], f64)> = text
+        .lines()
+        .enumerate()
+        .skip_while(|(_, l)| !l.starts_with("G6"))
+        .take_while(|(_, l)| !l.starts_with("(ESP)"))
+        .map(|(i, l)| {
+            let word = |c: char| -> f64 {
+                let rest = &l[l.find(c).unwrap() + 1..];
+                let num: String = rest
+                    .chars()
+                    .take_while(|ch| ch.is_ascii_digit() || *ch == '.' || *ch == '-')
+                    .collect();
+                num.parse().unwrap_or(0.0)
+            };
+            (i as u32 + 1, [0.0, word('Y'), word('Z')], word('A'))
+        })
+        .collect();
+    assert_eq!(nodes.len(), 10);
+    for fat in ["C,0,,,A,0,,", "A,1,,,C,1,,"] {
+        let r = run_on(&text, Dialect::Balt, machine_any(fat, 4), Pose::ZERO);
+        r.ok();
+        let kin = r.machine.five_axis().unwrap().with_tool_length(5.0);
+        for &(line, tip, a) in &nodes {
+            let pieces: Vec<_> = r
+                .canon
+                .iter()
+                .zip(&r.lines)
+                .filter(|(_, &l)| l == line)
+                .filter_map(|(c, _)| match c {
+                    stanok_canon::Canon::SplineFeed(s) => Some(s),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(pieces.len(), 1, "{fat} line {line}");
+            let end = pieces[0].end;
+            assert_eq!((end.xyz(), end.a), (tip, a), "{fat} line {line}");
+            let q = r.end_at_line(line, &format!("{fat} node line {line}"));
+            let p = kin.forward(&q).unwrap().xyz();
+            let u = kin.tool_vector(&kin.forward(&q).unwrap());
+            let (s, c) = a.to_radians().sin_cos();
+            for i in 0..3 {
+                assert!((p[i] - tip[i]).abs() < 1e-9, "{fat} line {line}: tip {p:?}");
+                assert!(
+                    (u[i] - [0.0, -s, c][i]).abs() < 1e-9,
+                    "{fat} line {line}: u {u:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn spline_errors() {
+    // G06 outside a definition, and G02 inside one (the manual's message 477).
+    let m = || machine("C,0,0,0,A,0,0,0", 1);
+    let r = run_on("G1X0Y0Z0F100\nG6X1Y1\n", Dialect::Balt, m(), Pose::ZERO);
+    let e = r.error.expect("G6 outside");
+    assert_eq!(e.code.to_string(), "balt::spline");
+    assert_eq!(e.span.line, 2);
+    let r = run_on(
+        "(BSP,X,Y,0)\nG1X0Y0Z0F100\nG6X1Y1\nG2X2Y0R5\n",
+        Dialect::Balt,
+        m(),
+        Pose::ZERO,
+    );
+    let e = r.error.expect("G2 in spline");
+    assert_eq!(e.code.to_string(), "E477", "{e:?}");
+    assert_eq!(e.span.line, 4);
+}

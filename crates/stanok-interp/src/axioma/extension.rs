@@ -109,6 +109,9 @@ pub struct Extension {
     pub released_end: Option<stanok_canon::Pose>,
     /// TRAORI and the orientation modes (spec axioma-4).
     pub ori: super::orientation::OriState,
+    /// Balt-System `(BSP …)` nodes not yet emitted. Kept here because this is the per-run state
+    /// the driver backs up and restores with a failing block (the modal state is Copy).
+    pub balt_spline: crate::balt_spline::SplineBuffer,
 }
 
 /// Every released straight move starts where the previous motion ended. The compensation

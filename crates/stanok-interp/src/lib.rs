@@ -113,6 +113,9 @@ pub struct InterpOptions {
     /// The machine's 5-axis kinematics (without a tool) when it allows tool-centre-point control
     /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
     pub five_axis: Option<stanok_kin::FiveAxis>,
+    /// Mazatrol TTPC programs X Y Z in the workpiece frame (parameter 1, spec mazatrol §4.2)
+    /// instead of the table frame (0, the default).
+    pub ttpc_workpiece_frame: bool,
 }
 
 impl InterpOptions {
@@ -141,6 +144,7 @@ impl InterpOptions {
             axioma: AxiomaMachineParams::default(),
             optional_stop: true,
             five_axis: None,
+            ttpc_workpiece_frame: false,
         }
     }
 }

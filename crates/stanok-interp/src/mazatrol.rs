@@ -20,6 +20,14 @@
 //!   axes move +L along the tool axis).
 //! * **In the mode** (§7): rotary-only / vector-only blocks hold the tip; I J K omitted components
 //!   are 0, all omitted keeps the vector (R-04); A B C words in type 2 are not executed (R-03).
+//! * **Programming frame** (§4): the table frame (parameter 0, default) as above, or with
+//!   `[kinematics] ttpc_frame = "workpiece"` (parameter 1) the workpiece frame W, which does not
+//!   turn with the table: a block's X Y Z are the tip in W at the block's end table pose, turned
+//!   into the table frame by p_T = G(r_end)⁻¹·(P + w) − w (and G91 adds to the tip's current W
+//!   position). The tip still moves on a straight line relative to the table (§4.2: "linearly
+//!   relative to the table"), so F is its speed relative to the workpiece in both frames (§9). The
+//!   G43.4/G43.5 block with motion is read in the table frame (the frames coincide at the
+//!   selection pose).
 //! * **G49** (§6) with motion (P12 bit 6 / F114 bit 1 = 0, the default): TTPC off, then the axes
 //!   move −L along the tool axis so the holder face goes to where the tip was.
 //!
@@ -365,7 +373,19 @@ fn ttpc_motion(cx: &mut Ctx<'_>, at: ColSpan) -> Result<(), Diagnostic> {
             }
         }
     }
-    let (mut end, _) = cx.end_point()?;
+    // Workpiece frame (§4.2): the words are the tip in the non-turning frame W; G91 adds to the
+    // tip's current W position, which is G(r_now)·(its table-frame position).
+    let workpiece = cx.opts.ttpc_workpiece_frame;
+    let (mut end, _) = if workpiece {
+        let table = cx.st.position;
+        let in_w = base.table_at(&table, table.xyz());
+        cx.st.position = table.with_xyz(in_w);
+        let r = cx.end_point();
+        cx.st.position = table;
+        r?
+    } else {
+        cx.end_point()?
+    };
     if type2 {
         // R-03: the rotary axes stay where they are unless the vector moves them.
         let now = cx.st.program_position().to_array();
@@ -390,6 +410,13 @@ fn ttpc_motion(cx: &mut Ctx<'_>, at: ColSpan) -> Result<(), Diagnostic> {
         e[3..6].copy_from_slice(&oriented.to_array()[3..6]);
         end = Pose::from_array(e);
         cx.st.mazatrol.vector = Some(t);
+    }
+    if workpiece {
+        // §4.3 with r_ref = the selection pose (zero rotary positions, module doc):
+        // p_T_end = G(r_end)⁻¹·(P + w) − w, the frame adding and removing w.
+        let m = cx.st.frame.to_machine(&end);
+        let home = m.with_xyz(base.table_home(&m, m.xyz()));
+        end = cx.st.frame.to_program(&home);
     }
     move_to(cx, end, at)
 }

@@ -307,6 +307,20 @@ impl FiveAxis {
         (self.orientation_rotation(pose) * self.base).into()
     }
 
+    /// G(r)⁻¹: the home coordinates (machine position with every table axis at 0) of the
+    /// table-fixed point at machine position `x` when the rotary axes are at `pose`. The identity
+    /// on a machine without table axes.
+    pub fn table_home(&self, pose: &Pose, x: [f64; 3]) -> [f64; 3] {
+        self.machine_to_table(&pose.to_array(), Vector3::from(x))
+            .into()
+    }
+
+    /// G(r): the machine position at `pose` of the table-fixed point with home coordinates `l`.
+    pub fn table_at(&self, pose: &Pose, l: [f64; 3]) -> [f64; 3] {
+        self.table_to_machine(&pose.to_array(), Vector3::from(l))
+            .into()
+    }
+
     /// R = R_Wᵀ·R_H: the rotation the rotary axes at `pose` give the tool relative to the
     /// workpiece (R_H = head rotations outer → inner, R_W = table rotations outer → inner), so
     /// that the tool vector is R·b. Row-major. Used for the Balt-System CVU=3 local frame, whose

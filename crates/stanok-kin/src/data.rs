@@ -62,6 +62,22 @@ pub struct KinematicsData {
     /// when given, it defines the rotary axes (machine data fills in their limits).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fat: Option<String>,
+    /// Mazatrol tool tip point control: the frame X Y Z are programmed in (P12 bit 7 / F85 bit 2,
+    /// mazatrol-tool-tip-control.md §4): `table` (0, default) or `workpiece` (1).
+    #[serde(default)]
+    pub ttpc_frame: TtpcFrame,
+}
+
+/// The Mazatrol TTPC programming frame (spec mazatrol §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TtpcFrame {
+    /// Table coordinate system: glued to the table at the selection pose, turns with it.
+    #[default]
+    Table,
+    /// Workpiece coordinate system: does not turn with the table; each block's end is given at
+    /// that block's end table pose.
+    Workpiece,
 }
 
 fn plus_z() -> [f64; 3] {

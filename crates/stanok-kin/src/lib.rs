@@ -33,7 +33,7 @@ mod table_table;
 
 pub use cartesian::Cartesian;
 pub use chain::{Carrier, FiveAxis, RotaryAxis};
-pub use data::{KinematicsData, MachineType};
+pub use data::{KinematicsData, MachineType, TtpcFrame};
 pub use fat::{from_fat, FatError};
 pub use head_head::head_head;
 pub use head_table::head_table;

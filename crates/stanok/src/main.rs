@@ -194,6 +194,10 @@ fn interpreter(
         .as_ref()
         .filter(|k| k.tcp_allowed)
         .and_then(|_| machine.five_axis());
+    opts.ttpc_workpiece_frame = machine
+        .kinematics
+        .as_ref()
+        .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece);
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

@@ -10,6 +10,8 @@ use five_axis_harness::*;
 use stanok_canon::setup::{ControlData, Tool, ToolEdge, ToolKind, ZeroOffset};
 use stanok_canon::Pose;
 use stanok_kin::Kinematics;
+use stanok_kin::TtpcFrame;
+use stanok_machine::MachineData;
 use stanok_syntax::Dialect;
 
 const A: usize = 3;
@@ -362,4 +364,65 @@ fn ttpc_on_a_three_axis_machine_is_refused() {
     );
     let d = r.error.expect("option alarm");
     assert_eq!(d.code.to_string(), "mazatrol::option-not-installed");
+}
+
+#[test]
+fn workpiece_frame_versus_table_frame() {
+    // §4: parameter 0 (table frame) and 1 (workpiece frame, `ttpc_frame = "workpiece"`) on the
+    // A/C trunnion, w = (500, 250, −450), L = 100. Workpiece frame: every block's X Y Z is the
+    // physical tip in W at the block's end table pose, so G(r)·(table-frame tip) − w = P (1e-9);
+    // table frame: the table-frame tip − w = P. G91 adds in the frame programmed. During a block
+    // the tip moves on a straight line relative to the table in both (1e-6 mm), which is what F
+    // is the speed of (§9).
+    // (A tilts first: C with the tool along C's axis is R-06.)
+    let text = "N10 G43.4 H1\nN15 G01 A30 F1000\nN20 X10 Y0 Z0 C90\nN30 G91 X5\nN40 G90 X15 Y0 Z0 A20\nN50 G49\nM30\n";
+    let w = [500.0, 250.0, -450.0];
+    let wanted = [
+        ("N20", [10.0, 0.0, 0.0]),
+        ("N30", [15.0, 0.0, 0.0]),
+        ("N40", [15.0, 0.0, 0.0]),
+    ];
+    let mut joints = Vec::new();
+    for frame in [TtpcFrame::Table, TtpcFrame::Workpiece] {
+        let mut m = MachineData::builtin("5axis-ac-table").unwrap();
+        m.kinematics.as_mut().unwrap().ttpc_frame = frame;
+        m.control = control(w);
+        let r = run_on(
+            text,
+            Dialect::Mazatrol,
+            m,
+            pose(500.0, 250.0, -200.0, 0.0, 0.0, 0.0),
+        );
+        r.ok();
+        let base = r.machine.five_axis().unwrap();
+        let tool = base.clone().with_tool_length(100.0);
+        for (n, p) in wanted {
+            let q = r.end_of(n);
+            let t = tool.forward(&q).unwrap();
+            let tip = match frame {
+                TtpcFrame::Table => t.xyz(),
+                TtpcFrame::Workpiece => base.table_at(&t, t.xyz()),
+            };
+            for i in 0..3 {
+                assert!(
+                    (tip[i] - w[i] - p[i]).abs() < 1e-9,
+                    "{frame:?} {n}: tip {tip:?}, want {p:?} + w"
+                );
+            }
+            joints.push(q);
+            // Straight relative to the table: every setpoint's table-frame tip on the chord.
+            let sps = r.block(n);
+            let (a, b) = (
+                tool.forward(&sps[0].joints).unwrap().xyz(),
+                tool.forward(&sps[sps.len() - 1].joints).unwrap().xyz(),
+            );
+            for sp in &sps {
+                let x = tool.forward(&sp.joints).unwrap().xyz();
+                let d = stanok_geom::distance_to_segment(x, a, b);
+                assert!(d < 1e-6, "{frame:?} {n}: {d} mm off the line");
+            }
+        }
+    }
+    // The two frames differ once the table has turned (N20 at A30 C90).
+    assert!((0..3).any(|i| (joints[0][i] - joints[3][i]).abs() > 1.0));
 }

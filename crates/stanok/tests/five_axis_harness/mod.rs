@@ -50,6 +50,10 @@ pub fn run_on(text: &str, dialect: Dialect, machine: MachineData, start: Pose) -
     opts.axes = machine.axis_mask();
     opts.control = machine.control.clone();
     opts.five_axis = machine.five_axis();
+    opts.ttpc_workpiece_frame = machine
+        .kinematics
+        .as_ref()
+        .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece);
     opts.initial_position = start;
     let options = SimOptions {
         servo_period_s: 2e-3,

@@ -77,6 +77,9 @@ const G43_5: u32 = 435;
 const G49: u32 = 490;
 const G90: u32 = 900;
 const G91: u32 = 910;
+/// Feed per minute: the only feed mode built (§9: F is the tip's speed relative to the
+/// workpiece; G95 is not allowed in TTPC, G93 is not built).
+const G94: u32 = 940;
 
 fn g_name(code: u32) -> String {
     match code % 10 {
@@ -146,7 +149,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let active = cx.st.mazatrol.mode != TtpcMode::Off;
     for &(code, span) in &gs {
         match code {
-            G0 | G1 | G90 | G91 | G43_4 | G43_5 | G49 => {}
+            G0 | G1 | G90 | G91 | G94 | G43_4 | G43_5 | G49 => {}
             G2 | G3 if active => {
                 return Err(cx.err(
                     "mazatrol::code-not-allowed-in-ttpc",

@@ -426,3 +426,24 @@ fn workpiece_frame_versus_table_frame() {
     // The two frames differ once the table has turned (N20 at A30 C90).
     assert!((0..3).any(|i| (joints[0][i] - joints[3][i]).abs() > 1.0));
 }
+
+#[test]
+fn feed_modes_in_ttpc() {
+    // §9: G94 (feed per minute) is accepted in and out of TTPC; G95 in TTPC is not allowed
+    // (the compatibility tables' "no"), G93 is not built (a diagnostic, not a silent mode).
+    let run_text = |text: &str| {
+        run(
+            text,
+            Dialect::Mazatrol,
+            "5axis-ac-table",
+            control([500.0, 250.0, -450.0]),
+            pose(500.0, 250.0, -200.0, 0.0, 0.0, 0.0),
+        )
+    };
+    run_text("G94 G01 X10 F500\nG43.4 H1\nG94 G01 X20 F500\nG49\nM30\n").ok();
+    let e = run_text("G43.4 H1\nG95 G01 X20 F0.1\n").error.expect("G95");
+    assert_eq!(e.code.to_string(), "mazatrol::code-not-allowed-in-ttpc");
+    assert_eq!((e.span.line, e.span.column), (2, 1));
+    let e = run_text("G93 G01 X20 F2\n").error.expect("G93");
+    assert_eq!(e.code.to_string(), "interp::unsupported");
+}

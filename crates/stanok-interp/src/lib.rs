@@ -33,6 +33,7 @@ mod ctx;
 mod flow;
 mod frame;
 mod mazatrol;
+mod mazatrol_arc;
 mod params;
 mod predefined;
 mod rs274;

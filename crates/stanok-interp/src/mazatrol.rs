@@ -80,6 +80,9 @@ const G91: u32 = 910;
 /// Feed per minute: the only feed mode built (§9: F is the tip's speed relative to the
 /// workpiece; G95 is not allowed in TTPC, G93 is not built).
 const G94: u32 = 940;
+const G17: u32 = 170;
+const G18: u32 = 180;
+const G19: u32 = 190;
 
 fn g_name(code: u32) -> String {
     match code % 10 {
@@ -149,7 +152,9 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let active = cx.st.mazatrol.mode != TtpcMode::Off;
     for &(code, span) in &gs {
         match code {
-            G0 | G1 | G90 | G91 | G94 | G43_4 | G43_5 | G49 => {}
+            G0 | G1 | G90 | G91 | G94 | G43_4 | G43_5 | G49 | G17 | G18 | G19 => {}
+            // M-series note 3: arcs under type 1 with the workpiece frame (mazatrol_arc.rs).
+            G2 | G3 if cx.st.mazatrol.mode == TtpcMode::Type1 && cx.opts.ttpc_workpiece_frame => {}
             G2 | G3 if active => {
                 return Err(cx.err(
                     "mazatrol::code-not-allowed-in-ttpc",
@@ -180,6 +185,11 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         match code {
             G0 => cx.st.motion = MotionMode::Rapid,
             G1 => cx.st.motion = MotionMode::Linear,
+            G2 => cx.st.motion = MotionMode::ArcCw,
+            G3 => cx.st.motion = MotionMode::ArcCcw,
+            G17 => cx.st.plane = stanok_canon::Plane::XY,
+            G18 => cx.st.plane = stanok_canon::Plane::ZX,
+            G19 => cx.st.plane = stanok_canon::Plane::YZ,
             G90 => cx.st.distance = DistanceMode::Absolute,
             G91 => cx.st.distance = DistanceMode::Incremental,
             _ => {}
@@ -318,6 +328,10 @@ impl MazatrolState {
 /// A block in TTPC mode (§7): type 1 rotary words, type 2 vector, the tip to X Y Z.
 fn ttpc_motion(cx: &mut Ctx<'_>, at: ColSpan) -> Result<(), Diagnostic> {
     let base = kinematics(cx, at)?;
+    if let MotionMode::ArcCw | MotionMode::ArcCcw = cx.st.motion {
+        let ccw = cx.st.motion == MotionMode::ArcCcw;
+        return crate::mazatrol_arc::arc(cx, &base, ccw, at);
+    }
     let kin = base
         .clone()
         .with_tool_offset(cx.st.mazatrol.length_vector(&base.base()));

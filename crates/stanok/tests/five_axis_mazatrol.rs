@@ -447,3 +447,84 @@ fn feed_modes_in_ttpc() {
     let e = run_text("G93 G01 X20 F2\n").error.expect("G93");
     assert_eq!(e.code.to_string(), "interp::unsupported");
 }
+
+#[test]
+fn m_series_arc_in_ttpc_with_the_workpiece_frame() {
+    // corpus m-g02-arc-type1-wcs.nc on the B head + C table (`5axis-bc-head-table`, at B0 the
+    // machine point is tip + (0, 0, L)), L = 100, w = (−300, −200, −400):
+    // * F85 bit 2 = 1 (workpiece frame): N30 is the clockwise half circle centre (10, 0) from
+    //   (0, 0, 10) to (20, 0, 10) — at every setpoint the tip is on it (1 µm: the arc runs as
+    //   chords of ≤ 1 µm sag) on the +Y side, the axes are m = tip + w + (0, 0, L) (1e-9) so the
+    //   half-way point is m = (−290, −190, −290); N40 carries B → mazatrol::rotary-word-in-arc.
+    // * F85 bit 2 = 0 (table frame), or G43.5: N30 is code-not-allowed-in-ttpc.
+    let text = corpus_text("mazatrol/m-g02-arc-type1-wcs.nc");
+    let w = [-300.0, -200.0, -400.0];
+    let start = pose(-300.0, -200.0, -200.0, 0.0, 0.0, 0.0);
+    let machine = |frame| {
+        let mut m = MachineData::builtin("5axis-bc-head-table").unwrap();
+        m.kinematics.as_mut().unwrap().ttpc_frame = frame;
+        m.control = control(w);
+        m
+    };
+    let r = run_on(
+        &text,
+        Dialect::Mazatrol,
+        machine(TtpcFrame::Workpiece),
+        start,
+    );
+    let e = r.error.clone().expect("N40 is an error");
+    assert_eq!(e.code.to_string(), "mazatrol::rotary-word-in-arc", "{e:?}");
+    assert_eq!(e.span.line, r.line_of("N40"));
+    assert_eq!(r.report.violation_count, 0);
+    let sps = r.block("N30");
+    assert!(sps.len() > 50);
+    for sp in &sps {
+        let q = sp.joints;
+        let tip = [q[0] - w[0], q[1] - w[1], q[2] - 100.0 - w[2]];
+        let radius = (tip[0] - 10.0).hypot(tip[1]);
+        assert!(
+            (radius - 10.0).abs() < 1e-3 && (tip[2] - 10.0).abs() < 1e-9,
+            "{tip:?}"
+        );
+        assert!(tip[1] > -1e-6, "{tip:?}");
+        assert!(q[4].abs() < 1e-9 && q[5].abs() < 1e-9, "{q:?}");
+    }
+    // The setpoint nearest the half-way point (within 0.05 mm in X) is at m ≈ (−290, −190, −290).
+    let mid = sps
+        .iter()
+        .min_by(|p, q| {
+            (p.joints[0] + 290.0)
+                .abs()
+                .total_cmp(&(q.joints[0] + 290.0).abs())
+        })
+        .unwrap()
+        .joints;
+    assert!((mid[0] + 290.0).abs() < 0.05, "{mid:?}");
+    assert!(
+        (mid[1] + 190.0).abs() < 1e-3 && (mid[2] + 290.0).abs() < 1e-9,
+        "{mid:?}"
+    );
+    assert_axes(
+        r.end_of("N30"),
+        [-280.0, -200.0, -290.0],
+        &[(B, 0.0), (C, 0.0)],
+        TOL,
+        "N30",
+    );
+    for (frame, program) in [
+        (TtpcFrame::Table, text.clone()),
+        (
+            TtpcFrame::Workpiece,
+            text.replace("G43.4 X0 Y0 Z10. B0 H1", "G43.5 X0 Y0 Z10. I0 J0 K1 H1"),
+        ),
+    ] {
+        let r = run_on(&program, Dialect::Mazatrol, machine(frame), start);
+        let e = r.error.clone().expect("N30 refused");
+        assert_eq!(
+            e.code.to_string(),
+            "mazatrol::code-not-allowed-in-ttpc",
+            "{frame:?}"
+        );
+        assert_eq!(e.span.line, r.line_of("N30"), "{frame:?}");
+    }
+}

@@ -528,3 +528,202 @@ fn m_series_arc_in_ttpc_with_the_workpiece_frame() {
         assert_eq!(e.span.line, r.line_of("N30"), "{frame:?}");
     }
 }
+
+/// A document-example fixture with its placeholders replaced (longest names first), run on
+/// `5axis-ab-head` with H1 = L = 100 and no work offset, from the machine pose `start`.
+fn document_example(name: &str, values: &[(&str, &str)], start: Pose) -> Run {
+    let mut text = corpus_text(&format!("mazatrol/{name}"));
+    let mut sorted = values.to_vec();
+    sorted.sort_by_key(|(k, _)| std::cmp::Reverse(k.len()));
+    let body: String = text
+        .lines()
+        .filter(|l| !l.starts_with(';'))
+        .map(|l| {
+            let mut l = l.to_string();
+            for (k, v) in &sorted {
+                l = l.replace(k, v);
+            }
+            format!("{l}\n")
+        })
+        .collect();
+    text = format!("G01 F1000;\n{body}M30;\n");
+    let r = run(
+        &text,
+        Dialect::Mazatrol,
+        "5axis-ab-head",
+        control([0.0; 3]),
+        start,
+    );
+    r.ok();
+    r
+}
+
+#[test]
+fn document_examples_with_their_placeholders_filled() {
+    // The source's examples with placeholders (x, y1, h …) filled in, each asserting the rule
+    // its header states (1e-6 mm / 1e-9 for exact algebra): independent start moves the axes +L
+    // along the tool axis (§5.1); G49 moves them back (§6); a rotary-only or vector-only block
+    // holds the tip at every setpoint (§7); start with motion puts the tip and the orientation
+    // where programmed (§5.2); G91 linear + rotary / vector blocks keep the tip on the straight
+    // line between the programmed points (§7.3). Machine 5axis-ab-head, L = 100.
+    let start = pose(10.0, 20.0, 300.0, 0.0, 30.0, 0.0);
+    let kin = MachineData::builtin("5axis-ab-head")
+        .unwrap()
+        .five_axis()
+        .unwrap();
+    let tool = kin.clone().with_tool_length(100.0);
+    let t0 = kin.tool_vector(&start);
+    let lines = |r: &Run| -> Vec<u32> {
+        let mut l: Vec<u32> = r.setpoints.iter().map(|s| s.line).collect();
+        l.dedup();
+        l
+    };
+    let tip_of = |q: &[f64; 9]| tool.forward(q).unwrap().xyz();
+    let last = |r: &Run| r.setpoints.last().unwrap().joints;
+    // §5.1 independent start, both types, and §6 G49 cancel.
+    for name in ["g43_4-type1-start.nc", "g43_5-type2-start.nc"] {
+        let r = document_example(name, &[("h", "1")], start);
+        let q = last(&r);
+        for i in 0..3 {
+            let want = start.to_array()[i] + 100.0 * t0[i];
+            assert!((q[i] - want).abs() < 1e-6, "{name}: {q:?}");
+        }
+    }
+    let r = run(
+        "G43.4 H1;\nG49 ;\nM30;\n",
+        Dialect::Mazatrol,
+        "5axis-ab-head",
+        control([0.0; 3]),
+        start,
+    );
+    r.ok();
+    let q = last(&r);
+    assert!(
+        (0..6).all(|i| (q[i] - start.to_array()[i]).abs() < 1e-6),
+        "G49: {q:?}"
+    );
+    // §7: rotary-only (type 1) and vector-only (type 2) blocks hold the tip.
+    for (name, values) in [
+        (
+            "g43_4-type1-rotary-only.nc",
+            vec![("Hh", "H1"), ("Aa", "A20")],
+        ),
+        (
+            "g43_5-type2-vector-only.nc",
+            vec![
+                ("i1", "0"),
+                ("j1", "0.5"),
+                ("k1", "0.8660254"),
+                ("i2", "0.3"),
+                ("j2", "0.3"),
+                ("k2", "0.9055385"),
+                ("h", "1"),
+            ],
+        ),
+    ] {
+        let r = document_example(name, &values, start);
+        let line = *lines(&r).last().unwrap();
+        let sps: Vec<_> = r.setpoints.iter().filter(|s| s.line == line).collect();
+        assert!(sps.len() > 5, "{name}");
+        let tip = tip_of(&sps[0].joints);
+        for sp in sps {
+            let p = tip_of(&sp.joints);
+            assert!(
+                (0..3).all(|i| (p[i] - tip[i]).abs() < 1e-6),
+                "{name}: {p:?} vs {tip:?}"
+            );
+        }
+        if name.contains("type2") {
+            let t = kin.tool_vector(&tool.forward(&last(&r)).unwrap());
+            let want = [0.3, 0.3, 0.9055385];
+            let n = (want.iter().map(|v| v * v).sum::<f64>()).sqrt();
+            assert!((0..3).all(|i| (t[i] - want[i] / n).abs() < 1e-9), "{t:?}");
+        }
+    }
+    // §5.2 start with motion, type 2.
+    let r = document_example(
+        "g43_5-type2-start-move.nc",
+        &[
+            ("Xx", "X15"),
+            ("Yy", "Y-10"),
+            ("Zz", "Z50"),
+            ("Ii", "I0"),
+            ("Jj", "J-0.6"),
+            ("Kk", "K0.8"),
+            ("Hh", "H1"),
+        ],
+        start,
+    );
+    let q = last(&r);
+    let p = tip_of(&q);
+    assert!(
+        (0..3).all(|i| (p[i] - [15.0, -10.0, 50.0][i]).abs() < 1e-6),
+        "{p:?}"
+    );
+    let t = kin.tool_vector(&Pose::from_array(q));
+    assert!(
+        (0..3).all(|i| (t[i] - [0.0, -0.6, 0.8][i]).abs() < 1e-9),
+        "{t:?}"
+    );
+    // §7.3: G91 blocks, linear + rotary (type 1) and linear + vector (type 2): the tip on the
+    // straight line between the block's programmed ends at every setpoint.
+    for (name, values) in [
+        (
+            "g43_4-type1-linear-rotary.nc",
+            vec![
+                ("y1", "10"),
+                ("z1", "-20"),
+                ("a1", "10"),
+                ("y2", "15"),
+                ("a2", "15"),
+                ("y3", "-5"),
+                ("a3", "-10"),
+                ("h", "1"),
+            ],
+        ),
+        (
+            "g43_5-type2-linear-vector.nc",
+            vec![
+                ("y1", "10"),
+                ("z1", "-20"),
+                ("i1", "0"),
+                ("j1", "-0.2"),
+                ("k1", "0.9797959"),
+                ("y2", "15"),
+                ("i2", "0.1"),
+                ("j2", "-0.3"),
+                ("k2", "0.9486833"),
+                ("y3", "-5"),
+                ("i3", "0"),
+                ("j3", "0"),
+                ("k3", "1"),
+                ("h", "1"),
+            ],
+        ),
+    ] {
+        let r = document_example(name, &values, start);
+        // The type-2 example has no H word: L stays 0 (no length offset in force).
+        let length = if name.contains("type2") { 0.0 } else { 100.0 };
+        let tool = kin.clone().with_tool_length(length);
+        let tip_of = |q: &[f64; 9]| tool.forward(q).unwrap().xyz();
+        let ls = lines(&r);
+        let blocks = &ls[ls.len() - 2..];
+        for &line in blocks {
+            let sps: Vec<_> = r.setpoints.iter().filter(|s| s.line == line).collect();
+            // The programmed tip ends: the block's Canon line (table frame).
+            let m = r
+                .canon
+                .iter()
+                .zip(&r.lines)
+                .filter(|(_, &l)| l == line)
+                .find_map(|(c, _)| c.motion())
+                .unwrap();
+            let (a, b) = (m.start().xyz(), m.end().xyz());
+            assert!((a[1] - b[1]).abs() > 1.0, "{name}: line {line} moves in Y");
+            for sp in sps {
+                let d = stanok_geom::distance_to_segment(tip_of(&sp.joints), a, b);
+                assert!(d < 1e-6, "{name} line {line}: {d} mm off the line");
+            }
+        }
+    }
+}

@@ -345,6 +345,17 @@ pub enum AccelerationProfile {
     Soft,
 }
 
+/// How the tool orientation moves between the start and the end of a block under tool-centre-point
+/// control (AxiOMA ORIAXES / ORIVECT, spec axioma-4 §6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum OrientationInterpolation {
+    /// The rotary axes move linearly with the path parameter (ORIAXES, direct axis programming,
+    /// Balt-System CVU=1 and Mazatrol tool-tip control).
+    Axes,
+    /// The tool vector turns on the great circle from its start to its end direction (ORIVECT).
+    Vector,
+}
+
 /// One canonical machining command. Exhaustive on purpose: a new variant makes every consumer decide.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -564,6 +575,27 @@ pub enum Canon {
     Flood {
         /// On.
         on: bool,
+    },
+    /// Tool-centre-point control switched on or off (AxiOMA TRAORI/TRAFOOF, Balt-System CVU=1/CVU=0,
+    /// Mazatrol G43.4/G43.5/G49). While it is on, the positions of motion commands are **the tool
+    /// tip** in the workpiece-fixed machine frame (the machine frame with every table axis at 0),
+    /// mm, and the **rotary axis values**, degrees: the tool orientation is carried by those values
+    /// (the machine's kinematics turns them into a tool vector). The `kin` stage turns every servo
+    /// setpoint into machine axis positions with the inverse kinematics. While it is off, positions
+    /// are machine axis positions (the tool length already applied along the spindle), as on a
+    /// 3-axis machine. The switch itself moves nothing; the next motion starts where the machine is,
+    /// expressed in the new meaning.
+    SetToolCentrePoint {
+        /// On (true) or off.
+        active: bool,
+        /// Tool tip → tool mount point at zero rotary positions, mm (length L along the base
+        /// orientation: L·b); zero without an active tool length.
+        tool_offset: [f64; 3],
+    },
+    /// ORIAXES / ORIVECT (spec axioma-4 §6): how the orientation moves in the blocks from now on.
+    SetOrientationInterpolation {
+        /// The new mode.
+        mode: OrientationInterpolation,
     },
     /// The tool length offset in force changed (G43/G49 …). Printers only: positions already include it.
     UseToolLengthOffset {

@@ -15,8 +15,8 @@
 //! `ON_RESET()` lines `rs274` prints when it exits.
 
 use crate::canon::{
-    AccelerationProfile, ArcMove, Canon, FeedMode, LengthUnits, LogAction, PathMode, Plane, Pose,
-    SpindleDirection,
+    AccelerationProfile, ArcMove, Canon, FeedMode, LengthUnits, LogAction,
+    OrientationInterpolation, PathMode, Plane, Pose, SpindleDirection,
 };
 use crate::span::Spanned;
 use std::fmt::Write as _;
@@ -332,6 +332,38 @@ impl LinuxCncPrinter {
             // LinuxCNC has one spindle tool; this never comes from an RS274/NGC program.
             Canon::ChangeSpindleTool { spindle, tool } => {
                 self.line(n, format!("CHANGE_SPINDLE_TOOL({spindle}, {tool})"))
+            }
+            // Stanok's own calls (LinuxCNC switches kinematics outside the interpreter).
+            Canon::SetToolCentrePoint {
+                active,
+                tool_offset,
+            } => {
+                let v = self.scale_linear([
+                    tool_offset[0],
+                    tool_offset[1],
+                    tool_offset[2],
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                    0.0,
+                ]);
+                let state = if *active { "ON" } else { "OFF" };
+                self.line(
+                    n,
+                    format!(
+                        "SET_TOOL_CENTRE_POINT({state}, {:.4} {:.4} {:.4})",
+                        v[0], v[1], v[2]
+                    ),
+                )
+            }
+            Canon::SetOrientationInterpolation { mode } => {
+                let name = match mode {
+                    OrientationInterpolation::Axes => "AXES",
+                    OrientationInterpolation::Vector => "VECTOR",
+                };
+                self.line(n, format!("SET_ORIENTATION_INTERPOLATION({name})"))
             }
             Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
             Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),

@@ -530,6 +530,36 @@ impl Converter {
             // SetSpindleMode/SetSpindleSpeed above (RS274/NGC) or as the speeds an AxiOMA control
             // shows at block ends, which is what a converted program can say.
             Canon::SetSurfaceSpeedLaw { .. } => {}
+            // Tool-centre-point control: the positions that follow are tool-tip positions with
+            // rotary angles. AxiOMA says so with TRAORI (its tool length must be the source's: it
+            // comes from the tool, which this writer selects but does not offset); RS274/NGC has
+            // no G-code for it (LinuxCNC does it in its kinematics module), so it is a warning.
+            Canon::SetToolCentrePoint {
+                active,
+                tool_offset,
+            } => {
+                if rs {
+                    let what = if *active { "on" } else { "off" };
+                    self.cannot(src, &format!("tool-centre-point control {what} has no RS274/NGC form: the following positions are the tool tip's"))
+                } else if *active {
+                    self.line(src, "TRAORI");
+                    let l = tool_offset.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    self.cannot(src, &format!("TRAORI needs the source's tool length ({}) active on the target", num(l)))
+                } else {
+                    self.line(src, "TRAFOOF")
+                }
+            }
+            Canon::SetOrientationInterpolation { mode } => {
+                let word = match mode {
+                    stanok_canon::OrientationInterpolation::Axes => "ORIAXES",
+                    stanok_canon::OrientationInterpolation::Vector => "ORIVECT",
+                };
+                if rs {
+                    self.cannot(src, &format!("{word} (orientation interpolation) has no RS274/NGC form"))
+                } else {
+                    self.line(src, word)
+                }
+            }
             Canon::Mist { on } => self.coolant(src, Some(*on), None),
             Canon::Flood { on } => self.coolant(src, None, Some(*on)),
             Canon::SelectTool { tool } => self.line(src, &format!("T{tool}")),

@@ -26,10 +26,15 @@
 mod arc;
 mod axioma;
 mod axioma_chain;
+mod balt;
+mod balt_arc;
+mod balt_spline;
 mod ctx;
 mod flow;
 mod frame;
 mod labs;
+mod mazatrol;
+mod mazatrol_arc;
 mod params;
 mod predefined;
 mod rs274;
@@ -114,6 +119,12 @@ pub struct InterpOptions {
     /// Lab dialects: blank out the lab corpus's fixture annotations (`;` lines, `//` to the end of
     /// a line) before reading; they are not program text of these controls. Off by default.
     pub strip_fixture_comments: bool,
+    /// The machine's 5-axis kinematics (without a tool) when it allows tool-centre-point control
+    /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
+    pub five_axis: Option<stanok_kin::FiveAxis>,
+    /// Mazatrol TTPC programs X Y Z in the workpiece frame (parameter 1, spec mazatrol §4.2)
+    /// instead of the table frame (0, the default).
+    pub ttpc_workpiece_frame: bool,
 }
 
 impl InterpOptions {
@@ -143,6 +154,8 @@ impl InterpOptions {
             optional_stop: true,
             labs: LabMachineParams::default(),
             strip_fixture_comments: false,
+            five_axis: None,
+            ttpc_workpiece_frame: false,
         }
     }
 }
@@ -235,13 +248,15 @@ impl<R: BufRead + Seek> Interpreter<R> {
             mist: false,
             flood: false,
             g5x_index: match opts.dialect {
-                Dialect::Rs274ngc => 1,
+                Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => 1,
                 _ => 0,
             },
             frame: WorkFrame::default(),
             xy_rotation_deg: 0.0,
             axioma: axioma_chain::AxiomaChain::default(),
             axioma_diameter: [false; 9],
+            mazatrol: Default::default(),
+            balt: Default::default(),
             polar: state::Polar::default(),
             length_comp: state::LengthComp::Off,
             edge: 0,
@@ -267,6 +282,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
             state.xy_rotation_deg = rotation;
             if opts.control.offsets.g92_applied {
                 state.frame.set_shift(opts.control.offsets.g92);
+            }
+        }
+        if matches!(opts.dialect, Dialect::Mazatrol | Dialect::Balt) {
+            // Mazatrol: the work offset of G54 (page 1) is in force from the start.
+            if let Some(z) = opts.control.offsets.zero.first().and_then(|p| p.first()) {
+                state.frame.set_origin(z.offset);
             }
         }
         Interpreter {
@@ -678,6 +699,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
+                Dialect::Mazatrol => mazatrol::execute(&mut cx),
+                Dialect::Balt => balt::execute(&mut cx),
                 _ => axioma::execute(&mut cx),
             }
         };

@@ -162,6 +162,10 @@ pub struct ModalState {
     pub spindle_edges: [u8; 4],
     /// AxiOMA G10: axes programmed as diameters (their words are halved).
     pub axioma_diameter: [bool; 9],
+    /// Mazatrol tool tip point control.
+    pub mazatrol: crate::mazatrol::MazatrolState,
+    /// Balt-System CVU.
+    pub balt: crate::balt::BaltState,
     /// RS274/NGC: cycles, spindle direction, the motion codes beyond G0–G3/G80, overrides.
     pub rs274: crate::rs274::Rs274State,
     /// Where the tool is, machine coordinates, mm.

@@ -144,7 +144,7 @@ impl Words {
                             if self.present & (1 << i) != 0 {
                                 let prev = self.letter[i];
                                 match dialect {
-                                    Dialect::Rs274ngc => {
+                                    Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => {
                                         return Err(Diagnostic::error(
                                             "rs274::multiple-words",
                                             format!(
@@ -216,6 +216,11 @@ impl Words {
         if self.has(letter) {
             self.letter[idx(letter)].v *= k;
         }
+    }
+
+    /// The value of a letter without marking it used.
+    pub fn peek(&self, letter: u8) -> Option<Val> {
+        self.has(letter).then(|| self.letter[idx(letter)])
     }
 
     /// True if the letter was written (does not mark it used).

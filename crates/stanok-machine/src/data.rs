@@ -44,6 +44,7 @@ use crate::control::{RawG92, RawHome, RawPose, RawTool, RawWorkpiece, RawZeroOff
 use serde::{Deserialize, Serialize};
 use stanok_canon::setup::{ControlData, OffsetTables, ToolTable};
 use stanok_canon::{Diagnostic, LengthUnits, Span, AXIS_LETTERS};
+use stanok_kin::{FiveAxis, KinematicsData};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 use std::ops::Range;
@@ -79,7 +80,38 @@ pub struct MachineData {
     /// The AxiOMA M-function profile of the channel (spec axioma-2 §4, §5): one of
     /// [`M_FUNCTION_PROFILES`]; the interpreter holds the tables themselves.
     pub m_functions: String,
+    /// The machine's kinematics (`[kinematics]`); None = Cartesian (3-axis, or rotary axes
+    /// without tool-centre-point control).
+    pub kinematics: Option<KinematicsData>,
 }
+
+/// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
+pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
+    (
+        "5axis-bc-head",
+        include_str!("../../../machines/5axis-bc-head.toml"),
+    ),
+    (
+        "5axis-ab-head",
+        include_str!("../../../machines/5axis-ab-head.toml"),
+    ),
+    (
+        "5axis-ac-table",
+        include_str!("../../../machines/5axis-ac-table.toml"),
+    ),
+    (
+        "5axis-bc-head-table",
+        include_str!("../../../machines/5axis-bc-head-table.toml"),
+    ),
+    (
+        "millturn-bc",
+        include_str!("../../../machines/millturn-bc.toml"),
+    ),
+    (
+        "5axis-cvu-tt",
+        include_str!("../../../machines/5axis-cvu-tt.toml"),
+    ),
+];
 
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
 /// the BeaverMill BVR B-110 of table 2.3 / §8.1.
@@ -156,6 +188,7 @@ struct RawFile {
     g92: Option<Spanned<RawG92>>,
     parameters: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
+    kinematics: Option<Spanned<KinematicsData>>,
 }
 
 #[derive(Deserialize)]
@@ -441,6 +474,10 @@ impl RawFile {
                 raw_axes.span(),
             ));
         }
+        let kinematics = match &self.kinematics {
+            None => None,
+            Some(k) => Some(validate_kinematics(k, &axes)?),
+        };
         Ok(MachineData {
             name: name.into_inner(),
             description: self
@@ -455,8 +492,45 @@ impl RawFile {
             linuxcnc_units,
             control: ControlData::default(),
             m_functions,
+            kinematics,
         })
     }
+}
+
+/// The `[kinematics]` section checked against the machine type and the `[[axis]]` list: every
+/// rotary orientation axis must be an axis of the machine, and takes its travel limits and
+/// velocity from there (so they are given once).
+fn validate_kinematics(
+    k: &Spanned<KinematicsData>,
+    axes: &[AxisData],
+) -> Result<KinematicsData, Invalid> {
+    let mut data = k.get_ref().clone();
+    if let (Some(fat), true) = (&data.fat, data.rotary.is_empty()) {
+        let machine = stanok_kin::from_fat(fat).map_err(|e| {
+            (
+                format!("kinematics: FAT error {}: {}", e.code, e.message),
+                k.span(),
+            )
+        })?;
+        data.rotary = machine.rotary_axes().cloned().collect();
+    }
+    for r in &mut data.rotary {
+        let Some(axis) = axes.iter().find(|a| a.name == r.name.to_ascii_uppercase()) else {
+            return Err((
+                format!(
+                    "kinematics: rotary axis {} is not one of the machine's [[axis]] entries",
+                    r.name
+                ),
+                k.span(),
+            ));
+        };
+        r.min = axis.min;
+        r.max = axis.max;
+        r.max_velocity = axis.max_velocity;
+    }
+    data.build()
+        .map_err(|e| (format!("kinematics: {e}"), k.span()))?;
+    Ok(data)
 }
 
 /// Line and column (1-based, column in characters) of byte `offset` in `text`.
@@ -550,8 +624,18 @@ impl MachineData {
                 "beavermill",
             )
             .ok(),
-            _ => None,
+            _ => BUILTIN_FIVE_AXIS
+                .iter()
+                .find(|(n, _)| *n == name)
+                .and_then(|(n, text)| Self::from_toml_str(text, n).ok()),
         }
+    }
+
+    /// The machine's kinematics, built: None for a Cartesian machine.
+    pub fn five_axis(&self) -> Option<FiveAxis> {
+        self.kinematics
+            .as_ref()
+            .and_then(|k| k.build().ok().flatten())
     }
 
     /// The default 3-axis mill: X, Y ±500 mm, Z ±300 mm, 10 000 mm/min per axis and rapid, 5 000
@@ -579,6 +663,7 @@ impl MachineData {
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
             m_functions: "generic".into(),
+            kinematics: None,
         }
     }
 
@@ -609,6 +694,7 @@ impl MachineData {
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
             m_functions: "generic".into(),
+            kinematics: None,
         }
     }
 
@@ -667,6 +753,16 @@ impl MachineData {
             );
             if a.transverse {
                 out.push_str("transverse = true\n");
+            }
+        }
+        if let Some(k) = &self.kinematics {
+            #[derive(Serialize)]
+            struct Section<'a> {
+                kinematics: &'a KinematicsData,
+            }
+            if let Ok(text) = toml::to_string(&Section { kinematics: k }) {
+                out.push('\n');
+                out.push_str(&text);
             }
         }
         if !control_tables.is_empty() {

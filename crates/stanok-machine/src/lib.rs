@@ -31,7 +31,7 @@ mod sim_motion;
 
 pub use data::{
     offsets_from_toml_str, tools_from_toml_str, AxisData, AxisKind, MachineData, StoredOffsets,
-    BAD_DATA,
+    BAD_DATA, BUILTIN_FIVE_AXIS,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};

@@ -39,6 +39,7 @@ use stanok_canon::{
     SplineMove, AXIS_LETTERS,
 };
 use stanok_geom::{Helix, Nurbs};
+use stanok_kin::{FiveAxis, Kinematics};
 use stanok_motion::nominal::{self, AxisLimits};
 use std::collections::BTreeMap;
 
@@ -142,6 +143,9 @@ pub struct SimMachine {
     spindle_rpm: BTreeMap<u8, f64>,
     report: RunReport,
     motion: MotionRun,
+    /// The kinematics with the active tool while tool-centre-point control is on: motion
+    /// positions are then tool poses, and the travel limits are checked on their joints.
+    tcp: Option<FiveAxis>,
 }
 
 /// Which counter a straight move goes to.
@@ -220,6 +224,7 @@ impl SimMachine {
             spindle_rpm: BTreeMap::new(),
             report,
             motion,
+            tcp: None,
         }
     }
 
@@ -420,7 +425,12 @@ impl SimMachine {
             | Canon::StartToolChange
             | Canon::SetToolTableEntry { .. }
             | Canon::ReloadToolTable
+            | Canon::SetOrientationInterpolation { .. }
             | Canon::Comment { .. } => {}
+            Canon::SetToolCentrePoint {
+                active,
+                tool_offset,
+            } => self.switch_tcp(*active, *tool_offset, span)?,
         }
         Ok(())
     }
@@ -463,7 +473,54 @@ impl SimMachine {
                 ));
             }
         }
-        self.check_limits(lo, hi, span)
+        match &self.tcp {
+            None => self.check_limits(lo, hi, span),
+            Some(kin) => {
+                // The joints of the poses along the move (the straight interpolation of the
+                // pose; the servo trace is checked setpoint by setpoint by the motion monitor).
+                const SAMPLES: usize = 64;
+                let mut jlo = [f64::INFINITY; 9];
+                let mut jhi = [f64::NEG_INFINITY; 9];
+                for k in 0..=SAMPLES {
+                    let f = k as f64 / SAMPLES as f64;
+                    let p: [f64; 9] = std::array::from_fn(|i| s[i] + (e[i] - s[i]) * f);
+                    let j = kin.inverse(&Pose::from_array(p)).unwrap_or(p);
+                    for i in 0..9 {
+                        jlo[i] = jlo[i].min(j[i]);
+                        jhi[i] = jhi[i].max(j[i]);
+                    }
+                }
+                self.check_limits(&jlo, &jhi, span)
+            }
+        }
+    }
+
+    /// Tool-centre-point control on or off (the interpreter has checked that the machine has
+    /// the kinematics; a machine without them refuses here too).
+    fn switch_tcp(
+        &mut self,
+        active: bool,
+        tool_offset: [f64; 3],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        if !active {
+            self.tcp = None;
+            return Ok(());
+        }
+        match self.machine.five_axis() {
+            Some(k) => {
+                self.tcp = Some(k.with_tool_offset(tool_offset));
+                Ok(())
+            }
+            None => Err(Diagnostic::error(
+                "machine::no-kinematics",
+                format!(
+                    "machine {} has no 5-axis kinematics for tool-centre-point control",
+                    self.machine.name
+                ),
+                span,
+            )),
+        }
     }
 
     /// Travel limits for positions spanning `lo..=hi` per axis.

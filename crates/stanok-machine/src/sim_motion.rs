@@ -124,6 +124,7 @@ impl MotionRun {
         config.feed_override = options.feed_override;
         config.rapid_override = options.rapid_override;
         config.lookahead = options.lookahead;
+        config.kinematics = machine.five_axis();
         let config = config.sanitised();
         let mut stage = MotionStage::new(&config);
         if let Some((at, standstill)) = options.feed_hold {

@@ -33,6 +33,7 @@ fn zigzag(n: usize) -> Vec<PlannerInput> {
         q[0] += len * heading.cos();
         q[1] += len * heading.sin();
         out.push(PlannerInput::Segment(PathSegment {
+            acceleration_cap: f64::INFINITY,
             start: p,
             end: q,
             geometry: SegmentGeometry::Line,

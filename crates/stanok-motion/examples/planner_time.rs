@@ -52,6 +52,7 @@ fn main() {
     }
     for (k, w) in points.windows(2).enumerate() {
         let seg = PathSegment {
+            acceleration_cap: f64::INFINITY,
             start: w[0],
             end: w[1],
             geometry: SegmentGeometry::Line,

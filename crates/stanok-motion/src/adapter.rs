@@ -25,6 +25,11 @@
 //! shuttle, dwell (stop, then stand), waiting for an input, spindle orientation, a feed-mode change,
 //! the start and the end of spindle synchronisation, and around probe moves and rigid taps.
 //!
+//! ## Tool-centre-point control
+//! `SetToolCentrePoint` stops the path; while it is on, every segment is handed to
+//! [`crate::tcp`] for its ORIVECT geometry, joint-rate speed and acceleration caps and an exact
+//! stop at its end.
+//!
 //! Invariant: no input panics; non-finite coordinates make a segment that the path builder drops.
 
 use crate::limits::MotionConfig;
@@ -33,10 +38,11 @@ use crate::segment::{
     SPLINE_CHORD_TOLERANCE,
 };
 use stanok_canon::{
-    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, PathMode, Pose, SplineMove,
-    SurfaceSpeedLaw,
+    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, OrientationInterpolation, PathMode,
+    Pose, SplineMove, SurfaceSpeedLaw,
 };
 use stanok_geom::{Helix, Nurbs};
+use stanok_kin::FiveAxis;
 
 /// The slowest override the planner accepts (a 0 % override is a feed hold, not a speed).
 const MIN_OVERRIDE: f64 = 1e-3;
@@ -52,6 +58,10 @@ pub struct CanonAdapter {
     spindle_rpm: [f64; 4],
     spindle_pitch: Option<f64>,
     override_enabled: bool,
+    /// The machine's kinematics with the active tool, while tool-centre-point control is on.
+    tcp: Option<FiveAxis>,
+    /// ORIAXES or ORIVECT.
+    orientation: OrientationInterpolation,
     /// G96's law of spindles 0–3, where in force.
     surface_speed: [Option<SurfaceSpeedLaw>; 4],
     /// The last `SetFeedRate` (mm/rev while the feed mode is per revolution).
@@ -85,9 +95,55 @@ impl CanonAdapter {
             spindle_rpm: [0.0; 4],
             spindle_pitch: None,
             override_enabled: true,
+            tcp: None,
+            orientation: OrientationInterpolation::Axes,
             surface_speed: [None; 4],
             programmed_feed: 0.0,
         }
+    }
+
+    /// The kinematics of tool-centre-point control, while it is on.
+    pub fn tcp(&self) -> Option<&FiveAxis> {
+        self.tcp.as_ref()
+    }
+
+    /// A segment under tool-centre-point control: ORIVECT geometry, joint-rate caps, exact stop
+    /// (see [`crate::tcp`]).
+    fn under_tcp(&self, input: PlannerInput) -> PlannerInput {
+        let (Some(kin), PlannerInput::Segment(mut seg)) = (&self.tcp, input.clone()) else {
+            return input;
+        };
+        if self.orientation == OrientationInterpolation::Vector
+            && !matches!(seg.geometry, SegmentGeometry::Polyline(_))
+        {
+            if let Some((g, omega)) = crate::tcp::vector_polyline(&seg, kin) {
+                // Orientation-only: F is the vector's angular speed (duration Ω / F); the
+                // polyline's 9-D length runs in the same time.
+                let tip_moves = (0..3).any(|i| seg.start[i] != seg.end[i]);
+                if let (false, SegmentGeometry::Polyline(p)) = (tip_moves, &g) {
+                    let length: f64 = p
+                        .windows(2)
+                        .map(|w| {
+                            (0..9)
+                                .map(|i| (w[1][i] - w[0][i]).powi(2))
+                                .sum::<f64>()
+                                .sqrt()
+                        })
+                        .sum();
+                    let straight = (0..9)
+                        .map(|i| (seg.end[i] - seg.start[i]).powi(2))
+                        .sum::<f64>()
+                        .sqrt();
+                    if straight > 0.0 && omega > 0.0 {
+                        // path_speed = F·(straight/straight) now; want length / (Ω / F).
+                        seg.path_speed *= length / omega;
+                    }
+                }
+                seg.geometry = g;
+            }
+        }
+        crate::tcp::limit_segment(&mut seg, kin, &self.config.axes);
+        PlannerInput::Segment(seg)
     }
 
     /// Changes the feed override (fraction, 0…2) for the segments adapted from now on.
@@ -132,6 +188,7 @@ impl CanonAdapter {
         line: u32,
     ) -> PathSegment {
         PathSegment {
+            acceleration_cap: f64::INFINITY,
             start: start.to_array(),
             end: end.to_array(),
             geometry,
@@ -276,19 +333,33 @@ impl CanonAdapter {
         let stop =
             |out: &mut dyn FnMut(PlannerInput)| out(PlannerInput::Stop { dwell_s: 0.0, line });
         match cmd {
-            Canon::StraightTraverse(m) => out(self.line(m, true, line)),
+            Canon::StraightTraverse(m) => out(self.under_tcp(self.line(m, true, line))),
+            // Under G96 + G95 a feed may come in pieces (emit_feed); each goes through the TCP
+            // caps on its own.
             Canon::StraightFeed(m) => {
                 let (input, ratio) = self.line_with_ratio(m, false, line);
-                self.emit_feed(input, ratio, out)
+                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
             }
             Canon::ArcFeed(a) => {
                 let (input, ratio) = self.arc(a, line);
-                self.emit_feed(input, ratio, out)
+                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
             }
             Canon::SplineFeed(sp) => {
                 let (input, ratio) = self.spline(sp, line);
-                self.emit_feed(input, ratio, out)
+                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
             }
+            // The switch stops the path; the stage re-expresses the position (stage.rs).
+            Canon::SetToolCentrePoint {
+                active,
+                tool_offset,
+            } => {
+                stop(out);
+                self.tcp = match (&self.config.kinematics, active) {
+                    (Some(k), true) => Some(k.clone().with_tool_offset(*tool_offset)),
+                    _ => None,
+                };
+            }
+            Canon::SetOrientationInterpolation { mode } => self.orientation = *mode,
             // The probe stops where it makes (or loses) contact, at rest.
             Canon::StraightProbe {
                 motion, contact, ..

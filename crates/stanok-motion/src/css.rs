@@ -237,6 +237,7 @@ mod tests {
 
     fn seg(start: Point9, end: Point9, geometry: SegmentGeometry) -> PathSegment {
         PathSegment {
+            acceleration_cap: f64::INFINITY,
             start,
             end,
             geometry,

@@ -36,6 +36,7 @@ pub mod profile_scurve;
 pub mod profile_trapezoid;
 pub mod segment;
 pub mod stage;
+pub mod tcp;
 
 pub use interpolator::Setpoint;
 pub use limits::{AxisLimit, MotionConfig};

@@ -61,6 +61,9 @@ pub struct MotionConfig {
     pub feed_override: f64,
     /// Rapid override as a fraction, 0…1.
     pub rapid_override: f64,
+    /// The machine's 5-axis kinematics (without a tool), for tool-centre-point control; None on
+    /// a Cartesian machine.
+    pub kinematics: Option<stanok_kin::FiveAxis>,
 }
 
 impl MotionConfig {
@@ -82,6 +85,7 @@ impl MotionConfig {
             default_tolerance: DEFAULT_TOLERANCE,
             feed_override: 1.0,
             rapid_override: 1.0,
+            kinematics: None,
         }
     }
 

@@ -64,6 +64,8 @@ struct Chord {
     /// Already cut from the start by the previous blend.
     start_trim: f64,
     speed: f64,
+    /// Highest path acceleration the segment allows (its kinematics), unit/s²; ∞ = none.
+    accel_cap: f64,
     soft: bool,
     line: u32,
     spindles: Spindles,
@@ -266,6 +268,7 @@ impl PathBuilder {
             length,
             start_trim: 0.0,
             speed,
+            accel_cap: seg.acceleration_cap,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
             spindles: seg.spindles,
@@ -333,6 +336,7 @@ impl PathBuilder {
         let soft = prev.soft || next.soft;
         let speed = prev.speed.min(next.speed);
         let (v_max, a_max, j_max) = arc_limits(&e1, &e2, radius, speed, soft, &self.config.axes);
+        let (a_max, j_max) = cap_acceleration(a_max, j_max, prev.accel_cap.min(next.accel_cap));
         let exit: Point9 = std::array::from_fn(|i| corner[i] + d * next.dir[i]);
         out(Piece {
             end: exit,
@@ -369,6 +373,7 @@ impl PathBuilder {
             std::array::from_fn(|i| c.end[i] - end_trim * c.dir[i])
         };
         let (v_max, a_max, j_max) = line_limits(&c.dir, c.speed, &self.config.axes);
+        let (a_max, j_max) = cap_acceleration(a_max, j_max, c.accel_cap);
         out(Piece {
             end,
             shape: Shape::Line { start, dir: c.dir },
@@ -383,6 +388,16 @@ impl PathBuilder {
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
         });
+    }
+}
+
+/// A piece's acceleration limited to `cap` (a segment under tool-centre-point control, see
+/// [`crate::tcp`]); the jerk shrinks in the same ratio so the S-curve keeps its shape.
+fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
+    if cap.is_finite() && cap > 0.0 && cap < a_max {
+        (cap, j_max * cap / a_max)
+    } else {
+        (a_max, j_max)
     }
 }
 

@@ -83,6 +83,10 @@ pub struct PathSegment {
     /// Programmed speed along the 9-D path, unit/s (see the module doc), after clamping to the
     /// machine's maximum feed (or the rapid rate) and applying the override; always > 0.
     pub path_speed: f64,
+    /// Highest path acceleration along it, unit/s² (`f64::INFINITY` = only the axis limits): set
+    /// under tool-centre-point control, where the machine axes move faster than the path
+    /// ([`crate::tcp`]).
+    pub acceleration_cap: f64,
     /// G0 (true) or a feed move.
     pub rapid: bool,
     /// How its end joins the next segment.

@@ -7,6 +7,11 @@
 //! Each stage pushes into the next through a closure, so nothing is collected: memory is the
 //! planner window plus the chords of one segment, whatever the program's length. Setpoints are
 //! produced as soon as the planner releases pieces (when its window is full, at a stop, at the end).
+//!
+//! Tool-centre-point control: while it is on, the path is planned in tool poses and every setpoint
+//! goes through [`TcpMap::joints`] (the kin stage, [`crate::tcp`]) before the sink sees it. The
+//! switch drains the path (the adapter has stopped it) and re-expresses where the machine stands:
+//! joints → pose by the forward kinematics when it goes on, pose → joints when it goes off.
 
 use crate::adapter::CanonAdapter;
 use crate::interpolator::{Interpolator, Setpoint};
@@ -14,7 +19,9 @@ use crate::limits::MotionConfig;
 use crate::path::PathBuilder;
 use crate::planner::Planner;
 use crate::segment::{PlannerInput, Point9};
+use crate::tcp::TcpMap;
 use stanok_canon::Canon;
+use stanok_kin::Kinematics;
 
 /// Statistics of the pieces planned so far.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -36,10 +43,23 @@ pub struct MotionStage {
     interpolator: Interpolator,
     stats: StageStats,
     finished: Option<f64>,
+    /// The kin stage while tool-centre-point control is on.
+    tcp: Option<TcpMap>,
     /// The planner inputs of one Canon command (reused: no allocation per command). A command
     /// makes at most a handful, except a G95 feed under G96, which `css::split` may cut into up to
     /// `css::MAX_PIECES`.
     inputs: Vec<PlannerInput>,
+}
+
+/// The sink as the machine sees it: setpoints through the kin stage when one is active.
+fn mapped<'a>(
+    tcp: &'a Option<TcpMap>,
+    out: &'a mut impl FnMut(&Setpoint),
+) -> impl FnMut(&Setpoint) + 'a {
+    move |sp: &Setpoint| match tcp {
+        Some(map) => out(&map.joints(sp)),
+        None => out(sp),
+    }
 }
 
 impl MotionStage {
@@ -54,6 +74,7 @@ impl MotionStage {
             interpolator: Interpolator::new(config.servo_period, [0.0; 9]),
             stats: StageStats::default(),
             finished: None,
+            tcp: None,
         }
     }
 
@@ -99,8 +120,10 @@ impl MotionStage {
             planner,
             interpolator,
             stats,
+            tcp,
             ..
         } = self;
+        let out = &mut mapped(tcp, out);
         builder.push(input, &mut |piece| {
             planner.push(piece, &mut |pp| {
                 stats.pieces += 1;
@@ -125,8 +148,10 @@ impl MotionStage {
             builder,
             planner,
             interpolator,
+            tcp,
             ..
         } = self;
+        let out = &mut mapped(tcp, out);
         builder.set_position(at, &mut |piece| {
             planner.push(piece, &mut |pp| interpolator.push(&pp, out))
         });
@@ -146,6 +171,34 @@ impl MotionStage {
             self.push_input(input, out);
         }
         self.inputs = inputs;
+        if let Canon::SetToolCentrePoint { .. } = cmd {
+            self.switch_tcp(out);
+        }
+    }
+
+    /// Tool-centre-point control changed (module doc): run the path out, then re-express the
+    /// position in the new meaning.
+    fn switch_tcp(&mut self, out: &mut impl FnMut(&Setpoint)) {
+        self.drain(out);
+        let here = self.interpolator.end();
+        let joints = match &self.tcp {
+            Some(map) => map
+                .kinematics()
+                .inverse(&stanok_canon::Pose::from_array(here))
+                .unwrap_or(here),
+            None => here,
+        };
+        let next = self.adapter.tcp().cloned().map(TcpMap::new);
+        let pose = match &next {
+            Some(map) => map
+                .kinematics()
+                .forward(&joints)
+                .map(|p| p.to_array())
+                .unwrap_or(joints),
+            None => joints,
+        };
+        self.tcp = next;
+        self.set_position(pose, out);
     }
 
     /// Runs everything pending (the path stops at its current end).
@@ -155,8 +208,10 @@ impl MotionStage {
             planner,
             interpolator,
             stats,
+            tcp,
             ..
         } = self;
+        let out = &mut mapped(tcp, out);
         let mut release = |pp: crate::planner::PlannedPiece| {
             stats.pieces += 1;
             stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
@@ -173,7 +228,7 @@ impl MotionStage {
             return t;
         }
         self.drain(out);
-        let t = self.interpolator.finish(out);
+        let t = self.interpolator.finish(&mut mapped(&self.tcp, out));
         self.finished = Some(t);
         t
     }

@@ -125,6 +125,7 @@ proptest! {
         let before = p3(s[0] - 20.0, s[1] + 5.0, 0.0);
         let after = p3(e[0] + 10.0, e[1] - 10.0, dz);
         let arc = PlannerInput::Segment(PathSegment {
+            acceleration_cap: f64::INFINITY,
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0 * (helix.length().powi(2)).sqrt() / helix.length(),
             rapid: false, path_mode: mode, profile, line: 2, spindles: Default::default(),
@@ -231,6 +232,7 @@ fn soft_arc_below_the_reach_minimum_keeps_every_limit() {
     let before = p3(s[0] - 20.0, s[1] + 5.0, 0.0);
     let after = p3(e[0] + 10.0, e[1] - 10.0, 0.0);
     let arc = PlannerInput::Segment(PathSegment {
+        acceleration_cap: f64::INFINITY,
         start: s,
         end: e,
         geometry: SegmentGeometry::Arc(helix),

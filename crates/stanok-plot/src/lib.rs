@@ -59,6 +59,9 @@ pub struct PlotOptions {
     /// A lathe program (X = radius, Z along the spindle): the front view becomes the lathe's ZX
     /// view, Z to the right and X (radius) up, as a turning drawing is read.
     pub lathe: bool,
+    /// Tool-axis ticks of a 5-axis program: each from the tool tip along the tool vector, machine
+    /// X Y Z mm (empty = none). The caller computes them with the machine's kinematics.
+    pub tool_axis: Vec<[[f64; 3]; 2]>,
 }
 
 impl Default for PlotOptions {
@@ -71,6 +74,7 @@ impl Default for PlotOptions {
             chord_tolerance: 0.01,
             reference: Vec::new(),
             lathe: false,
+            tool_axis: Vec::new(),
         }
     }
 }
@@ -82,6 +86,8 @@ enum Kind {
     Feed,
     /// A feed move of the reference stream (the programmed contour).
     Programmed,
+    /// A short tick along the tool axis from the tip (5-axis programs).
+    ToolAxis,
 }
 
 impl Kind {
@@ -94,6 +100,9 @@ impl Kind {
             Kind::Feed => r##"class="feed" fill="none" stroke="#1864ab" stroke-width="1.5""##,
             Kind::Programmed => {
                 r##"class="programmed" fill="none" stroke="#ae3ec9" stroke-width="1" stroke-dasharray="2 2""##
+            }
+            Kind::ToolAxis => {
+                r##"class="tool-axis" fill="none" stroke="#2f9e44" stroke-width="1""##
             }
         }
     }
@@ -239,6 +248,13 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
         all.append(&mut segments);
         segments = all;
     }
+    segments.extend(
+        options
+            .tool_axis
+            .iter()
+            .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
+            .map(|t| (Kind::ToolAxis, Shape::Line(t[0], t[1]))),
+    );
     match start {
         Some(start) if !segments.is_empty() => {
             legend(&mut out, width, with_reference);

@@ -310,6 +310,8 @@ fn text_is_escaped_and_bad_numbers_are_dropped() {
         chord_tolerance: f64::NAN,
         reference: Vec::new(),
         lathe: false,
+        // A tick with a NaN end is dropped like a bad move.
+        tool_axis: vec![[[0.0; 3], [f64::NAN, 0.0, 0.0]]],
     };
     let mut cmds = sample_program();
     cmds.push(feed(p(0.0, 20.0, 5.0), p(f64::NAN, 0.0, 0.0)));

@@ -30,6 +30,11 @@ pub enum Dialect {
     Mc2101,
     /// The unnamed GOST 20999-83 control of the lab collection's section 6.3 (spec §4).
     Gost20999,
+    /// Mazatrol EIA/ISO with tool tip point control G43.4/G43.5 (chosen with `--dialect mazatrol`;
+    /// lexed as ISO words like RS274/NGC).
+    Mazatrol,
+    /// Balt-System NC, 5-axis CVU=1/CVU=3 programs (chosen with `--dialect balt`).
+    Balt,
 }
 
 impl Dialect {
@@ -70,12 +75,17 @@ impl Dialect {
             Dialect::P2p32 => "2p32",
             Dialect::Mc2101 => "mc2101",
             Dialect::Gost20999 => "gost20999",
+            Dialect::Mazatrol => "mazatrol",
+            Dialect::Balt => "balt",
         }
     }
 
     /// True for the lab-collection dialects (NC-31, 2P32, MC2101, GOST-20999).
     pub fn is_lab(self) -> bool {
-        !matches!(self, Dialect::Axioma | Dialect::Rs274ngc)
+        !matches!(
+            self,
+            Dialect::Axioma | Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt
+        )
     }
 }
 
@@ -157,6 +167,9 @@ pub enum Keyword {
     Stable,
     /// Insertion depth of 3D tool compensation (`ISD=`, CUT3DC).
     Isd,
+    // Balt-System assignment statements (`CVU=1`, `MOVST=2`).
+    Cvu,
+    Movst,
 }
 
 impl Keyword {
@@ -176,6 +189,8 @@ impl Keyword {
                 | Keyword::Ftable
                 | Keyword::Stable
                 | Keyword::Isd
+                | Keyword::Cvu
+                | Keyword::Movst
         )
     }
 }

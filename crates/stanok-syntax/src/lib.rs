@@ -65,6 +65,7 @@
 
 mod ast;
 mod axioma;
+mod balt;
 mod expr;
 pub mod labs;
 mod lexer;
@@ -157,7 +158,10 @@ impl BlockParser {
             Dialect::Axioma => {
                 axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
             }
-            Dialect::Rs274ngc => rs274::parse_line(text, block, &mut self.pending),
+            Dialect::Rs274ngc | Dialect::Mazatrol => {
+                rs274::parse_line(text, block, &mut self.pending)
+            }
+            Dialect::Balt => balt::parse_line(text, block, &mut self.pending),
             // The lab dialects are read by their own front ends (`labs`); a block parser made
             // for one reads ISO words as RS274/NGC does.
             Dialect::Nc31 | Dialect::P2p32 | Dialect::Mc2101 | Dialect::Gost20999 => {

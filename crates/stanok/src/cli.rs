@@ -28,6 +28,10 @@ pub enum DialectArg {
     Mc2101,
     /// The GOST 20999-83 control of the lab collection (section 6.3).
     Gost20999,
+    /// Mazatrol EIA/ISO, tool tip point control G43.4/G43.5.
+    Mazatrol,
+    /// Balt-System NC, 5-axis CVU programs.
+    Balt,
 }
 
 impl From<DialectArg> for stanok_syntax::Dialect {
@@ -39,6 +43,8 @@ impl From<DialectArg> for stanok_syntax::Dialect {
             DialectArg::P2p32 => stanok_syntax::Dialect::P2p32,
             DialectArg::Mc2101 => stanok_syntax::Dialect::Mc2101,
             DialectArg::Gost20999 => stanok_syntax::Dialect::Gost20999,
+            DialectArg::Mazatrol => stanok_syntax::Dialect::Mazatrol,
+            DialectArg::Balt => stanok_syntax::Dialect::Balt,
         }
     }
 }

@@ -16,6 +16,7 @@ mod diagnostics;
 mod machine_show;
 mod progress;
 mod report;
+mod tool_axis;
 mod trace;
 
 use clap::Parser;
@@ -189,6 +190,16 @@ fn interpreter(
     opts.optional_stop = !args.skip_optional_stops;
     opts.strip_fixture_comments = args.strip_fixture_comments;
     opts.labs.correctors.extend(args.corrector.iter().copied());
+    // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
+    opts.five_axis = machine
+        .kinematics
+        .as_ref()
+        .filter(|k| k.tcp_allowed)
+        .and_then(|_| machine.five_axis());
+    opts.ttpc_workpiece_frame = machine
+        .kinematics
+        .as_ref()
+        .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece);
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -589,6 +600,7 @@ fn plot(
         reference: programmed_contour(file, dialect, &machine, args, &commands),
         // The lab lathes (X = radius): the turning drawing's ZX view.
         lathe: matches!(used, Dialect::Nc31 | Dialect::P2p32),
+        tool_axis: tool_axis::ticks(&commands, machine.five_axis().as_ref()),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

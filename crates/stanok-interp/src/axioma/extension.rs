@@ -107,6 +107,11 @@ pub struct Extension {
     pub probe: ProbeState,
     /// Where the last released motion ended (machine coordinates).
     pub released_end: Option<stanok_canon::Pose>,
+    /// TRAORI and the orientation modes (spec axioma-4).
+    pub ori: super::orientation::OriState,
+    /// Balt-System `(BSP …)` nodes not yet emitted. Kept here because this is the per-run state
+    /// the driver backs up and restores with a failing block (the modal state is Copy).
+    pub balt_spline: crate::balt_spline::SplineBuffer,
 }
 
 /// Every released straight move starts where the previous motion ended. The compensation
@@ -114,6 +119,11 @@ pub struct Extension {
 /// contour was switched off), and the machine moves from where it is: the stream must say so.
 /// Arcs are left as computed (their centre fixes their start).
 fn chain(prev: &mut Option<stanok_canon::Pose>, c: &mut Spanned<Canon>) {
+    // Tool-centre-point control changes what a position means: the next move states its own start.
+    if let Canon::SetToolCentrePoint { .. } = c.value {
+        *prev = None;
+        return;
+    }
     if let Canon::StraightFeed(m) | Canon::StraightTraverse(m) = &mut c.value {
         if let Some(p) = *prev {
             m.start = p;

@@ -164,6 +164,7 @@ mod home;
 mod mfunc;
 mod motion;
 pub mod mtable;
+mod orientation;
 mod outputs;
 mod polar;
 pub mod probe;
@@ -227,22 +228,22 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     _ => sw.degree = Some(v),
                 }
             }
-            Keyword::TrafOff
+            Keyword::Traori
+            | Keyword::TrafOff
             | Keyword::OriEuler
             | Keyword::OriRpy
             | Keyword::OriAxes
             | Keyword::OriVect
             | Keyword::OriWks
-            | Keyword::OriMks
-            | Keyword::Cut2df => {}
+            | Keyword::OriMks => orientation::keyword(cx, kw, span)?,
+            Keyword::Cut2df => {}
             Keyword::Cr => {
                 cr = val;
                 if cr.is_none() {
                     return Err(cx.err("interp::missing-value", "CR= has no value", span));
                 }
             }
-            Keyword::Traori
-            | Keyword::Cut3dc
+            Keyword::Cut3dc
             | Keyword::Cut3dcc
             | Keyword::Cut3dccd
             | Keyword::Cut3df
@@ -274,7 +275,11 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // `Q<i>=`: G110/G111 outputs or cycle parameters; `N1=`/`H1=`: the M905 depth (A15).
     let mut q_words: Vec<(u8, Val)> = Vec::new();
     let mut m905_depth: Option<Val> = None;
+    let mut ori_words = orientation::OriWords::default();
     for &(letter, index, val) in &cx.words.indexed {
+        if ori_words.take(letter, index, val) {
+            continue;
+        }
         match letter {
             b'Q' => q_words.push((index, val)),
             b'N' | b'H'
@@ -718,7 +723,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
         let monitored = cx.axioma.probe.g75
             || (cx.axioma.m.batch_probe && cx.st.motion == MotionMode::Linear && !cx.st.polar.on);
-        if cx.axioma.spline.kind.is_some() {
+        if orientation::check(cx, &ori_words)? {
+            orientation::motion(cx, at, &ori_words)?;
+        } else if cx.axioma.spline.kind.is_some() {
             splines::point(cx, at, &sw)?;
         } else if monitored {
             probe::probe_move(cx, at)?;

@@ -135,6 +135,9 @@ pub(super) fn length_offset(cx: &Ctx<'_>) -> Pose {
 
 /// After a block: a changed σ·V waits for the next motion.
 pub(super) fn update(cx: &mut Ctx<'_>) {
+    if super::orientation::update_tool(cx) {
+        return;
+    }
     let want = length_offset(cx);
     cx.st.pending_tlo = if want != *cx.st.frame.tlo() {
         Some(want)

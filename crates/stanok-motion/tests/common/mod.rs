@@ -33,6 +33,7 @@ pub fn line(
     profile: AccelerationProfile,
 ) -> PlannerInput {
     PlannerInput::Segment(PathSegment {
+        acceleration_cap: f64::INFINITY,
         start: a,
         end: b,
         geometry: SegmentGeometry::Line,

@@ -71,7 +71,24 @@ async function loadProgram() {
   return r;
 }
 
+// One alarm line per diagnostic, as the status shows them (`line:column [code] message`).
+function alarmItems(alarms) {
+  return alarms.map(a => {
+    const li = document.createElement("li");
+    li.textContent = `${a.line}:${a.column} [${a.code}] ${a.message}`;
+    return li;
+  });
+}
+
+// A refused request. A refusal that carries the program's diagnostics (cycle start of a program
+// with errors) shows them, not its summary: the status update that shows the same alarms may
+// arrive before or after this answer, and either order must leave the located errors on screen.
 function showError(r) {
+  const diagnostics = r.data && Array.isArray(r.data.diagnostics) ? r.data.diagnostics : [];
+  if (diagnostics.length) {
+    $("alarms").replaceChildren(...alarmItems(diagnostics));
+    return;
+  }
   const li = document.createElement("li");
   li.textContent = (r.data && r.data.error) || ("HTTP " + r.status);
   $("alarms").replaceChildren(li);
@@ -132,11 +149,7 @@ function show(s) {
   $("message").textContent = s.message;
   $("prompt").hidden = !s.prompt;
   $("prompt-text").textContent = s.prompt || "";
-  $("alarms").replaceChildren(...s.alarms.map(a => {
-    const li = document.createElement("li");
-    li.textContent = `${a.line}:${a.column} [${a.code}] ${a.message}`;
-    return li;
-  }));
+  $("alarms").replaceChildren(...alarmItems(s.alarms));
   const alarmsKey = JSON.stringify(s.alarms);
   if (s.alarms.length && alarmsKey !== lastAlarms) editor.setDiagnostics(s.alarms);
   lastAlarms = alarmsKey;

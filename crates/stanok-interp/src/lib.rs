@@ -29,6 +29,7 @@ mod axioma_chain;
 mod ctx;
 mod flow;
 mod frame;
+mod lathe;
 mod params;
 mod predefined;
 mod rs274;
@@ -178,6 +179,8 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
+    /// RS274/NGC G70–G72: the profile subroutine being executed (`lathe.rs`).
+    lathe: Option<lathe::LatheCapture>,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -269,6 +272,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             errors: 0,
             percent_open: false,
             first_line: true,
+            lathe: None,
             opts,
         }
     }
@@ -446,6 +450,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
+                    self.finish_lathe_capture()?;
                     return Ok(false);
                 }
                 Some(FlowAction::CallFile { path, label }) => {
@@ -460,6 +465,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
+                    self.finish_lathe_capture()?;
                     return Ok(false);
                 }
                 Some(FlowAction::Handled) => {
@@ -658,6 +664,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
+        if self.state.rs274.lathe.is_some() {
+            self.start_lathe_capture()?;
+        }
         Ok(outcome == Outcome::End)
     }
 
@@ -665,6 +674,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// may still move the last compensated corner); none once the run is over.
     #[inline(always)]
     fn held(&self) -> usize {
+        // A G7x profile's commands never leave (see `lathe.rs`).
+        if let Some(c) = &self.lathe {
+            return self.queue.len().saturating_sub(c.before);
+        }
         // Compensation off (almost every block): nothing held, nothing to scan.
         if !self.state.rs274.comp.on() {
             return 0;
@@ -723,6 +736,9 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
         loop {
             if self.queue.len() > self.held() {
                 if let Some(c) = self.queue.pop_front() {
+                    if let Some(l) = &mut self.lathe {
+                        l.before = l.before.saturating_sub(1);
+                    }
                     return Some(Ok(c));
                 }
             }

@@ -32,6 +32,7 @@ use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirec
 pub(crate) mod cutter_comp;
 mod cycles;
 mod home;
+pub(crate) mod lathe_cycles;
 mod mcodes;
 pub(crate) mod modal_context;
 mod motion;
@@ -77,6 +78,8 @@ pub struct Rs274State {
     pub g5_pq: [f64; 2],
     /// Cutter radius compensation.
     pub comp: cutter_comp::CutterComp,
+    /// A G70–G72 block waiting for its profile subroutine (the driver calls it).
+    pub lathe: Option<lathe_cycles::LatheCall>,
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -209,6 +212,11 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
     .with_note(format!("planned in the issue on {issue}"))
 }
 
+/// `unsupported` for the driver's parts of RS274/NGC (the lathe cycles' profile).
+pub(crate) fn unsupported_at(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
+    unsupported(cx, what, issue, at)
+}
+
 /// Sorts the block's G codes into groups. Inlined: the result is built in place instead of being
 /// copied out (it is ~180 bytes).
 #[inline(always)]
@@ -265,26 +273,6 @@ pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
         cx.st.feed = 0.0;
         cx.out.push(Canon::SetFeedRate { feed: 0.0 });
     }
-}
-
-/// G70/G71/G72 (and .1/.2) are not implemented yet: the block is refused — with LinuxCNC's own
-/// error where the words are wrong (so error parity holds), else as unsupported.
-fn lathe_cycle_refusal(cx: &Ctx<'_>, code: u32, span: ColSpan) -> Diagnostic {
-    if !cx.words.has(b'Q') {
-        return cx.err("rs274::g7x-q-missing", "G7x.x  requires a Q word", span);
-    }
-    if cx.st.plane != Plane::ZX {
-        return cx.err(
-            "rs274::g7x-plane",
-            format!(
-                "G{}.{} can only be used in XZ plane (G18)",
-                code / 10,
-                code % 10
-            ),
-            span,
-        );
-    }
-    unsupported(cx, &g_name(code), "RS274/NGC lathe cycles G70-G72", span)
 }
 
 fn plane_of_code(code: u32) -> Plane {
@@ -360,9 +348,6 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             continue;
         }
         let span = g.span[group as usize];
-        if (700..=722).contains(&code) {
-            return Err(lathe_cycle_refusal(cx, code, span));
-        }
         let issue = match code {
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,

@@ -42,6 +42,7 @@ pub(super) fn motion_block(
     }
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
+        700..=722 => super::lathe_cycles::begin(cx, code, span),
         330 => super::sync::g33(cx, span),
         50 => super::spline::cubic(cx, span, f_in_block),
         51 => super::spline::quadratic(cx, span, f_in_block),

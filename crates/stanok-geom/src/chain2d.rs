@@ -1,0 +1,176 @@
+//! Open chains of planar lines and arcs: the equidistant of a whole chain, with its corners
+//! resolved, and where a line parallel to the first axis meets a chain.
+//!
+//! ```text
+//!   offset of a chain s₀ … sₙ by d to the left (d < 0: right), element by element (offset2d):
+//!     oᵢ = sᵢ.offset_left(d)
+//!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
+//!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
+//!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
+//!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
+//!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
+//!                                             nearest the programmed corner.
+//! ```
+//!
+//! The chain's two free ends are offset perpendicular to their element and never extended, so the
+//! offset chain starts at `start(s₀) + d·n(s₀)` — which is where LinuxCNC's lathe cycles start their
+//! finishing passes. Invariants: the result is a connected chain (each element starts within
+//! [`LEN_EPS`] of the previous end); nothing panics; `None` when an arc cannot be offset (its radius
+//! would vanish) or an overlapping corner has no intersection (the offset is larger than the
+//! features of the chain).
+
+use crate::offset2d::{
+    curve_intersections, dist2, turn_angle, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
+};
+
+/// The equidistant of the connected chain `chain` at signed distance `d` to the left of its
+/// direction of travel (d < 0: right), with corners resolved (see the module comment).
+pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
+    if d.abs() < LEN_EPS {
+        return Some(chain.to_vec());
+    }
+    let mut out: Vec<Seg2> = Vec::with_capacity(chain.len() * 2);
+    for (i, s) in chain.iter().enumerate() {
+        let mut o = s.offset_left(d)?;
+        if let Some(prev_prog) = i.checked_sub(1).map(|j| chain[j]) {
+            let corner = s.start();
+            let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
+            let last = out.last_mut()?;
+            if theta.abs() <= ANGLE_EPS || dist2(last.end(), o.start()) < LEN_EPS {
+                // Tangential: nothing to do.
+            } else if (theta < 0.0) == (d > 0.0) {
+                // Turn away from the offset side: an arc about the corner closes the gap.
+                let ccw = d < 0.0;
+                let arc = Seg2::arc_through(corner, last.end(), o.start(), ccw, false);
+                out.push(arc);
+            } else {
+                // Turn towards it: the pieces overlap; meet at the crossing nearest the corner.
+                let p = curve_intersections(last, &o)
+                    .into_iter()
+                    .min_by(|a, b| dist2(*a, corner).total_cmp(&dist2(*b, corner)))?;
+                *last = trim_end(last, p);
+                o = trim_start(&o, p);
+            }
+        }
+        out.push(o);
+    }
+    Some(out)
+}
+
+/// `s` with its end moved to `p` (a point on its curve).
+fn trim_end(s: &Seg2, p: P2) -> Seg2 {
+    match *s {
+        Seg2::Line { a, .. } => Seg2::Line { a, b: p },
+        Seg2::Arc { c, .. } => Seg2::arc_through(c, s.start(), p, sweep_of(s) > 0.0, false),
+    }
+}
+
+/// `s` with its start moved to `p` (a point on its curve).
+fn trim_start(s: &Seg2, p: P2) -> Seg2 {
+    match *s {
+        Seg2::Line { b, .. } => Seg2::Line { a: p, b },
+        Seg2::Arc { c, .. } => Seg2::arc_through(c, p, s.end(), sweep_of(s) > 0.0, false),
+    }
+}
+
+fn sweep_of(s: &Seg2) -> f64 {
+    match *s {
+        Seg2::Arc { sweep, .. } => sweep,
+        Seg2::Line { .. } => 0.0,
+    }
+}
+
+/// Where the line `{(a, b) : b = level}` meets the chain, as first-axis coordinates `a` sorted
+/// ascending, each with the index of the element it lies on. An element lying along the line
+/// counts with both of its ends; tangent contacts count once.
+pub fn level_crossings(chain: &[Seg2], level: f64) -> Vec<(f64, usize)> {
+    let mut v: Vec<(f64, usize)> = Vec::new();
+    for (i, s) in chain.iter().enumerate() {
+        match *s {
+            Seg2::Line { a, b } => {
+                let (b0, b1) = (a[1] - level, b[1] - level);
+                if b0.abs() < LEN_EPS && b1.abs() < LEN_EPS {
+                    v.push((a[0], i));
+                    v.push((b[0], i));
+                } else if (b0 <= LEN_EPS && b1 >= -LEN_EPS) || (b0 >= -LEN_EPS && b1 <= LEN_EPS) {
+                    let t = (b0 / (b0 - b1)).clamp(0.0, 1.0);
+                    v.push((a[0] + t * (b[0] - a[0]), i));
+                }
+            }
+            Seg2::Arc { .. } => {
+                let probe = Seg2::Line {
+                    a: [0.0, level],
+                    b: [1.0, level],
+                };
+                for p in curve_intersections(&probe, s) {
+                    if on_arc(s, p) {
+                        v.push((p[0], i));
+                    }
+                }
+            }
+        }
+    }
+    v.retain(|(a, _)| a.is_finite());
+    v.sort_by(|x, y| x.0.total_cmp(&y.0));
+    v
+}
+
+/// Whether `p`, a point of the arc's circle, lies within its sweep.
+fn on_arc(s: &Seg2, p: P2) -> bool {
+    match *s {
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            let u = ((phi - start) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+            let tol = PARAM_EPS + LEN_EPS / r.max(1e-300);
+            u <= sweep.abs() + tol || u >= std::f64::consts::TAU - tol
+        }
+        Seg2::Line { .. } => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(a: P2, b: P2) -> Seg2 {
+        Seg2::Line { a, b }
+    }
+
+    fn close(a: P2, b: P2) -> bool {
+        dist2(a, b) < 1e-9
+    }
+
+    #[test]
+    fn a_step_gets_an_intersection_inside_and_an_arc_outside() {
+        // (z, x): along −z at x = 10, up to x = 14, on along −z; offset to +x (the right of −z).
+        let chain = [
+            line([0.0, 10.0], [-10.0, 10.0]),
+            line([-10.0, 10.0], [-10.0, 14.0]),
+            line([-10.0, 14.0], [-20.0, 14.0]),
+        ];
+        let o = offset_chain(&chain, -0.5).unwrap();
+        assert_eq!(o.len(), 4);
+        assert!(close(o[0].start(), [0.0, 10.5]));
+        assert!(close(o[0].end(), [-9.5, 10.5]) && close(o[1].start(), [-9.5, 10.5]));
+        assert!(matches!(o[2], Seg2::Arc { r, .. } if (r - 0.5).abs() < 1e-12));
+        assert!(close(o[2].end(), [-10.0, 14.5]) && close(o[3].end(), [-20.0, 14.5]));
+        for w in o.windows(2) {
+            assert!(close(w[0].end(), w[1].start()));
+        }
+    }
+
+    #[test]
+    fn level_crossings_of_lines_and_arcs() {
+        let chain = [
+            line([0.0, 0.0], [10.0, 10.0]),
+            Seg2::arc_through([15.0, 10.0], [10.0, 10.0], [20.0, 10.0], false, false),
+        ];
+        let c = level_crossings(&chain, 5.0);
+        assert_eq!(c.len(), 1);
+        assert!((c[0].0 - 5.0).abs() < 1e-12);
+        // The arc (clockwise from (10,10) over the top to (20,10)) meets b = 14 twice.
+        let c = level_crossings(&chain, 14.0);
+        assert_eq!(c.len(), 2);
+        assert!((c[0].0 - 12.0).abs() < 1e-9 && (c[1].0 - 18.0).abs() < 1e-9);
+    }
+}

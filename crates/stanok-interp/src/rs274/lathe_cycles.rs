@@ -121,7 +121,12 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
             span,
         ));
     }
-    let (start, _) = cx.end_point()?;
+    // X and Z are absolute even under G91 (LinuxCNC 2.9); the profile itself follows G90/G91.
+    let distance = cx.st.distance;
+    cx.st.distance = crate::state::DistanceMode::Absolute;
+    let start = cx.end_point();
+    cx.st.distance = distance;
+    let (start, _) = start?;
     let word = |cx: &mut Ctx<'_>, letter: u8, default: f64| {
         cx.words.take(letter).map_or(default, |w| cx.mm(w.v))
     };
@@ -347,7 +352,7 @@ pub fn finish(
         700 => !monotonic(chain, 0) && monotonic(chain, 1),
         c => c >= 720,
     };
-    if call.code != 700 && !monotonic(chain, if facing { 1 } else { 0 }) {
+    if !monotonic(chain, if facing { 1 } else { 0 }) {
         return Err(cx.err("rs274::g7x-monotonic", "G7X error: Not monotonic", at));
     }
     let f = Frame::new(facing, p0, pend, s);
@@ -381,7 +386,7 @@ pub fn finish(
         if !rising(&canon) {
             return Err(unsupported(
                 cx,
-                "a G71/G72 profile with pockets (not monotonic across the cut)",
+                "a G71/G72 profile with pockets or running away from the start point (type 2)",
                 "RS274/NGC lathe cycles (type 2 profiles)",
                 at,
             ));
@@ -426,12 +431,17 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
             entry[0] + (l - entry[1]) / (p0[1] - entry[1]) * (p0[0] - entry[0])
         }
     };
-    for k in 0..=MAX_LEVELS {
+    // G7x.2 cuts only the pockets: a type-1 profile has none.
+    let levels = if call.code % 10 == 2 { 0 } else { MAX_LEVELS };
+    for k in 0..=levels {
         let l = s[1] - k as f64 * call.i;
         if l <= p0[1] + 1e-9 {
             break;
         }
-        if k == MAX_LEVELS {
+        if k == levels {
+            if levels == 0 {
+                break;
+            }
             return None;
         }
         let cs = closing_c(l);
@@ -443,7 +453,9 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         if ce <= cs + LEN_EPS {
             continue;
         }
-        let r = call.r.min((ce - cs) / 2.0);
+        // At most half the cut; a negative R retracts by half the cut (LinuxCNC 2.9).
+        let half = (ce - cs) / 2.0;
+        let r = if call.r < 0.0 { half } else { call.r.min(half) };
         moves.push(Move::Rapid([cs, l]));
         moves.push(Move::Feed(Seg2::Line {
             a: [cs, l],
@@ -454,11 +466,21 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         moves.push(Move::Rapid([cs, l]));
     }
     moves.push(Move::Rapid(p0));
-    moves.extend(prof.iter().copied().map(Move::Feed));
-    moves.push(Move::Feed(Seg2::Line {
+    let close = Seg2::Line {
         a: pend,
         b: [pend[0], s[1]],
-    }));
+    };
+    for seg in prof.iter().chain([&close]) {
+        // G7x.1 (no pockets) feeds to every element's start first: LinuxCNC 2.9 does, though the
+        // tool is there already.
+        if call.code % 10 == 1 {
+            moves.push(Move::Feed(Seg2::Line {
+                a: seg.start(),
+                b: seg.start(),
+            }));
+        }
+        moves.push(Move::Feed(*seg));
+    }
     Some(())
 }
 

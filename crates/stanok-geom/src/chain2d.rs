@@ -16,8 +16,9 @@
 //! offset chain starts at `start(s₀) + d·n(s₀)` — which is where LinuxCNC's lathe cycles start their
 //! finishing passes. Invariants: the result is a connected chain (each element starts within
 //! [`LEN_EPS`] of the previous end); nothing panics; `None` when an arc cannot be offset (its radius
-//! would vanish) or an overlapping corner has no intersection (the offset is larger than the
-//! features of the chain).
+//! would vanish), an overlapping corner has no intersection, or the offset swallows an element
+//! whole (the offset is larger than the features of the chain: resolving that by dropping the
+//! element is not done yet).
 
 use crate::offset2d::{
     curve_intersections, dist2, turn_angle, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
@@ -48,13 +49,33 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 let p = curve_intersections(last, &o)
                     .into_iter()
                     .min_by(|a, b| dist2(*a, corner).total_cmp(&dist2(*b, corner)))?;
-                *last = trim_end(last, p);
-                o = trim_start(&o, p);
+                let (a, b) = (trim_end(last, p), trim_start(&o, p));
+                // An element the offset swallows whole (its trimmed piece would run backwards)
+                // is not resolved: the caller gets None rather than a path that turns back.
+                if !same_sense(last, &a) || !same_sense(&o, &b) {
+                    return None;
+                }
+                *last = a;
+                o = b;
             }
         }
         out.push(o);
     }
     Some(out)
+}
+
+/// Whether `trimmed`, a piece of `s`'s curve, still runs the way `s` does (and is no longer).
+fn same_sense(s: &Seg2, trimmed: &Seg2) -> bool {
+    match (*s, *trimmed) {
+        (Seg2::Line { a, b }, Seg2::Line { a: p, b: q }) => {
+            let (u, v) = ([b[0] - a[0], b[1] - a[1]], [q[0] - p[0], q[1] - p[1]]);
+            u[0] * v[0] + u[1] * v[1] >= -LEN_EPS * LEN_EPS
+        }
+        (Seg2::Arc { sweep: s0, .. }, Seg2::Arc { sweep: s1, .. }) => {
+            s1.abs() <= s0.abs() + PARAM_EPS && (s1 == 0.0 || s1.signum() == s0.signum())
+        }
+        _ => false,
+    }
 }
 
 /// `s` with its end moved to `p` (a point on its curve).
@@ -157,6 +178,19 @@ mod tests {
         for w in o.windows(2) {
             assert!(close(w[0].end(), w[1].start()));
         }
+    }
+
+    #[test]
+    fn an_element_swallowed_by_the_offset_is_refused() {
+        // A 0.5 step inside a right-angled notch: offset by 1 towards the notch, the step's
+        // offset would run backwards.
+        let chain = [
+            line([0.0, 10.0], [-10.0, 10.0]),
+            line([-10.0, 10.0], [-10.0, 10.5]),
+            line([-10.0, 10.5], [-20.0, 10.5]),
+        ];
+        assert!(offset_chain(&chain, 0.2).is_some());
+        assert!(offset_chain(&chain, 1.0).is_none());
     }
 
     #[test]

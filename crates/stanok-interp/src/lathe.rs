@@ -76,6 +76,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             feed: self.state.feed,
             spindle_speed: self.state.spindle_speed,
         });
+        self.state.rs274.in_profile = true;
         match action {
             crate::FlowAction::Seek(pos) => self.seek_to(pos)?,
             crate::FlowAction::CallFile { path, label } => {
@@ -100,6 +101,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let commands: Vec<_> = self.queue.drain(before..).map(|c| c.value).collect();
         let frame = self.state.frame;
         let profile = Profile::from_commands(&commands, |p| frame.to_program(p));
+        self.state.rs274.in_profile = false;
         let backup = self.state;
         self.state.feed = cap.feed;
         self.state.spindle_speed = cap.spindle_speed;
@@ -122,10 +124,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let whole = ColSpan::new(0, self.block.text.len());
         let result = match profile {
             Ok(p) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
-            Err(msg) if msg == "A/C" => Err(crate::rs274::unsupported_at(
+            Err(msg) if !msg.starts_with("G7X") => Err(crate::rs274::unsupported_at(
                 &cx,
-                "fillets and chamfers (A/C words) in a G7x profile",
-                "RS274/NGC lathe cycles (profile fillets)",
+                &format!("{msg} in a G7x profile"),
+                "RS274/NGC lathe cycles (profile corners)",
                 whole,
             )),
             Err(msg) => Err(cx.err("rs274::g7x-profile", msg, whole)),

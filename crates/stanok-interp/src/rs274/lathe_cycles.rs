@@ -41,10 +41,16 @@
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
 //!   profile is monotonic in Z, else G72's.
 //!
+//! Corners: `A` on a profile move rounds its end corner with a tangent arc of that radius, `C`
+//! cuts it with the chord between the same tangent points (lines on both sides only, so far).
+//!
+//! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, feed to
+//! P0' and along profile', staying at its end (LinuxCNC 2.9).
+//!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
 //! follows profile' exactly; the number of levels is bounded by `MAX_LEVELS`; every offset chain
 //! is connected (stanok_geom::chain2d). Profiles that go back down in l (pockets, LinuxCNC's
-//! type-2 profiles) and fillets/chamfers (A/C words) are refused as not supported yet.
+//! type-2 profiles) are refused as not supported yet.
 
 use super::unsupported;
 use crate::arc::PlanarArc;
@@ -153,6 +159,40 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
     Ok(())
 }
 
+/// Text of the internal marker a profile move with `A`/`C` leaves behind it in the captured
+/// commands: `MARK` + `A|C` + the size in mm. It never leaves the interpreter (the capture drains
+/// every command of the profile, `lathe.rs`).
+const CORNER_MARK: &str = "\u{0}g7x-corner ";
+
+/// A profile move's corner words: `A` fillet radius, `C` chamfer size (program units), at its end.
+pub(super) fn take_corner(cx: &mut Ctx<'_>) -> Result<Option<Canon>, Diagnostic> {
+    let a = cx.words.take(b'A');
+    let c = cx.words.take(b'C');
+    let (kind, w) = match (a, c) {
+        (Some(_), Some(c)) => {
+            return Err(cx.err(
+                "rs274::g7x-a-and-c",
+                "G7X error: Both A and C parameters on a corner",
+                c.span,
+            ))
+        }
+        (Some(a), None) => ('A', a),
+        (None, Some(c)) => ('C', c),
+        (None, None) => return Ok(None),
+    };
+    Ok(Some(Canon::Comment {
+        text: format!("{CORNER_MARK}{kind}{}", cx.mm(w.v)),
+    }))
+}
+
+/// A rounded (`A`) or chamfered (`C`) corner at the end of profile element `after`.
+#[derive(Debug, Clone, Copy)]
+struct Corner {
+    after: usize,
+    chamfer: bool,
+    size: f64,
+}
+
 /// The profile as read from the subroutine: its start P0 and its elements, (z, x) program mm.
 #[derive(Debug, Clone, Default)]
 pub struct Profile {
@@ -189,22 +229,34 @@ impl Profile {
             start: zx(&p0),
             chain: Vec::new(),
         };
-        let fillet_axes = |a: &Pose, b: &Pose| (a.a - b.a).abs() > 1e-9 || (a.c - b.c).abs() > 1e-9;
-        for c in motions {
-            let seg = match c {
-                Canon::StraightTraverse(m) | Canon::StraightFeed(m) => {
-                    if fillet_axes(&m.start, &m.end) {
-                        return Err("A/C".into());
-                    }
-                    Seg2::Line {
-                        a: zx(&m.start),
-                        b: zx(&m.end),
+        let mut corners: Vec<Corner> = Vec::new();
+        for c in commands
+            .iter()
+            .skip_while(|c| !std::ptr::eq(*c, first))
+            .skip(1)
+        {
+            if let Canon::Comment { text } = c {
+                if let Some(rest) = text.strip_prefix(CORNER_MARK) {
+                    let size = rest[1..].parse::<f64>().unwrap_or(0.0);
+                    if let Some(after) = profile.chain.len().checked_sub(1) {
+                        corners.push(Corner {
+                            after,
+                            chamfer: rest.starts_with('C'),
+                            size,
+                        });
                     }
                 }
+                continue;
+            }
+            if c.motion().is_none() {
+                continue;
+            }
+            let seg = match c {
+                Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Seg2::Line {
+                    a: zx(&m.start),
+                    b: zx(&m.end),
+                },
                 Canon::ArcFeed(a) if a.plane == Plane::ZX && a.turns == 1 => {
-                    if fillet_axes(&a.start, &a.end) {
-                        return Err("A/C".into());
-                    }
                     let centre = to_program(&Pose {
                         x: a.centre[0],
                         y: a.centre[1],
@@ -221,8 +273,53 @@ impl Profile {
                 profile.chain.push(seg);
             }
         }
+        for corner in corners.iter().rev() {
+            round_corner(&mut profile.chain, *corner)?;
+        }
         Ok(profile)
     }
+}
+
+/// Replaces the corner between elements `after` and `after + 1` (both lines) by a tangent arc of
+/// radius `size` (fillet) or by the chord between the same tangent points (chamfer):
+/// tangent distance t = size·tan(|θ|/2) for the turn θ; the arc turns the way the corner does.
+fn round_corner(chain: &mut Vec<Seg2>, c: Corner) -> Result<(), String> {
+    let i = c.after;
+    let (Some(&Seg2::Line { a, b: p }), Some(&Seg2::Line { b: e, .. })) =
+        (chain.get(i), chain.get(i + 1))
+    else {
+        // The last element has no corner; arcs next to it are not rounded yet.
+        return if i + 1 >= chain.len() {
+            Ok(())
+        } else {
+            Err("fillets and chamfers next to arcs".into())
+        };
+    };
+    let (u, v) = (chain[i].tangent(1.0), chain[i + 1].tangent(0.0));
+    let theta = stanok_geom::offset2d::turn_angle(u, v);
+    if theta.abs() < 1e-9 || c.size <= 0.0 {
+        return Ok(());
+    }
+    let t = c.size * (theta.abs() / 2.0).tan();
+    let (l0, l1) = (chain[i].length(), chain[i + 1].length());
+    if t > l0 + LEN_EPS || t > l1 + LEN_EPS {
+        return Err("G7X error: fillet or chamfer larger than its elements".into());
+    }
+    let p1 = [p[0] - u[0] * t, p[1] - u[1] * t];
+    let p2 = [p[0] + v[0] * t, p[1] + v[1] * t];
+    let corner = if c.chamfer {
+        Seg2::Line { a: p1, b: p2 }
+    } else {
+        let n = stanok_geom::offset2d::left_normal(u);
+        let side = theta.signum();
+        let centre = [p1[0] + side * n[0] * c.size, p1[1] + side * n[1] * c.size];
+        Seg2::arc_through(centre, p1, p2, theta > 0.0, false)
+    };
+    chain[i] = Seg2::Line { a, b: p1 };
+    chain[i + 1] = Seg2::Line { a: p2, b: e };
+    chain.insert(i + 1, corner);
+    chain.retain(|s| s.length() > LEN_EPS);
+    Ok(())
 }
 
 /// The canonical frame of a cycle (module comment): flips (and for G72 a swap) of (z, x).
@@ -382,11 +479,24 @@ pub fn finish(
             moves.extend(pass.into_iter().map(Move::Feed));
         }
     } else {
+        // A profile running away from S (l only falls): LinuxCNC 2.9 cuts no level, it feeds from
+        // the entry point onto the profile and along it, and stays at its end.
+        if !rising(&canon) && falling(&canon) {
+            let prof = offset(call.d)?;
+            moves.push(Move::Rapid(entry));
+            let onto = Seg2::Line {
+                a: entry,
+                b: prof[0].start(),
+            };
+            pass(&mut moves, call, [&onto].into_iter().chain(prof.iter()));
+            emit(cx, call, &f, &moves);
+            return Ok(());
+        }
         // Type 2 profiles (l turns back: pockets) are LinuxCNC's G71/G71.2 pocket cutting.
         if !rising(&canon) {
             return Err(unsupported(
                 cx,
-                "a G71/G72 profile with pockets or running away from the start point (type 2)",
+                "a G71/G72 profile with pockets (type 2)",
                 "RS274/NGC lathe cycles (type 2 profiles)",
                 at,
             ));
@@ -402,6 +512,27 @@ pub fn finish(
     }
     emit(cx, call, &f, &moves);
     Ok(())
+}
+
+/// Whether l never increases along the canonical chain (the profile runs away from S).
+fn falling(canon: &[Seg2]) -> bool {
+    let mirrored: Vec<Seg2> = canon
+        .iter()
+        .map(|s| match *s {
+            Seg2::Line { a, b } => Seg2::Line {
+                a: [a[0], -a[1]],
+                b: [b[0], -b[1]],
+            },
+            Seg2::Arc { c, sweep, .. } => Seg2::arc_through(
+                [c[0], -c[1]],
+                [s.start()[0], -s.start()[1]],
+                [s.end()[0], -s.end()[1]],
+                sweep < 0.0,
+                false,
+            ),
+        })
+        .collect();
+    rising(&mirrored)
 }
 
 /// Whether l never decreases along the canonical chain (a type-1 profile).
@@ -470,9 +601,14 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         a: pend,
         b: [pend[0], s[1]],
     };
-    for seg in prof.iter().chain([&close]) {
-        // G7x.1 (no pockets) feeds to every element's start first: LinuxCNC 2.9 does, though the
-        // tool is there already.
+    pass(moves, call, prof.iter().chain([&close]));
+    Some(())
+}
+
+/// Feeds along `elements`; G7x.1 (no pockets) feeds to every element's start first — LinuxCNC 2.9
+/// does, though the tool is there already.
+fn pass<'a>(moves: &mut Vec<Move>, call: &LatheCall, elements: impl Iterator<Item = &'a Seg2>) {
+    for seg in elements {
         if call.code % 10 == 1 {
             moves.push(Move::Feed(Seg2::Line {
                 a: seg.start(),
@@ -481,7 +617,6 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         }
         moves.push(Move::Feed(*seg));
     }
-    Some(())
 }
 
 /// Emits the moves (canonical frame) as Canon, program coordinates; other axes stay at S.

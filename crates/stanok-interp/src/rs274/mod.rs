@@ -80,6 +80,8 @@ pub struct Rs274State {
     pub comp: cutter_comp::CutterComp,
     /// A G70–G72 block waiting for its profile subroutine (the driver calls it).
     pub lathe: Option<lathe_cycles::LatheCall>,
+    /// A G70–G72 profile subroutine is running (its moves are captured, A/C are corners).
+    pub in_profile: bool,
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.

@@ -6,6 +6,7 @@
 //!     oᵢ = sᵢ.offset_left(d)
 //!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
 //!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
+//!     |θ| < NEAR_TANGENT, an arc, crossing → cut both at the first crossing near the corner;
 //!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
 //!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
 //!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
@@ -21,8 +22,12 @@
 //! element is not done yet).
 
 use crate::offset2d::{
-    curve_intersections, dist2, turn_angle, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
+    curve_intersections, dist2, turn_angle, wrap_pi, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
 };
+use std::f64::consts::FRAC_PI_2;
+
+/// Turns below this (radians) are nearly tangential: see `offset_chain`.
+const NEAR_TANGENT: f64 = 1e-2;
 
 /// The equidistant of the connected chain `chain` at signed distance `d` to the left of its
 /// direction of travel (d < 0: right), with corners resolved (see the module comment).
@@ -37,8 +42,25 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
             let corner = s.start();
             let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
             let last = out.last_mut()?;
+            // Nearly tangential joints with an arc (a programmed arc whose end is a few µm off the
+            // tangent) meet where the offset pieces cross, if they do, near the corner — of two
+            // such crossings the first along the path (LinuxCNC does).
+            let with_arc = matches!(last, Seg2::Arc { .. }) || matches!(o, Seg2::Arc { .. });
+            let near = (theta.abs() < NEAR_TANGENT && with_arc)
+                .then(|| {
+                    curve_intersections(last, &o)
+                        .into_iter()
+                        .filter(|p| dist2(*p, corner) <= d.abs() * 2.0)
+                        .map(|p| (trim_end(last, p), trim_start(&o, p)))
+                        .filter(|(a, b)| same_sense(last, a) && same_sense(&o, b))
+                        .min_by(|x, y| x.0.length().total_cmp(&y.0.length()))
+                })
+                .flatten();
             if theta.abs() <= ANGLE_EPS || dist2(last.end(), o.start()) < LEN_EPS {
                 // Tangential: nothing to do.
+            } else if let Some((a, b)) = near {
+                *last = a;
+                o = b;
             } else if (theta < 0.0) == (d > 0.0) {
                 // Turn away from the offset side: an arc about the corner closes the gap.
                 let ccw = d < 0.0;
@@ -72,32 +94,44 @@ fn same_sense(s: &Seg2, trimmed: &Seg2) -> bool {
             u[0] * v[0] + u[1] * v[1] >= -LEN_EPS * LEN_EPS
         }
         (Seg2::Arc { sweep: s0, .. }, Seg2::Arc { sweep: s1, .. }) => {
-            s1.abs() <= s0.abs() + PARAM_EPS && (s1 == 0.0 || s1.signum() == s0.signum())
+            // Shorter, or a little longer (pieces extended to meet), never reversed.
+            s1.abs() <= s0.abs() + FRAC_PI_2 && (s1.abs() < PARAM_EPS || s1.signum() == s0.signum())
         }
         _ => false,
     }
 }
 
-/// `s` with its end moved to `p` (a point on its curve).
+/// `s` with its end moved to `p` (a point on its curve, possibly a little beyond the end: arcs
+/// change their sweep by the wrapped angle from the old end to `p`, so they never wrap round).
 fn trim_end(s: &Seg2, p: P2) -> Seg2 {
     match *s {
         Seg2::Line { a, .. } => Seg2::Line { a, b: p },
-        Seg2::Arc { c, .. } => Seg2::arc_through(c, s.start(), p, sweep_of(s) > 0.0, false),
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            Seg2::Arc {
+                c,
+                r,
+                start,
+                sweep: sweep + wrap_pi(phi - (start + sweep)),
+            }
+        }
     }
 }
 
-/// `s` with its start moved to `p` (a point on its curve).
+/// `s` with its start moved to `p` (a point on its curve; see `trim_end`).
 fn trim_start(s: &Seg2, p: P2) -> Seg2 {
     match *s {
         Seg2::Line { b, .. } => Seg2::Line { a: p, b },
-        Seg2::Arc { c, .. } => Seg2::arc_through(c, p, s.end(), sweep_of(s) > 0.0, false),
-    }
-}
-
-fn sweep_of(s: &Seg2) -> f64 {
-    match *s {
-        Seg2::Arc { sweep, .. } => sweep,
-        Seg2::Line { .. } => 0.0,
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            let delta = wrap_pi(phi - start);
+            Seg2::Arc {
+                c,
+                r,
+                start: start + delta,
+                sweep: sweep - delta,
+            }
+        }
     }
 }
 

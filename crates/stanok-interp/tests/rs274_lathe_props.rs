@@ -4,7 +4,9 @@
 //!   point lies on the start's side of it (nothing cuts past the profile + allowance);
 //! * the final pass follows the profile at exactly D (G71/G72) or E (G70's last pass);
 //! * roughing cuts run at the levels S.l − k·I;
-//! * motion is continuous and the cycle ends where LinuxCNC's does.
+//! * motion is continuous and the cycle ends where LinuxCNC's does;
+//! * with pockets (profiles whose X dips, G71/G71.1/G71.2): still no feed within D of the profile
+//!   or below it.
 
 mod common;
 use common::*;
@@ -250,5 +252,71 @@ proptest! {
             pass -= 1;
         }
         prop_assert_eq!(pass, 0);
+    }
+}
+
+/// A G71 profile with dips: Z falls, X goes up and down (lines only), as program text and chain.
+fn dipping() -> impl Strategy<Value = (f64, Vec<(f64, f64)>)> {
+    (
+        6.0f64..10.0,
+        prop::collection::vec((0.5f64..4.0, -3.0f64..4.0), 2..8),
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 150, .. ProptestConfig::default() })]
+
+    #[test]
+    fn pockets_never_cut_past_the_allowance(
+        (x0, steps) in dipping(),
+        d in 0.0f64..0.3,
+        i in 0.3f64..1.5,
+        variant in 0usize..3,
+    ) {
+        let grid = |v: f64| (v * 1e4).round() / 1e4;
+        let (d, i) = (grid(d), grid(i));
+        let mut text = format!("G0 X{:.4} Z0\n", grid(x0));
+        let (mut z, mut x) = (0.0f64, grid(x0));
+        let mut chain = Vec::new();
+        for (k, (dz, dx)) in steps.into_iter().enumerate() {
+            // The profile leaves its start outwards (a start falling away at once leaves its
+            // corner unprotected: levels above P0' may pass within D of it, as in LinuxCNC).
+            let dx = if k == 0 { dx.abs() } else { dx };
+            let (z1, x1) = (z - grid(dz), (x + grid(dx)).max(1.0));
+            text += &format!("G1 X{x1:.4} Z{z1:.4}\n");
+            chain.push(Seg2::Line { a: [z, x], b: [z1, x1] });
+            z = z1;
+            x = x1;
+        }
+        let top = chain.iter().map(|s| s.end()[1]).fold(x0, f64::max);
+        let code = ["G71", "G71.1", "G71.2"][variant];
+        let program = format!(
+            "G18 G21 F100\nG0 X40 Z20\nO100 SUB\n{text}O100 ENDSUB\n{code} Q100 X{:.4} Z2 D{d:.4} I{i:.4} R0.2\nM2\n",
+            top + 2.0
+        );
+        let (cmds, err) = run(&program, Dialect::Rs274ngc);
+        // An allowance that swallows an element is refused, never cut.
+        if let Some(e) = err {
+            prop_assert!(e.message.contains("cannot be offset"), "{e}\n{program}");
+            return Ok(());
+        }
+        let cmds: Vec<Canon> = cmds.into_iter().map(|c| c.value).collect();
+        let moves = cycle_moves(&cmds);
+        for w in moves.windows(2) {
+            let (a, b) = (w[0].1.end(), w[1].1.start());
+            prop_assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9);
+        }
+        for (rapid, seg) in &moves[2..] {
+            if *rapid {
+                continue;
+            }
+            for t in 0..=10 {
+                let p = seg.point(t as f64 / 10.0);
+                prop_assert!(distance(&chain, p) >= d - 1e-6, "{p:?} within D\n{program}");
+                if let Some(x) = profile_x_at(&chain, p[0]) {
+                    prop_assert!(p[1] >= x - 1e-6, "{p:?} below the profile\n{program}");
+                }
+            }
+        }
     }
 }

@@ -36,7 +36,7 @@
 //!   closing line I → P0' at l (c_s), feed along +c to the first crossing of the level with
 //!   profile' beyond c_s (none: to Pend'.c), retract r = min(R, cut/2) diagonally (−c, +l), rapid
 //!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
-//!   profile', feed to (Pend'.c, S.l).
+//!   profile' — cutting its pockets on the way (`pockets.rs`) — and feed to (Pend'.c, S.l).
 //! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
 //!   profile is monotonic in Z, else G72's.
@@ -49,8 +49,8 @@
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
 //! follows profile' exactly; the number of levels is bounded by `MAX_LEVELS`; every offset chain
-//! is connected (stanok_geom::chain2d). Profiles that go back down in l (pockets, LinuxCNC's
-//! type-2 profiles) are refused as not supported yet.
+//! is connected (stanok_geom::chain2d), and an allowance that would swallow an element is refused
+//! rather than cut.
 
 use super::unsupported;
 use crate::arc::PlanarArc;
@@ -59,6 +59,8 @@ use stanok_canon::{Canon, Diagnostic, Plane, Pose};
 use stanok_geom::chain2d::{level_crossings, offset_chain};
 use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
+
+mod pockets;
 
 /// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
 pub const MAX_LEVELS: usize = 10_000;
@@ -492,15 +494,6 @@ pub fn finish(
             emit(cx, call, &f, &moves);
             return Ok(());
         }
-        // Type 2 profiles (l turns back: pockets) are LinuxCNC's G71/G71.2 pocket cutting.
-        if !rising(&canon) {
-            return Err(unsupported(
-                cx,
-                "a G71/G72 profile with pockets (type 2)",
-                "RS274/NGC lathe cycles (type 2 profiles)",
-                at,
-            ));
-        }
         let prof = offset(call.d)?;
         rough(&mut moves, call, entry, s_c, &prof).ok_or_else(|| {
             cx.err(
@@ -601,8 +594,7 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         a: pend,
         b: [pend[0], s[1]],
     };
-    pass(moves, call, prof.iter().chain([&close]));
-    Some(())
+    pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
 }
 
 /// Feeds along `elements`; G7x.1 (no pockets) feeds to every element's start first — LinuxCNC 2.9

@@ -7,6 +7,7 @@
 //!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
 //!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
 //!     |θ| < NEAR_TANGENT, an arc, crossing → cut both at the first crossing near the corner;
+//!       (no crossing, gap < 0.001 mm)      → join them: the line moves to the arc's end;
 //!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
 //!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
 //!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
@@ -61,6 +62,16 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
             } else if let Some((a, b)) = near {
                 *last = a;
                 o = b;
+            } else if with_arc && theta.abs() < NEAR_TANGENT && dist2(last.end(), o.start()) < 1e-3
+            {
+                // Tangential within the programmed arc's tolerance: join the pieces where the
+                // line meets the arc's end (lines move, arcs keep their circle).
+                let end = last.end();
+                match (&mut *last, &mut o) {
+                    (_, Seg2::Line { a, .. }) => *a = end,
+                    (Seg2::Line { b, .. }, arc) => *b = arc.start(),
+                    _ => {}
+                }
             } else if (theta < 0.0) == (d > 0.0) {
                 // Turn away from the offset side: an arc about the corner closes the gap.
                 let ccw = d < 0.0;

@@ -33,6 +33,10 @@ pub(crate) struct LatheCapture {
     /// Feed and spindle speeds before the profile (F and S in a profile are ignored).
     feed: f64,
     spindle_speed: [f64; 4],
+    /// The G96 cutting speed and the law last sent: the profile's commands are dropped, so a
+    /// law it "sent" never reached the machine and the state must say so.
+    css_mm_per_min: f64,
+    css_law: Option<stanok_canon::SurfaceSpeedLaw>,
 }
 
 impl<R: BufRead + Seek> Interpreter<R> {
@@ -75,6 +79,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             number: self.block.number,
             feed: self.state.feed,
             spindle_speed: self.state.spindle_speed,
+            css_mm_per_min: self.state.rs274.css_mm_per_min,
+            css_law: self.state.rs274.css_law,
         });
         self.state.rs274.in_profile = true;
         match action {
@@ -105,6 +111,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let backup = self.state;
         self.state.feed = cap.feed;
         self.state.spindle_speed = cap.spindle_speed;
+        self.state.rs274.css_mm_per_min = cap.css_mm_per_min;
+        self.state.rs274.css_law = cap.css_law;
         self.state.position = self.state.frame.to_machine(&cap.call.start);
         let out = ctx::Emitter {
             queue: &mut self.queue,

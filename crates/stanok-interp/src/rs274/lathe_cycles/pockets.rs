@@ -194,14 +194,36 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
             if let Some((cb, j)) = crossing_after(prof, a[1], a[0]) {
                 cut_descent = true;
                 if dup {
-                    // G7x.1: bridge the pocket.
+                    // G7x.1: bridge the pocket. An element that only turns downwards after its
+                    // start (the arc the allowance puts round a convex corner) has its start
+                    // repeated first, as every element does in this mode; one that falls from
+                    // its start (a line, or the rest of an arc split at its top) has not.
+                    if starts_level(prof, &at) && !no_dup {
+                        moves.push(Move::Feed(Seg2::Line { a, b: a }));
+                    }
                     let b = [cb, a[1]];
                     moves.push(Move::Feed(Seg2::Line { a, b }));
-                    at = At {
-                        i: j,
-                        rest: Some(piece_from(&prof[j], b)),
+                    // B on a joint: the element ending there leaves a zero-length rest (fed if
+                    // it is a line, as in `feed_to`), and the next one starts whole, with its
+                    // start repeated. Inside an element its rest goes on without repetition.
+                    let j = if near(prof[j].end(), b) && j + 1 < prof.len() {
+                        j + 1
+                    } else {
+                        j
                     };
-                    no_dup = true;
+                    if j > 0 && near(prof[j].start(), b) {
+                        if matches!(prof[j - 1], Seg2::Line { .. }) {
+                            moves.push(Move::Feed(Seg2::Line { a: b, b }));
+                        }
+                        at = At { i: j, rest: None };
+                        no_dup = false;
+                    } else {
+                        at = At {
+                            i: j,
+                            rest: Some(piece_from(&prof[j], b)),
+                        };
+                        no_dup = true;
+                    }
                     continue;
                 }
                 let top = if call.code % 10 == 2 {
@@ -226,6 +248,11 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
             anchor = None;
         }
     }
+    // The closing move up to S's level; none (and no repeated start) when the profile already
+    // ends there — rs274 prints nothing then, in every variant.
+    if close.length() <= LEN_EPS {
+        return Some(());
+    }
     if dup {
         moves.push(Move::Feed(Seg2::Line {
             a: close.start(),
@@ -234,6 +261,22 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
     }
     moves.push(Move::Feed(close));
     Some(())
+}
+
+fn near(p: P2, q: P2) -> bool {
+    (p[0] - q[0]).abs() < EPS && (p[1] - q[1]).abs() < EPS
+}
+
+/// Whether the walk's element is a whole arc (not a rest, not the continuation of an arc split
+/// at a turn of l) whose tangent at its start runs along the level.
+fn starts_level(prof: &[Seg2], at: &At) -> bool {
+    let Seg2::Arc { c, r, .. } = prof[at.i] else {
+        return false;
+    };
+    let continues = at.i > 0
+        && matches!(prof[at.i - 1], Seg2::Arc { c: c0, r: r0, .. }
+            if (c0[0] - c[0]).abs() < 1e-9 && (c0[1] - c[1]).abs() < 1e-9 && (r0 - r).abs() < 1e-9);
+    at.rest.is_none() && !continues && prof[at.i].tangent(0.0)[1].abs() < 1e-6
 }
 
 /// The levels (grid `top` − k·I) of the pocket that starts at `a` (the walk's position) and

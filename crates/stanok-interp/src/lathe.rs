@@ -42,7 +42,7 @@ pub(crate) struct LatheCapture {
 impl<R: BufRead + Seek> Interpreter<R> {
     /// After a committed block: a G7x block left a call, so run its profile subroutine.
     pub(crate) fn start_lathe_capture(&mut self) -> Result<(), Diagnostic> {
-        let Some(call) = self.state.rs274.lathe.take() else {
+        let Some(call) = self.lathe_call.take() else {
             return Ok(());
         };
         if self.lathe.is_some() {
@@ -128,6 +128,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             opts: &self.opts,
             warnings: &mut self.warnings,
             axioma: &mut self.axioma,
+            lathe_call: &mut self.lathe_call,
         };
         let whole = ColSpan::new(0, self.block.text.len());
         let result = match profile {

@@ -181,6 +181,8 @@ pub struct Interpreter<R: BufRead + Seek> {
     first_line: bool,
     /// RS274/NGC G70–G72: the profile subroutine being executed (`lathe.rs`).
     lathe: Option<lathe::LatheCapture>,
+    /// RS274/NGC G70–G72: the call a committed block left (`Ctx::lathe_call`).
+    lathe_call: Option<rs274::lathe_cycles::LatheCall>,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -273,6 +275,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             percent_open: false,
             first_line: true,
             lathe: None,
+            lathe_call: None,
             opts,
         }
     }
@@ -532,6 +535,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             opts: &self.opts,
             warnings: &mut self.warnings,
             axioma: &mut self.axioma,
+            lathe_call: &mut self.lathe_call,
         };
         rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
@@ -631,6 +635,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 opts: &self.opts,
                 warnings: &mut self.warnings,
                 axioma: &mut self.axioma,
+                lathe_call: &mut self.lathe_call,
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
@@ -652,6 +657,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     }
                 }
                 self.state = backup;
+                self.lathe_call = None;
                 self.params.rollback();
                 return Err(d);
             }
@@ -664,7 +670,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
-        if self.state.rs274.lathe.is_some() {
+        if self.lathe_call.is_some() {
             self.start_lathe_capture()?;
         }
         Ok(outcome == Outcome::End)

@@ -148,7 +148,7 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
         r = word(cx, b'R', 0.5);
     }
     cx.straight(true, start, 0.0);
-    cx.st.rs274.lathe = Some(LatheCall {
+    *cx.lathe_call = Some(LatheCall {
         code,
         q: q.v.round() as i64,
         start,

@@ -86,8 +86,6 @@ pub struct Rs274State {
     pub g5_pq: [f64; 2],
     /// Cutter radius compensation.
     pub comp: cutter_comp::CutterComp,
-    /// A G70–G72 block waiting for its profile subroutine (the driver calls it).
-    pub lathe: Option<lathe_cycles::LatheCall>,
     /// A G70–G72 profile subroutine is running (its moves are captured, A/C are corners).
     pub in_profile: bool,
 }

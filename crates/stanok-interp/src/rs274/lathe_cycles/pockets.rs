@@ -16,8 +16,11 @@
 //!   bottom; G7x.2 (no main levels) steps l_A − k·I from the outermost pocket's top instead. A dip
 //!   inside a pocket is a pocket of its own (on the same grid) when the walk reaches it.
 //! * G7x.1 (no pockets): the dip is bridged by a feed along l_A from A to B; the pass goes on from
-//!   B with the rest of B's element (LinuxCNC repeats element starts in this mode, except for the
-//!   bridge and that rest).
+//!   B with the rest of B's element. LinuxCNC repeats element starts in this mode (a zero-length
+//!   feed): not for a line falling from A, but for a whole arc that starts along the level and
+//!   then falls (the allowance's arc round a convex corner), before the bridge; not for the rest
+//!   after B, but when B is a joint, for the element starting there.
+//! * The closing move up to S's level is left out when it has no length (as LinuxCNC).
 //!
 //! Bounds: every level and every element is visited a bounded number of times (`MAX_LEVELS`).
 

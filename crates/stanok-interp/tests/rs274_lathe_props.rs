@@ -6,7 +6,7 @@
 //! * roughing cuts run at the levels S.l − k·I;
 //! * motion is continuous and the cycle ends where LinuxCNC's does;
 //! * with pockets (profiles whose X dips, G71/G71.1/G71.2): still no feed within D of the profile
-//!   or below it.
+//!   or below it, and (G71, G71.2) the tool reaches every point of the profile offset by D.
 
 mod common;
 use common::*;
@@ -315,6 +315,28 @@ proptest! {
                 prop_assert!(distance(&chain, p) >= d - 1e-6, "{p:?} within D\n{program}");
                 if let Some(x) = profile_x_at(&chain, p[0]) {
                     prop_assert!(p[1] >= x - 1e-6, "{p:?} below the profile\n{program}");
+                }
+            }
+        }
+        // G71 and G71.2 cut the pockets out: the tool passes over every point of the profile
+        // offset by D (in the canonical frame c = −z, l = x of lathe_cycles.rs, towards +l).
+        // G71.1 bridges them and is left out.
+        if variant != 1 {
+            let flip = |p: [f64; 2]| [-p[0], p[1]];
+            let canon: Vec<Seg2> = chain
+                .iter()
+                .map(|s| Seg2::Line { a: flip(s.start()), b: flip(s.end()) })
+                .collect();
+            let feeds: Vec<Seg2> = moves[2..].iter().filter(|m| !m.0).map(|m| m.1).collect();
+            if let Some(offset) = stanok_geom::chain2d::offset_chain(&canon, d) {
+                for seg in &offset {
+                    for t in 0..=8 {
+                        let p = flip(seg.point(t as f64 / 8.0));
+                        prop_assert!(
+                            distance(&feeds, p) < 1e-6,
+                            "{p:?} on the allowance is never reached\n{program}"
+                        );
+                    }
                 }
             }
         }

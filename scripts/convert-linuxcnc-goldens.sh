@@ -23,6 +23,7 @@ demo-plate examples/demo-plate.nc
 demo-bolt-circle examples/demo-bolt-circle.ngc
 planes-helices-splines crates/stanok-convert/tests/programs/planes-helices-splines.ngc
 technology-frames-cycles crates/stanok-convert/tests/programs/technology-frames-cycles.ngc
+lathe-cycles-g70-g72 crates/stanok-convert/tests/programs/lathe-cycles-g70-g72.ngc
 axioma-aspline ../shared/corpus/axioma/s5_4_1-aspline-akima-example-5_15.nc
 axioma-g42-turning ../shared/corpus/axioma/s9_2_1-g42-turning-contour-example-9_7.nc
 axioma-g387-pocket ../shared/corpus/axioma/s11_8_1-g387-rectangular-pocket-example-11_12.nc

@@ -34,6 +34,11 @@ const CASES: &[(&str, Dialect, &str)] = &[
         "crates/stanok-convert/tests/programs/technology-frames-cycles.ngc",
     ),
     (
+        "lathe-cycles-g70-g72",
+        Dialect::Rs274ngc,
+        "crates/stanok-convert/tests/programs/lathe-cycles-g70-g72.ngc",
+    ),
+    (
         "axioma-aspline",
         Dialect::Axioma,
         "../shared/corpus/axioma/s5_4_1-aspline-akima-example-5_15.nc",

@@ -24,7 +24,7 @@ use std::path::PathBuf;
 /// `examples/` and this crate's `tests/programs/` (programs written for this test: what the corpus
 /// fragments do not reach — G18/G19 arcs, helices with P in two planes, G5/G5.1/G5.2 in one
 /// program, cycles, dynamic compensation, G92/G10 L2 rotation/G55 frames, G93/G95 feed modes, inch
-/// moves, G33, probing) with those prefixes.
+/// moves, G33, probing, the lathe cycles G70–G72) with those prefixes.
 const ROWS: &[(Dialect, &str)] = &[
     (Dialect::Rs274ngc, "rs274ngc/g01-linear-example-1.ngc"),
     (Dialect::Rs274ngc, "rs274ngc/g02-arc-center-example-1.ngc"),
@@ -47,6 +47,7 @@ const ROWS: &[(Dialect, &str)] = &[
     (Dialect::Rs274ngc, "examples/demo-bolt-circle.ngc"),
     (Dialect::Rs274ngc, "programs/planes-helices-splines.ngc"),
     (Dialect::Rs274ngc, "programs/technology-frames-cycles.ngc"),
+    (Dialect::Rs274ngc, "programs/lathe-cycles-g70-g72.ngc"),
     (Dialect::Axioma, "examples/demo-plate.nc"),
     (
         Dialect::Axioma,

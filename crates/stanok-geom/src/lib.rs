@@ -13,7 +13,8 @@
 //!
 //! Splines: every spline of both controls is handed over as a rational B-spline ([`Nurbs`]).
 //!
-//! Cutter compensation: planar lines and arcs with offsets and intersections ([`offset2d`]).
+//! Cutter compensation: planar lines and arcs with offsets and intersections ([`offset2d`]);
+//! whole open chains offset with their corners resolved ([`chain2d`], the lathe cycles' allowance).
 //! AxiOMA ASPLINE / CSPLINE: the Akima ([`akima`]) and C² cubic ([`cubic_spline`]) splines
 //! through points, both as Hermite segments in cubic Bézier form.
 #![deny(missing_docs)]
@@ -21,6 +22,7 @@
 pub mod akima;
 mod arc2d;
 mod bezier_split;
+pub mod chain2d;
 pub mod cubic_spline;
 mod helix;
 mod nurbs;

@@ -80,6 +80,10 @@ pub struct Ctx<'a> {
     pub warnings: &'a mut Vec<Diagnostic>,
     /// AxiOMA compensation, cycle and output state (restored with the block's backup on failure).
     pub axioma: &'a mut crate::axioma::Extension,
+    /// RS274/NGC: a G70–G72 block leaves its call here for the driver, which runs the profile
+    /// subroutine after the block commits (cleared if it fails). Kept out of `ModalState`, which
+    /// every block copies, so that ordinary blocks do not pay for it.
+    pub lathe_call: &'a mut Option<crate::rs274::lathe_cycles::LatheCall>,
 }
 
 impl Ctx<'_> {

@@ -180,6 +180,43 @@ impl Flow {
         std::mem::take(&mut self.ops)
     }
 
+    /// How many subroutine calls are active.
+    pub fn depth(&self) -> usize {
+        self.calls.len()
+    }
+
+    /// Calls subroutine `label` (normalised, e.g. `100`) with `args`, returning to `next`: the
+    /// O-word `call` and the lathe cycles' profile (`G71 Q100` calls `o100`) both come here.
+    pub fn call(
+        &mut self,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        label: String,
+        args: Vec<f64>,
+        next: SourcePos,
+        opts: &InterpOptions,
+    ) -> Result<FlowAction, Diagnostic> {
+        if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
+            self.enter(block, eval, Call::new(label, args, next, false), opts)?;
+            Ok(FlowAction::Seek(pos))
+        } else if let Some(path) = subroutine_file(&label, opts) {
+            self.enter(
+                block,
+                eval,
+                Call::new(label.clone(), args, next, true),
+                opts,
+            )?;
+            Ok(FlowAction::CallFile { path, label })
+        } else {
+            self.skip = Some(Skip::FindSub {
+                label,
+                args,
+                return_pos: next,
+            });
+            Ok(FlowAction::Skip)
+        }
+    }
+
     /// Decides what happens with the line just read. `here` is where it starts, `next` where the
     /// following line starts.
     pub fn on_line(
@@ -273,25 +310,7 @@ impl Flow {
                         format!("{name} call has more than 30 arguments"),
                     ));
                 }
-                if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
-                    self.enter(block, eval, Call::new(label, values, next, false), opts)?;
-                    Ok(FlowAction::Seek(pos))
-                } else if let Some(path) = subroutine_file(&label, opts) {
-                    self.enter(
-                        block,
-                        eval,
-                        Call::new(label.clone(), values, next, true),
-                        opts,
-                    )?;
-                    Ok(FlowAction::CallFile { path, label })
-                } else {
-                    self.skip = Some(Skip::FindSub {
-                        label,
-                        args: values,
-                        return_pos: next,
-                    });
-                    Ok(FlowAction::Skip)
-                }
+                self.call(block, eval, label, values, next, opts)
             }
             OKind::If(c) => {
                 let cond = eval.eval(*c)? != 0.0;

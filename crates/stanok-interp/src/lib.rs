@@ -33,6 +33,7 @@ mod ctx;
 mod flow;
 mod frame;
 mod labs;
+mod lathe;
 mod mazatrol;
 mod mazatrol_arc;
 mod params;
@@ -201,6 +202,10 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
+    /// RS274/NGC G70–G72: the profile subroutine being executed (`lathe.rs`).
+    lathe: Option<lathe::LatheCapture>,
+    /// RS274/NGC G70–G72: the call a committed block left (`Ctx::lathe_call`).
+    lathe_call: Option<rs274::lathe_cycles::LatheCall>,
     /// The lab dialects' front end (None for AxiOMA and RS274/NGC).
     lab: Option<Box<labs::LabRun>>,
 }
@@ -308,6 +313,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             errors: 0,
             percent_open: false,
             first_line: true,
+            lathe: None,
+            lathe_call: None,
             lab,
             opts,
         }
@@ -489,6 +496,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
+                    self.finish_lathe_capture()?;
                     return Ok(false);
                 }
                 Some(FlowAction::CallFile { path, label }) => {
@@ -503,6 +511,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     self.seek_to(pos)?;
                     self.count_block()?;
                     self.apply_flow_params();
+                    self.finish_lathe_capture()?;
                     return Ok(false);
                 }
                 Some(FlowAction::Handled) => {
@@ -597,6 +606,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             opts: &self.opts,
             warnings: &mut self.warnings,
             axioma: &mut self.axioma,
+            lathe_call: &mut self.lathe_call,
         };
         rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
@@ -696,6 +706,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 opts: &self.opts,
                 warnings: &mut self.warnings,
                 axioma: &mut self.axioma,
+                lathe_call: &mut self.lathe_call,
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
@@ -719,6 +730,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     }
                 }
                 self.state = backup;
+                self.lathe_call = None;
                 self.params.rollback();
                 return Err(d);
             }
@@ -731,6 +743,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         for (slot, v) in pending_params {
             self.params.write(&slot, v);
         }
+        if self.lathe_call.is_some() {
+            self.start_lathe_capture()?;
+        }
         Ok(outcome == Outcome::End)
     }
 
@@ -738,6 +753,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// may still move the last compensated corner); none once the run is over.
     #[inline(always)]
     fn held(&self) -> usize {
+        // A G7x profile's commands never leave (see `lathe.rs`).
+        if let Some(c) = &self.lathe {
+            return self.queue.len().saturating_sub(c.before);
+        }
         // Compensation off (almost every block): nothing held, nothing to scan.
         if !self.state.rs274.comp.on() {
             return 0;
@@ -795,6 +814,12 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if self.queue.len() > self.held() {
+                // The capture's count first: with nothing between pop_front and the return,
+                // the command moves straight into the result (no extra copy of the 260-byte
+                // Spanned<Canon> per command, measured with callgrind).
+                if let Some(l) = &mut self.lathe {
+                    l.before = l.before.saturating_sub(1);
+                }
                 if let Some(c) = self.queue.pop_front() {
                     return Some(Ok(c));
                 }

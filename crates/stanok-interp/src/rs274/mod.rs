@@ -34,6 +34,7 @@ use stanok_canon::{
 pub(crate) mod cutter_comp;
 mod cycles;
 mod home;
+pub(crate) mod lathe_cycles;
 mod mcodes;
 pub(crate) mod modal_context;
 mod motion;
@@ -85,6 +86,8 @@ pub struct Rs274State {
     pub g5_pq: [f64; 2],
     /// Cutter radius compensation.
     pub comp: cutter_comp::CutterComp,
+    /// A G70–G72 profile subroutine is running (its moves are captured, A/C are corners).
+    pub in_profile: bool,
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -217,6 +220,11 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
     .with_note(format!("planned in the issue on {issue}"))
 }
 
+/// `unsupported` for the driver's parts of RS274/NGC (the lathe cycles' profile).
+pub(crate) fn unsupported_at(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
+    unsupported(cx, what, issue, at)
+}
+
 /// Sorts the block's G codes into groups. Inlined: the result is built in place instead of being
 /// copied out (it is ~180 bytes).
 #[inline(always)]
@@ -273,26 +281,6 @@ pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
         cx.st.feed = 0.0;
         cx.out.push(Canon::SetFeedRate { feed: 0.0 });
     }
-}
-
-/// G70/G71/G72 (and .1/.2) are not implemented yet: the block is refused — with LinuxCNC's own
-/// error where the words are wrong (so error parity holds), else as unsupported.
-fn lathe_cycle_refusal(cx: &Ctx<'_>, code: u32, span: ColSpan) -> Diagnostic {
-    if !cx.words.has(b'Q') {
-        return cx.err("rs274::g7x-q-missing", "G7x.x  requires a Q word", span);
-    }
-    if cx.st.plane != Plane::ZX {
-        return cx.err(
-            "rs274::g7x-plane",
-            format!(
-                "G{}.{} can only be used in XZ plane (G18)",
-                code / 10,
-                code % 10
-            ),
-            span,
-        );
-    }
-    unsupported(cx, &g_name(code), "RS274/NGC lathe cycles G70-G72", span)
 }
 
 fn plane_of_code(code: u32) -> Plane {
@@ -368,9 +356,6 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             continue;
         }
         let span = g.span[group as usize];
-        if (700..=722).contains(&code) {
-            return Err(lathe_cycle_refusal(cx, code, span));
-        }
         let issue = match code {
             171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
             _ => None,

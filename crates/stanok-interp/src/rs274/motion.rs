@@ -17,6 +17,27 @@ pub(super) fn motion_block(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
+    // In a G7x profile, A and C on a move are its end corner's fillet and chamfer, not axes.
+    if cx.st.rs274.in_profile && matches!(code, 0 | 10 | 20 | 30) {
+        let corner = super::lathe_cycles::take_corner(cx)?;
+        motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)?;
+        if let Some(mark) = corner {
+            cx.out.push(mark);
+        }
+        return Ok(());
+    }
+    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
+}
+
+fn motion_block_inner(
+    cx: &mut Ctx<'_>,
+    params: &mut crate::params::Parameters,
+    code: u32,
+    span: ColSpan,
+    explicit: bool,
+    g53: Option<ColSpan>,
+    f_in_block: bool,
+) -> Result<(), Diagnostic> {
     if !(730..=890).contains(&code) || code == 760 || code == 800 {
         // Leaving the canned cycles ends a series (its initial level is forgotten).
         cx.st.rs274.cycle_il_set = false;
@@ -42,6 +63,7 @@ pub(super) fn motion_block(
     }
     match code {
         730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
+        700..=722 => super::lathe_cycles::begin(cx, code, span),
         330 => super::sync::g33(cx, span),
         50 => super::spline::cubic(cx, span, f_in_block),
         51 => super::spline::quadratic(cx, span, f_in_block),

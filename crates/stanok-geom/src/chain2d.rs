@@ -1,0 +1,255 @@
+//! Open chains of planar lines and arcs: the equidistant of a whole chain, with its corners
+//! resolved, and where a line parallel to the first axis meets a chain.
+//!
+//! ```text
+//!   offset of a chain s₀ … sₙ by d to the left (d < 0: right), element by element (offset2d):
+//!     oᵢ = sᵢ.offset_left(d)
+//!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
+//!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
+//!     |θ| < NEAR_TANGENT, an arc, crossing → cut both at the first crossing near the corner;
+//!       (no crossing, gap < 0.001 mm)      → join them: the line moves to the arc's end;
+//!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
+//!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
+//!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
+//!                                             nearest the programmed corner.
+//! ```
+//!
+//! The chain's two free ends are offset perpendicular to their element and never extended, so the
+//! offset chain starts at `start(s₀) + d·n(s₀)` — which is where LinuxCNC's lathe cycles start their
+//! finishing passes. Invariants: the result is a connected chain (each element starts within
+//! [`LEN_EPS`] of the previous end); nothing panics; `None` when an arc cannot be offset (its radius
+//! would vanish), an overlapping corner has no intersection, or the offset swallows an element
+//! whole (the offset is larger than the features of the chain: resolving that by dropping the
+//! element is not done yet).
+
+use crate::offset2d::{
+    curve_intersections, dist2, turn_angle, wrap_pi, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
+};
+use std::f64::consts::FRAC_PI_2;
+
+/// Turns below this (radians) are nearly tangential: see `offset_chain`.
+const NEAR_TANGENT: f64 = 1e-2;
+
+/// The equidistant of the connected chain `chain` at signed distance `d` to the left of its
+/// direction of travel (d < 0: right), with corners resolved (see the module comment).
+pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
+    if d.abs() < LEN_EPS {
+        return Some(chain.to_vec());
+    }
+    let mut out: Vec<Seg2> = Vec::with_capacity(chain.len() * 2);
+    for (i, s) in chain.iter().enumerate() {
+        let mut o = s.offset_left(d)?;
+        if let Some(prev_prog) = i.checked_sub(1).map(|j| chain[j]) {
+            let corner = s.start();
+            let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
+            let last = out.last_mut()?;
+            // Nearly tangential joints with an arc (a programmed arc whose end is a few µm off the
+            // tangent) meet where the offset pieces cross, if they do, near the corner — of two
+            // such crossings the first along the path (LinuxCNC does).
+            let with_arc = matches!(last, Seg2::Arc { .. }) || matches!(o, Seg2::Arc { .. });
+            let near = (theta.abs() < NEAR_TANGENT && with_arc)
+                .then(|| {
+                    curve_intersections(last, &o)
+                        .into_iter()
+                        .filter(|p| dist2(*p, corner) <= d.abs() * 2.0)
+                        .map(|p| (trim_end(last, p), trim_start(&o, p)))
+                        .filter(|(a, b)| same_sense(last, a) && same_sense(&o, b))
+                        .min_by(|x, y| x.0.length().total_cmp(&y.0.length()))
+                })
+                .flatten();
+            if theta.abs() <= ANGLE_EPS || dist2(last.end(), o.start()) < LEN_EPS {
+                // Tangential: nothing to do.
+            } else if let Some((a, b)) = near {
+                *last = a;
+                o = b;
+            } else if with_arc && theta.abs() < NEAR_TANGENT && dist2(last.end(), o.start()) < 1e-3
+            {
+                // Tangential within the programmed arc's tolerance: join the pieces where the
+                // line meets the arc's end (lines move, arcs keep their circle).
+                let end = last.end();
+                match (&mut *last, &mut o) {
+                    (_, Seg2::Line { a, .. }) => *a = end,
+                    (Seg2::Line { b, .. }, arc) => *b = arc.start(),
+                    _ => {}
+                }
+            } else if (theta < 0.0) == (d > 0.0) {
+                // Turn away from the offset side: an arc about the corner closes the gap.
+                let ccw = d < 0.0;
+                let arc = Seg2::arc_through(corner, last.end(), o.start(), ccw, false);
+                out.push(arc);
+            } else {
+                // Turn towards it: the pieces overlap; meet at the crossing nearest the corner.
+                let p = curve_intersections(last, &o)
+                    .into_iter()
+                    .min_by(|a, b| dist2(*a, corner).total_cmp(&dist2(*b, corner)))?;
+                let (a, b) = (trim_end(last, p), trim_start(&o, p));
+                // An element the offset swallows whole (its trimmed piece would run backwards)
+                // is not resolved: the caller gets None rather than a path that turns back.
+                if !same_sense(last, &a) || !same_sense(&o, &b) {
+                    return None;
+                }
+                *last = a;
+                o = b;
+            }
+        }
+        out.push(o);
+    }
+    Some(out)
+}
+
+/// Whether `trimmed`, a piece of `s`'s curve, still runs the way `s` does (and is no longer).
+fn same_sense(s: &Seg2, trimmed: &Seg2) -> bool {
+    match (*s, *trimmed) {
+        (Seg2::Line { a, b }, Seg2::Line { a: p, b: q }) => {
+            let (u, v) = ([b[0] - a[0], b[1] - a[1]], [q[0] - p[0], q[1] - p[1]]);
+            u[0] * v[0] + u[1] * v[1] >= -LEN_EPS * LEN_EPS
+        }
+        (Seg2::Arc { sweep: s0, .. }, Seg2::Arc { sweep: s1, .. }) => {
+            // Shorter, or a little longer (pieces extended to meet), never reversed.
+            s1.abs() <= s0.abs() + FRAC_PI_2 && (s1.abs() < PARAM_EPS || s1.signum() == s0.signum())
+        }
+        _ => false,
+    }
+}
+
+/// `s` with its end moved to `p` (a point on its curve, possibly a little beyond the end: arcs
+/// change their sweep by the wrapped angle from the old end to `p`, so they never wrap round).
+fn trim_end(s: &Seg2, p: P2) -> Seg2 {
+    match *s {
+        Seg2::Line { a, .. } => Seg2::Line { a, b: p },
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            Seg2::Arc {
+                c,
+                r,
+                start,
+                sweep: sweep + wrap_pi(phi - (start + sweep)),
+            }
+        }
+    }
+}
+
+/// `s` with its start moved to `p` (a point on its curve; see `trim_end`).
+fn trim_start(s: &Seg2, p: P2) -> Seg2 {
+    match *s {
+        Seg2::Line { b, .. } => Seg2::Line { a: p, b },
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            let delta = wrap_pi(phi - start);
+            Seg2::Arc {
+                c,
+                r,
+                start: start + delta,
+                sweep: sweep - delta,
+            }
+        }
+    }
+}
+
+/// Where the line `{(a, b) : b = level}` meets the chain, as first-axis coordinates `a` sorted
+/// ascending, each with the index of the element it lies on. An element lying along the line
+/// counts with both of its ends; tangent contacts count once.
+pub fn level_crossings(chain: &[Seg2], level: f64) -> Vec<(f64, usize)> {
+    let mut v: Vec<(f64, usize)> = Vec::new();
+    for (i, s) in chain.iter().enumerate() {
+        match *s {
+            Seg2::Line { a, b } => {
+                let (b0, b1) = (a[1] - level, b[1] - level);
+                if b0.abs() < LEN_EPS && b1.abs() < LEN_EPS {
+                    v.push((a[0], i));
+                    v.push((b[0], i));
+                } else if (b0 <= LEN_EPS && b1 >= -LEN_EPS) || (b0 >= -LEN_EPS && b1 <= LEN_EPS) {
+                    let t = (b0 / (b0 - b1)).clamp(0.0, 1.0);
+                    v.push((a[0] + t * (b[0] - a[0]), i));
+                }
+            }
+            Seg2::Arc { .. } => {
+                let probe = Seg2::Line {
+                    a: [0.0, level],
+                    b: [1.0, level],
+                };
+                for p in curve_intersections(&probe, s) {
+                    if on_arc(s, p) {
+                        v.push((p[0], i));
+                    }
+                }
+            }
+        }
+    }
+    v.retain(|(a, _)| a.is_finite());
+    v.sort_by(|x, y| x.0.total_cmp(&y.0));
+    v
+}
+
+/// Whether `p`, a point of the arc's circle, lies within its sweep.
+fn on_arc(s: &Seg2, p: P2) -> bool {
+    match *s {
+        Seg2::Arc { c, r, start, sweep } => {
+            let phi = (p[1] - c[1]).atan2(p[0] - c[0]);
+            let u = ((phi - start) * sweep.signum()).rem_euclid(std::f64::consts::TAU);
+            let tol = PARAM_EPS + LEN_EPS / r.max(1e-300);
+            u <= sweep.abs() + tol || u >= std::f64::consts::TAU - tol
+        }
+        Seg2::Line { .. } => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line(a: P2, b: P2) -> Seg2 {
+        Seg2::Line { a, b }
+    }
+
+    fn close(a: P2, b: P2) -> bool {
+        dist2(a, b) < 1e-9
+    }
+
+    #[test]
+    fn a_step_gets_an_intersection_inside_and_an_arc_outside() {
+        // (z, x): along −z at x = 10, up to x = 14, on along −z; offset to +x (the right of −z).
+        let chain = [
+            line([0.0, 10.0], [-10.0, 10.0]),
+            line([-10.0, 10.0], [-10.0, 14.0]),
+            line([-10.0, 14.0], [-20.0, 14.0]),
+        ];
+        let o = offset_chain(&chain, -0.5).unwrap();
+        assert_eq!(o.len(), 4);
+        assert!(close(o[0].start(), [0.0, 10.5]));
+        assert!(close(o[0].end(), [-9.5, 10.5]) && close(o[1].start(), [-9.5, 10.5]));
+        assert!(matches!(o[2], Seg2::Arc { r, .. } if (r - 0.5).abs() < 1e-12));
+        assert!(close(o[2].end(), [-10.0, 14.5]) && close(o[3].end(), [-20.0, 14.5]));
+        for w in o.windows(2) {
+            assert!(close(w[0].end(), w[1].start()));
+        }
+    }
+
+    #[test]
+    fn an_element_swallowed_by_the_offset_is_refused() {
+        // A 0.5 step inside a right-angled notch: offset by 1 towards the notch, the step's
+        // offset would run backwards.
+        let chain = [
+            line([0.0, 10.0], [-10.0, 10.0]),
+            line([-10.0, 10.0], [-10.0, 10.5]),
+            line([-10.0, 10.5], [-20.0, 10.5]),
+        ];
+        assert!(offset_chain(&chain, 0.2).is_some());
+        assert!(offset_chain(&chain, 1.0).is_none());
+    }
+
+    #[test]
+    fn level_crossings_of_lines_and_arcs() {
+        let chain = [
+            line([0.0, 0.0], [10.0, 10.0]),
+            Seg2::arc_through([15.0, 10.0], [10.0, 10.0], [20.0, 10.0], false, false),
+        ];
+        let c = level_crossings(&chain, 5.0);
+        assert_eq!(c.len(), 1);
+        assert!((c[0].0 - 5.0).abs() < 1e-12);
+        // The arc (clockwise from (10,10) over the top to (20,10)) meets b = 14 twice.
+        let c = level_crossings(&chain, 14.0);
+        assert_eq!(c.len(), 2);
+        assert!((c[0].0 - 12.0).abs() < 1e-9 && (c[1].0 - 18.0).abs() < 1e-9);
+    }
+}

@@ -29,6 +29,7 @@ mod axioma_chain;
 mod ctx;
 mod flow;
 mod frame;
+mod hll;
 mod params;
 mod predefined;
 mod rs274;
@@ -39,6 +40,7 @@ mod words;
 pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
 pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
+pub use hll::value::HVal;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -171,6 +173,9 @@ pub struct Interpreter<R: BufRead + Seek> {
     axioma_held: VecDeque<Spanned<Canon>>,
     /// AxiOMA: cutter compensation look-ahead, canned-cycle and output state (not `Copy`).
     axioma: axioma::Extension,
+    /// AxiOMA high-level language: variables and control flow; `None` until the first HLL line
+    /// or expression, so that programs without HLL keep their speed.
+    hll: Option<Box<hll::Hll>>,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -262,6 +267,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             queue: VecDeque::new(),
             axioma_held: VecDeque::new(),
             axioma: axioma::Extension::default(),
+            hll: None,
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -302,7 +308,16 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// `.var` file and tool table when it exits — the options' data with the offsets, G28/G30
     /// positions, G92, active system, tool table and preset parameters updated.
     pub fn control_data(&self) -> ControlData {
-        self.params.to_control(&self.opts.control)
+        match self.opts.dialect {
+            Dialect::Rs274ngc => self.params.to_control(&self.opts.control),
+            // AxiOMA: `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote.
+            Dialect::Axioma => self.opts.control.clone(),
+        }
+    }
+
+    /// AxiOMA: the value of a high-level-language variable (a scalar) visible now.
+    pub fn hll_variable(&self, name: &str) -> Option<HVal> {
+        self.hll.as_deref()?.vars.get(name).cloned()
     }
 
     /// AxiOMA: the M vector ("active functions" screen) after the blocks run so far: each modal
@@ -472,6 +487,20 @@ impl<R: BufRead + Seek> Interpreter<R> {
             if self.block.block_delete && self.opts.block_delete {
                 return Ok(false);
             }
+        } else if self.hll.is_some() || self.block.hll.statement {
+            match self.hll_step(here, first_error)? {
+                hll::HllStep::Done => return Ok(false),
+                hll::HllStep::Execute(owner) => {
+                    self.count_block()?;
+                    let end = self.execute_block()?;
+                    if let Some(owner) = owner {
+                        if !end {
+                            self.hll_after_iso(owner)?;
+                        }
+                    }
+                    return Ok(end);
+                }
+            }
         } else if let Some(e) = first_error {
             return Err(e);
         }
@@ -531,6 +560,20 @@ impl<R: BufRead + Seek> Interpreter<R> {
     }
 
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
+        // AxiOMA words with HLL expressions are evaluated first (journalled, undone on failure).
+        if self.block.hll.exprs.is_empty() {
+            return self.execute_words(&[]);
+        }
+        let values = self.hll_prepare_block()?;
+        let result = self.execute_words(&values);
+        if result.is_err() {
+            self.hll_rollback();
+        }
+        result
+    }
+
+    /// Executes the block with `hll_values`, the values of its HLL expression words.
+    fn execute_words(&mut self, hll_values: &[(u32, f64)]) -> Result<bool, Diagnostic> {
         let dialect = self.opts.dialect;
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
@@ -575,7 +618,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 state: &self.state,
             };
             self.words
-                .fill(&self.block, &eval, dialect, &mut self.warnings)?;
+                .fill(&self.block, &eval, dialect, &mut self.warnings, hll_values)?;
             // Assignments are evaluated with the old values and applied after the line.
             for a in &self.block.assignments {
                 let v = eval.eval(a.value)?;
@@ -700,6 +743,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 &mut self.warnings,
             )?;
         }
+        self.hll_end_of_input()?;
         if let Some(d) = self.flow.unterminated(&self.block) {
             return Err(d);
         }

@@ -90,6 +90,7 @@ impl Words {
         eval: &Evaluator<'_>,
         dialect: Dialect,
         warnings: &mut Vec<Diagnostic>,
+        hll_values: &[(u32, f64)],
     ) -> Result<(), Diagnostic> {
         self.clear();
         for w in &block.words {
@@ -97,6 +98,11 @@ impl Words {
                 Value::None => None,
                 Value::Number(v) => Some(v),
                 Value::Expr(e) => Some(eval.eval(e)?),
+                // Evaluated by the HLL before the block (`hll/driver.rs`).
+                Value::Hll(e) => hll_values
+                    .iter()
+                    .find(|(id, _)| *id == e.0)
+                    .map(|&(_, v)| v),
             };
             let val = value.map(|v| Val { v, span: w.span });
             match w.address {

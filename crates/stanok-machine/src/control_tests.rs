@@ -256,3 +256,19 @@ fn the_writer_is_sparse() {
         c.offsets
     );
 }
+
+#[test]
+fn axioma_permanent_parameters_are_read_checked_and_written_back() {
+    let m = machine("[iperm]\n1 = 1500\n5 = -2\n[dperm]\n0 = 0.25\n").unwrap();
+    assert_eq!(m.control.perm_int.get(&1), Some(&1500));
+    assert_eq!(m.control.perm_int.get(&5), Some(&-2));
+    assert_eq!(m.control.perm_double.get(&0), Some(&0.25));
+    let (msg, line, _) = err("[iperm]\n1000 = 1\n");
+    assert!(msg.contains("0…999"), "{msg}");
+    assert_eq!(line, 2);
+    let (msg, _, _) = err("[dperm]\n\"x\" = 1.0\n");
+    assert!(msg.contains("0…999"), "{msg}");
+    let text = control_to_toml(&m.control);
+    assert!(text.contains("[iperm]\n1 = 1500\n5 = -2\n"), "{text}");
+    assert!(text.contains("[dperm]\n0 = 0.25\n"), "{text}");
+}

@@ -118,6 +118,20 @@ pub(crate) fn control_toml_parts(c: &ControlData) -> (String, String) {
         }
         out.push('\n');
     }
+    if !c.perm_int.is_empty() {
+        out.push_str("[iperm]\n");
+        for (n, v) in &c.perm_int {
+            let _ = writeln!(out, "{n} = {v}");
+        }
+        out.push('\n');
+    }
+    if !c.perm_double.is_empty() {
+        out.push_str("[dperm]\n");
+        for (n, v) in &c.perm_double {
+            let _ = writeln!(out, "{n} = {}", toml_float(*v));
+        }
+        out.push('\n');
+    }
     for t in c.tools.tools.values() {
         write_tool(&mut out, t);
     }

@@ -155,6 +155,8 @@ struct RawFile {
     g30: Option<Spanned<RawPose>>,
     g92: Option<Spanned<RawG92>>,
     parameters: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    iperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<i64>>>>,
+    dperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
 }
 
@@ -304,6 +306,8 @@ impl RawFile {
             g30: &self.g30,
             g92: &self.g92,
             parameters: &self.parameters,
+            iperm: &self.iperm,
+            dperm: &self.dperm,
             tool: &self.tool,
         }
     }
@@ -330,6 +334,8 @@ impl RawFile {
             ("g30", at(&self.g30)),
             ("g92", at(&self.g92)),
             ("parameters", at(&self.parameters)),
+            ("iperm", at(&self.iperm)),
+            ("dperm", at(&self.dperm)),
             ("tool", at(&self.tool)),
         ];
         keys.into_iter()

@@ -111,6 +111,24 @@ const HLL_WORDS: &[&[u8]] = &[
     b"SHORT",
 ];
 
+/// A compound assignment operator (`+=`, `<<=`, …) at the start of `rest`.
+fn compound(rest: &[u8]) -> bool {
+    [
+        &b"+="[..],
+        b"-=",
+        b"*=",
+        b"/=",
+        b"%=",
+        b"&=",
+        b"|=",
+        b"^=",
+        b"<<=",
+        b">>=",
+    ]
+    .iter()
+    .any(|op| rest.starts_with(op))
+}
+
 /// After a one-letter name at the start of a block: `i++`, `i += 2`, `a[2] = 1` are HLL
 /// statements (a plain `i = 5` is the ISO word `I=5`).
 fn single_letter_statement(rest: &[u8]) -> bool {
@@ -696,8 +714,8 @@ impl Line<'_> {
             let call_or_assign = match b.get(next) {
                 Some(b'(' | b'[') => true,
                 Some(b'=') => b.get(next + 1) != Some(&b'='),
-                Some(&c @ (b'+' | b'-')) => b.get(next + 1) == Some(&c),
-                _ => false,
+                Some(&c @ (b'+' | b'-')) => b.get(next + 1) == Some(&c) || compound(&b[next..]),
+                _ => compound(&b[next..]),
             };
             if call_or_assign || HLL_WORDS.iter().any(|w| w.eq_ignore_ascii_case(ident)) {
                 return self.hll_statement(start);

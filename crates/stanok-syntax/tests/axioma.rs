@@ -319,6 +319,7 @@ fn high_level_language_lines_are_statements() {
             "E",
         ),
         ("ii++;", "E"),
+        ("kk += 1; kk <<= 2; kk |= 1;", "EEE"),
         ("i++;", "E"),
         ("$iPerm[1] = 5;", "E"),
         ("} else if (a >= 2 && !b) { x = a ? 1 : 2; }", "}LI{E}"),

@@ -176,6 +176,8 @@ pub struct Interpreter<R: BufRead + Seek> {
     /// AxiOMA high-level language: variables and control flow; `None` until the first HLL line
     /// or expression, so that programs without HLL keep their speed.
     hll: Option<Box<hll::Hll>>,
+    /// AxiOMA: the text of the next block's `MSG(expr)`, handed to its words.
+    hll_message: Option<String>,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -268,6 +270,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma_held: VecDeque::new(),
             axioma: axioma::Extension::default(),
             hll: None,
+            hll_message: None,
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -559,11 +562,19 @@ impl<R: BufRead + Seek> Interpreter<R> {
         rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
 
+    #[inline(always)]
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
-        // AxiOMA words with HLL expressions are evaluated first (journalled, undone on failure).
+        // AxiOMA words with HLL expressions are evaluated first (journalled, undone on failure);
+        // every other block goes straight on (one test: programs without HLL keep their speed).
         if self.block.hll.exprs.is_empty() {
             return self.execute_words(&[]);
         }
+        self.execute_block_with_expressions()
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn execute_block_with_expressions(&mut self) -> Result<bool, Diagnostic> {
         let values = self.hll_prepare_block()?;
         let result = self.execute_words(&values);
         if result.is_err() {
@@ -617,8 +628,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 params: &self.params,
                 state: &self.state,
             };
-            self.words
-                .fill(&self.block, &eval, dialect, &mut self.warnings, hll_values)?;
+            self.words.fill(
+                &self.block,
+                &eval,
+                dialect,
+                &mut self.warnings,
+                hll_values,
+                &mut self.hll_message,
+            )?;
             // Assignments are evaluated with the old values and applied after the line.
             for a in &self.block.assignments {
                 let v = eval.eval(a.value)?;

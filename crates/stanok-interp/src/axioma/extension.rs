@@ -107,8 +107,6 @@ pub struct Extension {
     pub probe: ProbeState,
     /// Where the last released motion ended (machine coordinates).
     pub released_end: Option<stanok_canon::Pose>,
-    /// The text of this block's `MSG(expr)` (high-level language), evaluated before it runs.
-    pub hll_message: Option<String>,
 }
 
 /// Every released straight move starts where the previous motion ended. The compensation

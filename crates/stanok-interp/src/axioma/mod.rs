@@ -365,7 +365,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     if let Some(text) = cx.block.message {
         let text = cx.block.slice(text).to_string();
         cx.out.push(Canon::Message { text });
-    } else if let Some(text) = cx.axioma.hll_message.take() {
+    } else if let Some(text) = cx.words.message.take() {
         cx.out.push(Canon::Message { text });
     }
     // 2. Modal G codes.

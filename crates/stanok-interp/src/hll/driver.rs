@@ -146,13 +146,13 @@ impl<R: BufRead + Seek> Interpreter<R> {
             env.vars.rollback(env.control);
             return Err(d);
         }
-        self.axioma.hll_message = message;
+        self.hll_message = message;
         Ok(values)
     }
 
     /// Undoes the HLL writes of a failing block.
     pub(crate) fn hll_rollback(&mut self) {
-        self.axioma.hll_message = None;
+        self.hll_message = None;
         if let Some(hll) = self.hll.as_deref_mut() {
             hll.vars.rollback(&mut self.opts.control);
         }

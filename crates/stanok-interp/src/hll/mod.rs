@@ -27,6 +27,7 @@
 //! A failing HLL line restores the control state and undoes its variable writes (journal in
 //! `eval.rs`); the run stops there.
 
+mod builtins;
 mod driver;
 pub mod eval;
 pub mod format;

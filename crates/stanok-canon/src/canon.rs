@@ -12,6 +12,62 @@
 
 use serde::Serialize;
 
+/// Constant surface speed (G96) as the machine executes it, continuously: at every instant the
+/// spindle turns at
+///
+/// ```text
+///   n = clamp( v / (2π·r), min_rpm, max_rpm )      r = |p[axis] − centre|   (machine coordinates)
+///   r → 0 (below 1 µm): n = max_rpm (no maximum: min_rpm, else 0)
+/// ```
+///
+/// so the cutting speed at the tool stays `v` while the tool moves across the part. The
+/// interpreter fills it from its own words (AxiOMA S/LMAXS/LMINS/REFAX, LinuxCNC S/D) and from
+/// the offsets in force (the work zero of `axis` is the spindle centre line); the planner and the
+/// simulated machine evaluate it at every point of the path.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SurfaceSpeedLaw {
+    /// Cutting speed v, mm/min.
+    pub mm_per_min: f64,
+    /// `Pose::to_array` index of the transverse axis whose distance from the centre is the radius.
+    pub axis: u8,
+    /// Machine coordinate of the spindle centre line on that axis, mm.
+    pub centre: f64,
+    /// Lower limit, rev/min (0 = none).
+    pub min_rpm: f64,
+    /// Upper limit, rev/min (0 = none).
+    pub max_rpm: f64,
+}
+
+impl SurfaceSpeedLaw {
+    /// Radii below this are the centre line, mm.
+    pub const CENTRE_RADIUS: f64 = 1e-3;
+
+    /// Spindle speed, rev/min, with the tool at `position` (all nine axes, machine coordinates).
+    pub fn rpm_at(&self, position: &[f64; 9]) -> f64 {
+        let r = (position[(self.axis as usize).min(8)] - self.centre).abs();
+        let hi = if self.max_rpm > 0.0 {
+            self.max_rpm
+        } else {
+            f64::INFINITY
+        };
+        let lo = self.min_rpm.max(0.0).min(hi);
+        let raw = if r < Self::CENTRE_RADIUS || !r.is_finite() {
+            if hi.is_finite() {
+                hi
+            } else {
+                lo
+            }
+        } else {
+            self.mm_per_min / (std::f64::consts::TAU * r)
+        };
+        if raw.is_finite() {
+            raw.clamp(lo, hi)
+        } else {
+            lo
+        }
+    }
+}
+
 /// A point of all nine axes LinuxCNC knows: X Y Z (mm), A B C (deg), U V W (mm).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct Pose {
@@ -489,6 +545,15 @@ pub enum Canon {
         constant_surface_speed: bool,
         /// G96's speed limit D, rev/min (0 = none given).
         max_rpm: f64,
+    },
+    /// The constant-surface-speed law of a spindle changed (G96 and its speed, limits or the work
+    /// zero of its transverse axis), or G97 ended it (`None`). Emitted beside `SetSpindleMode` /
+    /// `SetSpindleSpeed`, which keep the values a control's screen shows; printers may ignore it.
+    SetSurfaceSpeedLaw {
+        /// Spindle number (0 = main).
+        spindle: u8,
+        /// The law, or `None` under G97 (the last `SetSpindleSpeed` holds).
+        law: Option<SurfaceSpeedLaw>,
     },
     /// M7 (mist, AxiOMA coolant mode 1) on or off.
     Mist {

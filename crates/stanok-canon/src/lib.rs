@@ -24,7 +24,8 @@ mod span;
 
 pub use canon::{
     AccelerationProfile, ArcMove, AuxTiming, Canon, FeedMode, LengthUnits, LineMove, LogAction,
-    Motion, PathMode, Plane, Pose, ProbeKind, SpindleDirection, SplineMove, AXIS_LETTERS,
+    Motion, PathMode, Plane, Pose, ProbeKind, SpindleDirection, SplineMove, SurfaceSpeedLaw,
+    AXIS_LETTERS,
 };
 pub use diag::{DiagCode, Diagnostic, Severity};
 pub use span::{Span, Spanned};

@@ -297,6 +297,8 @@ impl LinuxCncPrinter {
             }
             // rs274 prints nothing for M66 (its simulated inputs answer at once).
             Canon::WaitInput { .. } => {}
+            // rs274 has no such call: LinuxCNC's motion evaluates CSS from SET_SPINDLE_MODE/SPEED.
+            Canon::SetSurfaceSpeedLaw { .. } => {}
             Canon::Mist { on } => self.line(n, if *on { "MIST_ON()" } else { "MIST_OFF()" }.into()),
             Canon::Flood { on } => {
                 self.line(n, if *on { "FLOOD_ON()" } else { "FLOOD_OFF()" }.into())

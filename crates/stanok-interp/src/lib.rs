@@ -42,7 +42,7 @@ pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use hll::value::HVal;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
-pub use state::{DistanceMode, ModalState, MotionMode, PathMode, Polar, WorkFrame};
+pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
 use ctx::Ctx;
 use flow::{Flow, FlowAction};

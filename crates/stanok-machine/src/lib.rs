@@ -34,5 +34,5 @@ pub use data::{
     BAD_DATA,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
-pub use sim_motion::{AxisMotion, SetpointSink, SimOptions};
+pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};
 pub use stanok_motion::Setpoint;

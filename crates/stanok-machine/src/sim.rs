@@ -127,6 +127,9 @@ pub struct RunReport {
     pub violations: Vec<LoggedEvent>,
     /// How many violations in all.
     pub violation_count: u64,
+    /// Per spindle that turned: the range of its commanded speed over the setpoints (under G96 the
+    /// speed the law gives at each position).
+    pub spindles: Vec<crate::sim_motion::SpindleRange>,
 }
 
 /// Executes Canon commands on a simulated machine (see the module doc).
@@ -208,6 +211,7 @@ impl SimMachine {
             max_path_deviation_mm: 0.0,
             violations: Vec::new(),
             violation_count: 0,
+            spindles: Vec::new(),
         };
         let motion = MotionRun::new(&machine, &options);
         SimMachine {
@@ -222,6 +226,28 @@ impl SimMachine {
     /// Every setpoint also goes to `sink` (a trace writer, a progress display).
     pub fn set_setpoint_sink(&mut self, sink: SetpointSink) {
         self.motion.set_observer(sink);
+    }
+
+    /// Runs everything the planner holds to its end, so that the machine stands at the last
+    /// accepted position (the path stops there: an operator's single block or program stop).
+    pub fn drain_motion(&mut self) {
+        self.motion.drain();
+    }
+
+    /// Connects the operator's feed-hold button, read at every servo instant
+    /// ([`stanok_motion::hold::HoldSwitch`]).
+    pub fn set_hold_switch(&mut self, switch: std::sync::Arc<stanok_motion::hold::HoldSwitch>) {
+        self.motion.set_hold_switch(switch);
+    }
+
+    /// Feed override (fraction, 0.001…2) for the commands applied from now on.
+    pub fn set_feed_override(&mut self, fraction: f64) {
+        self.motion.set_feed_override(fraction);
+    }
+
+    /// Rapid override (fraction, 0.001…1) for the commands applied from now on.
+    pub fn set_rapid_override(&mut self, fraction: f64) {
+        self.motion.set_rapid_override(fraction);
     }
 
     /// The program is over (or stopped at an error): runs the motion still in the planner's
@@ -380,6 +406,7 @@ impl SimMachine {
             | Canon::SetG92Offset { .. }
             | Canon::SetXyRotation { .. }
             | Canon::SetSpindleMode { .. }
+            | Canon::SetSurfaceSpeedLaw { .. }
             | Canon::StartSpindleSync { .. }
             | Canon::StopSpindleSync
             | Canon::SetPathMode { .. }

@@ -76,6 +76,18 @@ pub struct AxisMotion {
     pub trace_peak_jerk: f64,
 }
 
+/// The range of speeds a spindle was commanded to turn at over the setpoints where it turned,
+/// rev/min (under G96 the law evaluated at every position).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SpindleRange {
+    /// Spindle number (0 = main).
+    pub spindle: u8,
+    /// Lowest speed.
+    pub min_rpm: f64,
+    /// Highest speed.
+    pub max_rpm: f64,
+}
+
 /// The motion part of a simulated run (module doc).
 pub(crate) struct MotionRun {
     stage: MotionStage,
@@ -87,6 +99,7 @@ pub(crate) struct MotionRun {
     travel_violation_count: u64,
     feed_override: f64,
     cycle_time: Option<f64>,
+    spindle_rpm_range: [Option<(f64, f64)>; 4],
 }
 
 impl std::fmt::Debug for MotionRun {
@@ -126,6 +139,7 @@ impl MotionRun {
             travel_violation_count: 0,
             feed_override: config.feed_override,
             cycle_time: None,
+            spindle_rpm_range: [None; 4],
         }
     }
 
@@ -142,6 +156,7 @@ impl MotionRun {
             observer,
             travel_violations,
             travel_violation_count,
+            spindle_rpm_range,
             ..
         } = self;
         let mut sink = |sp: &Setpoint| {
@@ -152,6 +167,7 @@ impl MotionRun {
                 travel_violations,
                 travel_violation_count,
             );
+            track_spindles(spindle_rpm_range, &sp.spindle_rpm);
             if let Some(o) = observer.as_mut() {
                 o(sp);
             }
@@ -159,11 +175,8 @@ impl MotionRun {
         stage.apply(cmd, line, &mut sink);
     }
 
-    /// Runs what is left; idempotent.
-    pub(crate) fn finish(&mut self) {
-        if self.cycle_time.is_some() {
-            return;
-        }
+    /// Runs everything pending; the path stops at its current end.
+    pub(crate) fn drain(&mut self) {
         let Self {
             stage,
             monitor,
@@ -185,6 +198,53 @@ impl MotionRun {
                 o(sp);
             }
         };
+        stage.drain(&mut sink);
+    }
+
+    pub(crate) fn set_hold_switch(
+        &mut self,
+        switch: std::sync::Arc<stanok_motion::hold::HoldSwitch>,
+    ) {
+        self.stage.set_hold_switch(switch);
+    }
+
+    pub(crate) fn set_feed_override(&mut self, fraction: f64) {
+        self.stage.set_feed_override(fraction);
+        self.feed_override = fraction;
+    }
+
+    pub(crate) fn set_rapid_override(&mut self, fraction: f64) {
+        self.stage.set_rapid_override(fraction);
+    }
+
+    /// Runs what is left; idempotent.
+    pub(crate) fn finish(&mut self) {
+        if self.cycle_time.is_some() {
+            return;
+        }
+        let Self {
+            stage,
+            monitor,
+            travel,
+            observer,
+            travel_violations,
+            travel_violation_count,
+            spindle_rpm_range,
+            ..
+        } = self;
+        let mut sink = |sp: &Setpoint| {
+            execute(
+                sp,
+                monitor,
+                travel,
+                travel_violations,
+                travel_violation_count,
+            );
+            track_spindles(spindle_rpm_range, &sp.spindle_rpm);
+            if let Some(o) = observer.as_mut() {
+                o(sp);
+            }
+        };
         self.cycle_time = Some(stage.finish(&mut sink));
     }
 
@@ -194,6 +254,16 @@ impl MotionRun {
         r.servo_period_s = self.stage.servo_period();
         r.setpoints = self.monitor.count();
         r.feed_override_percent = self.feed_override * 100.0;
+        r.spindles = (0..4u8)
+            .filter_map(|i| {
+                let (min_rpm, max_rpm) = self.spindle_rpm_range[i as usize]?;
+                Some(SpindleRange {
+                    spindle: i,
+                    min_rpm,
+                    max_rpm,
+                })
+            })
+            .collect();
         let stats = self.stage.stats();
         r.max_path_deviation_mm = stats.max_deviation;
         r.axes = (0..9)
@@ -236,6 +306,18 @@ impl MotionRun {
         r.violations = v;
         r.violation_count =
             self.travel_violation_count + self.monitor.violation_count + stats.tolerance_violations;
+    }
+}
+
+/// Widens each spindle's range of commanded speeds by this setpoint's (zero speeds are not counted).
+fn track_spindles(ranges: &mut [Option<(f64, f64)>; 4], rpm: &[f64; 4]) {
+    for (range, &n) in ranges.iter_mut().zip(rpm) {
+        if n > 0.0 {
+            *range = Some(match *range {
+                Some((lo, hi)) => (lo.min(n), hi.max(n)),
+                None => (n, n),
+            });
+        }
     }
 }
 

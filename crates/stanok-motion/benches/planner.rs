@@ -41,6 +41,7 @@ fn zigzag(n: usize) -> Vec<PlannerInput> {
             path_mode: PathMode::Continuous { tolerance: 0.01 },
             profile: AccelerationProfile::Brisk,
             line: k as u32,
+            spindles: Default::default(),
         }));
         p = q;
     }

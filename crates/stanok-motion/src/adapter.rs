@@ -7,7 +7,10 @@
 //! * acceleration profile (`SetAccelerationProfile`: BRISK/SOFT),
 //! * feed mode and spindle synchronisation (`SetFeedMode`, `StartSpindleSync` → feed = pitch ×
 //!   spindle rpm; `SetSpindleSpeed` of spindle 0),
-//! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync).
+//! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync),
+//! * the speeds of spindles 0–3 (`SetSpindleSpeed`, and G96's `SetSurfaceSpeedLaw`): stamped on
+//!   every segment so that each setpoint reports the speeds at its position; under G96 a feed per
+//!   revolution (of the main spindle) is cut into pieces that follow its law ([`crate::css`]).
 //!
 //! ## Speeds
 //! Canon feeds are mm/min along the feed length (the interpreter already turned G93 inverse time
@@ -25,9 +28,13 @@
 //! Invariant: no input panics; non-finite coordinates make a segment that the path builder drops.
 
 use crate::limits::MotionConfig;
-use crate::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry, SPLINE_CHORD_TOLERANCE};
+use crate::segment::{
+    PathSegment, PlannerInput, Point9, SegmentGeometry, SpindleSpeed, Spindles,
+    SPLINE_CHORD_TOLERANCE,
+};
 use stanok_canon::{
     AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, PathMode, Pose, SplineMove,
+    SurfaceSpeedLaw,
 };
 use stanok_geom::{Helix, Nurbs};
 
@@ -41,9 +48,14 @@ pub struct CanonAdapter {
     path_mode: PathMode,
     profile: AccelerationProfile,
     feed_mode: FeedMode,
-    spindle_rpm: f64,
+    /// Last `SetSpindleSpeed` of spindles 0–3, rev/min.
+    spindle_rpm: [f64; 4],
     spindle_pitch: Option<f64>,
     override_enabled: bool,
+    /// G96's law of spindles 0–3, where in force.
+    surface_speed: [Option<SurfaceSpeedLaw>; 4],
+    /// The last `SetFeedRate` (mm/rev while the feed mode is per revolution).
+    programmed_feed: f64,
 }
 
 /// Length the feed applies to (spec axioma-2 §3.2) and the 9-D length, of a straight move.
@@ -70,9 +82,11 @@ impl CanonAdapter {
             path_mode: PathMode::Continuous { tolerance: 0.0 },
             profile: AccelerationProfile::Brisk,
             feed_mode: FeedMode::UnitsPerMinute,
-            spindle_rpm: 0.0,
+            spindle_rpm: [0.0; 4],
             spindle_pitch: None,
             override_enabled: true,
+            surface_speed: [None; 4],
+            programmed_feed: 0.0,
         }
     }
 
@@ -91,7 +105,7 @@ impl CanonAdapter {
     /// Path speed (unit/s along the 9-D path) of a feed move programmed at `feed_per_min`.
     fn feed_speed(&self, feed_per_min: f64, ratio: f64) -> f64 {
         let mut f = match self.spindle_pitch {
-            Some(pitch) => pitch * self.spindle_rpm / 60.0,
+            Some(pitch) => pitch * self.spindle_rpm[0] / 60.0,
             None => feed_per_min / 60.0,
         };
         if !(f.is_finite() && f > 0.0) {
@@ -126,10 +140,40 @@ impl CanonAdapter {
             path_mode: self.path_mode,
             profile: self.profile,
             line,
+            spindles: self.spindles(),
+        }
+    }
+
+    /// The spindles' speeds as segments carry them.
+    fn spindles(&self) -> Spindles {
+        Spindles(std::array::from_fn(|i| match self.surface_speed[i] {
+            Some(law) => SpindleSpeed::Surface(law),
+            None => SpindleSpeed::Constant(self.spindle_rpm[i]),
+        }))
+    }
+
+    /// Emits a feed segment; under G96 with a feed per revolution, as the pieces of
+    /// [`crate::css::split`], each at f × (its lowest spindle speed).
+    fn emit_feed(&self, input: PlannerInput, ratio: f64, out: &mut impl FnMut(PlannerInput)) {
+        let PlannerInput::Segment(seg) = &input else {
+            return out(input);
+        };
+        let law = match (self.surface_speed[0], self.feed_mode, self.spindle_pitch) {
+            (Some(law), FeedMode::UnitsPerRevolution, None) if !seg.rapid => law,
+            _ => return out(input),
+        };
+        for piece in crate::css::split(seg, &law) {
+            let mut s = piece.segment;
+            s.path_speed = self.feed_speed(self.programmed_feed * piece.min_rpm, ratio);
+            out(PlannerInput::Segment(s));
         }
     }
 
     fn line(&self, m: &LineMove, rapid: bool, line: u32) -> PlannerInput {
+        self.line_with_ratio(m, rapid, line).0
+    }
+
+    fn line_with_ratio(&self, m: &LineMove, rapid: bool, line: u32) -> (PlannerInput, f64) {
         let (s, e) = (m.start.to_array(), m.end.to_array());
         let (feed_len, path_len) = feed_and_path_length(&s, &e);
         let ratio = if feed_len > 0.0 {
@@ -142,17 +186,11 @@ impl CanonAdapter {
         } else {
             self.feed_speed(m.feed, ratio)
         };
-        PlannerInput::Segment(self.segment(
-            m.start,
-            m.end,
-            SegmentGeometry::Line,
-            speed,
-            rapid,
-            line,
-        ))
+        let seg = self.segment(m.start, m.end, SegmentGeometry::Line, speed, rapid, line);
+        (PlannerInput::Segment(seg), ratio)
     }
 
-    fn arc(&self, a: &ArcMove, line: u32) -> PlannerInput {
+    fn arc(&self, a: &ArcMove, line: u32) -> (PlannerInput, f64) {
         let helix = Helix {
             start: a.start.xyz(),
             end: a.end.xyz(),
@@ -170,17 +208,18 @@ impl CanonAdapter {
             1.0
         };
         let speed = self.feed_speed(a.feed, ratio);
-        PlannerInput::Segment(self.segment(
+        let seg = self.segment(
             a.start,
             a.end,
             SegmentGeometry::Arc(helix),
             speed,
             false,
             line,
-        ))
+        );
+        (PlannerInput::Segment(seg), ratio)
     }
 
-    fn spline(&self, sp: &SplineMove, line: u32) -> PlannerInput {
+    fn spline(&self, sp: &SplineMove, line: u32) -> (PlannerInput, f64) {
         let curve = Nurbs::new(sp.degree, &sp.control_points, &sp.weights, &sp.knots);
         let mut xyz = vec![sp.start.xyz()];
         if curve.validate().is_ok() {
@@ -221,14 +260,15 @@ impl CanonAdapter {
             1.0
         };
         let speed = self.feed_speed(sp.feed, ratio);
-        PlannerInput::Segment(self.segment(
+        let seg = self.segment(
             sp.start,
             sp.end,
             SegmentGeometry::Polyline(points),
             speed,
             false,
             line,
-        ))
+        );
+        (PlannerInput::Segment(seg), ratio)
     }
 
     /// Turns one Canon command into zero or more planner inputs, in order.
@@ -237,9 +277,18 @@ impl CanonAdapter {
             |out: &mut dyn FnMut(PlannerInput)| out(PlannerInput::Stop { dwell_s: 0.0, line });
         match cmd {
             Canon::StraightTraverse(m) => out(self.line(m, true, line)),
-            Canon::StraightFeed(m) => out(self.line(m, false, line)),
-            Canon::ArcFeed(a) => out(self.arc(a, line)),
-            Canon::SplineFeed(sp) => out(self.spline(sp, line)),
+            Canon::StraightFeed(m) => {
+                let (input, ratio) = self.line_with_ratio(m, false, line);
+                self.emit_feed(input, ratio, out)
+            }
+            Canon::ArcFeed(a) => {
+                let (input, ratio) = self.arc(a, line);
+                self.emit_feed(input, ratio, out)
+            }
+            Canon::SplineFeed(sp) => {
+                let (input, ratio) = self.spline(sp, line);
+                self.emit_feed(input, ratio, out)
+            }
             // The probe stops where it makes (or loses) contact, at rest.
             Canon::StraightProbe {
                 motion, contact, ..
@@ -290,7 +339,13 @@ impl CanonAdapter {
                 }
                 self.feed_mode = *mode;
             }
-            Canon::SetSpindleSpeed { spindle: 0, rpm } => self.spindle_rpm = rpm.abs(),
+            Canon::SetSpindleSpeed { spindle, rpm } if *spindle < 4 => {
+                self.spindle_rpm[*spindle as usize] = rpm.abs()
+            }
+            Canon::SetSurfaceSpeedLaw { spindle, law } if *spindle < 4 => {
+                self.surface_speed[*spindle as usize] = *law
+            }
+            Canon::SetFeedRate { feed } => self.programmed_feed = *feed,
             Canon::StartSpindleSync { pitch, .. } => {
                 stop(out);
                 self.spindle_pitch = Some(pitch.abs());

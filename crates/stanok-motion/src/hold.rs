@@ -19,11 +19,43 @@
 //! Known limits: a hold in a SOFT piece switches acceleration instantly (the braking is
 //! trapezoidal); catch-up profiles are trapezoids in BRISK and S-curves in SOFT. One hold at a
 //! time.
+//!
+//! ## The operator's button ([`HoldSwitch`])
+//! A planned hold (`request(at, standstill)`, the CLI's `--feed-hold`) knows its standstill in
+//! advance. An operator's hold does not: the panel (`stanok-serve`) shares a [`HoldSwitch`] with the
+//! interpolator, which reads it at every servo instant. Pressed, it starts a hold with an open
+//! standstill ([`OPEN_STANDSTILL`]); released, it ends the standstill at that instant and the
+//! resume above runs unchanged. The switch is an atomic flag: the other thread never waits for the
+//! servo loop, nor the servo loop for it.
 
 use crate::interpolator::Profile;
 use crate::planner::{reach, PlannedPiece};
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// The standstill of an operator's hold, s: long enough to mean "until released" (31 years), finite
+/// so that every phase keeps a finite duration.
+pub const OPEN_STANDSTILL: f64 = 1e9;
+
+/// The operator's feed-hold button, shared between the panel's thread and the interpolator (module
+/// doc).
+#[derive(Debug, Default)]
+pub struct HoldSwitch {
+    held: AtomicBool,
+}
+
+impl HoldSwitch {
+    /// Presses (true) or releases (false) feed hold.
+    pub fn set(&self, held: bool) {
+        self.held.store(held, Ordering::Relaxed);
+    }
+
+    /// True while feed hold is pressed.
+    pub fn is_held(&self) -> bool {
+        self.held.load(Ordering::Relaxed)
+    }
+}
 
 /// What runs on (part of) a piece.
 #[derive(Debug, Clone, Copy)]
@@ -204,6 +236,26 @@ impl FeedHold {
         };
         if at.is_finite() {
             self.state = State::Requested { at, standstill };
+        }
+    }
+
+    /// The operator pressed hold at `t`: a hold with an open standstill, unless one is already
+    /// under way.
+    pub fn press(&mut self, t: f64) {
+        if matches!(self.state, State::Idle | State::CatchingUp { .. }) {
+            self.state = State::Requested {
+                at: t,
+                standstill: OPEN_STANDSTILL,
+            };
+        }
+    }
+
+    /// The operator released hold before it took effect: the open request is withdrawn.
+    pub fn withdraw(&mut self) {
+        if let State::Requested { standstill, .. } = self.state {
+            if standstill >= OPEN_STANDSTILL {
+                self.state = State::Idle;
+            }
         }
     }
 

@@ -24,12 +24,13 @@
 //! * The profile never leaves the piece (s clamped to [0, length]); a piece's last point is its
 //!   exact `end`.
 
-use crate::hold::FeedHold;
+use crate::hold::{FeedHold, HoldSwitch, Phase, OPEN_STANDSTILL};
 use crate::piece::Shape;
 use crate::planner::PlannedPiece;
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
-use crate::segment::Point9;
+use crate::segment::{Point9, Spindles};
+use std::sync::Arc;
 
 /// One servo-period setpoint.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,6 +49,9 @@ pub struct Setpoint {
     pub soft: bool,
     /// Source line of the piece.
     pub line: u32,
+    /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
+    /// evaluated at `position`).
+    pub spindle_rpm: [f64; 4],
 }
 
 /// The time law of one piece.
@@ -114,6 +118,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         jerk: [0.0; 9],
         soft: pc.soft,
         line: pc.line,
+        spindle_rpm: [0.0; 4],
     };
     let inv_r2 = match pc.shape {
         Shape::Arc { radius, .. } => 1.0 / (radius * radius),
@@ -125,6 +130,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         end
     });
     sp.position = pt.position;
+    sp.spindle_rpm = pc.spindles.rpm_at(&sp.position);
     let (v, a, j) = (k.v, k.a, k.j);
     for i in 0..9 {
         let (ti, ki) = (pt.tangent[i], pt.curvature[i]);
@@ -143,7 +149,9 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    spindles: Spindles,
     hold: FeedHold,
+    switch: Option<Arc<HoldSwitch>>,
 }
 
 impl Interpolator {
@@ -155,7 +163,9 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            spindles: Spindles::default(),
             hold: FeedHold::default(),
+            switch: None,
         }
     }
 
@@ -191,6 +201,11 @@ impl Interpolator {
         self.hold.request(at, standstill);
     }
 
+    /// Connects the operator's feed-hold button, read at every servo instant (see [`crate::hold`]).
+    pub fn set_hold_switch(&mut self, switch: Arc<HoldSwitch>) {
+        self.switch = Some(switch);
+    }
+
     /// Samples one piece: every grid instant in its time interval goes to `out`.
     pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
         let mut phase = self.hold.first_phase(piece);
@@ -215,6 +230,17 @@ impl Interpolator {
                     break;
                 }
                 let k = phase.at(t - phase_start);
+                if let Some(switch) = &self.switch {
+                    if switch.is_held() {
+                        self.hold.press(t);
+                    } else if matches!(phase, Phase::Stand { seconds, .. } if seconds >= OPEN_STANDSTILL)
+                    {
+                        switched = Some((self.hold.next_phase(&phase, t, piece), t));
+                        break;
+                    } else {
+                        self.hold.withdraw();
+                    }
+                }
                 if let Some(next) = self.hold.trigger(t, &phase, k, piece) {
                     switched = Some((next, t));
                     break;
@@ -242,6 +268,7 @@ impl Interpolator {
         }
         self.end = piece.piece.end;
         self.line = piece.piece.line;
+        self.spindles = piece.piece.spindles;
     }
 
     /// The last setpoint: at the end point, at rest, on the first grid instant at or after the
@@ -256,6 +283,7 @@ impl Interpolator {
             jerk: [0.0; 9],
             soft: false,
             line: self.line,
+            spindle_rpm: self.spindles.rpm_at(&self.end),
         });
         self.tick += 1;
         t

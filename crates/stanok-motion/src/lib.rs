@@ -5,6 +5,7 @@
 //! ```
 //! * [`adapter`]: modal motion state (G60/G61/G64 P, BRISK/SOFT, feed mode, spindle sync,
 //!   overrides) stamped on every [`segment::PathSegment`]; forced exact stops.
+//! * [`css`]: G96 along the path (the spindle speed per setpoint; G95 feeds cut to follow it).
 //! * [`path`]: segments → tangent-continuous [`piece::Piece`]s: chords of arcs and splines, circular
 //!   blends within the G64 tolerance, per-piece speed/acceleration/jerk limits from the axis limits.
 //! * [`planner`]: grbl-style reverse/forward passes over a bounded window.
@@ -22,6 +23,7 @@
 #![deny(missing_docs)]
 
 pub mod adapter;
+pub mod css;
 pub mod hold;
 pub mod interpolator;
 pub mod limits;

@@ -31,7 +31,9 @@
 
 use crate::limits::MotionConfig;
 use crate::piece::{arc_limits, line_limits, Piece, Shape};
-use crate::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry, SPLINE_CHORD_TOLERANCE};
+use crate::segment::{
+    PathSegment, PlannerInput, Point9, SegmentGeometry, Spindles, SPLINE_CHORD_TOLERANCE,
+};
 use stanok_canon::PathMode;
 
 /// Chord and blend tolerance inside arcs and splines under exact-stop and exact-path modes, mm.
@@ -64,6 +66,7 @@ struct Chord {
     speed: f64,
     soft: bool,
     line: u32,
+    spindles: Spindles,
     chord_tolerance: f64,
     end_rule: EndRule,
     entry_stop: bool,
@@ -79,6 +82,8 @@ pub struct PathBuilder {
     stop_next: bool,
     /// End of the last chord received (exact programmed point).
     position: Point9,
+    /// The spindle speed of the last segment received (dwells keep it).
+    spindles: Spindles,
     scratch: Vec<Point9>,
 }
 
@@ -103,6 +108,7 @@ impl PathBuilder {
             pending: None,
             stop_next: true,
             position: [0.0; 9],
+            spindles: Spindles::default(),
             scratch: Vec::new(),
         }
     }
@@ -123,7 +129,7 @@ impl PathBuilder {
             PlannerInput::Stop { dwell_s, line } => {
                 self.flush(out);
                 if dwell_s > 0.0 {
-                    out(dwell_piece(self.position, dwell_s, line));
+                    out(dwell_piece(self.position, dwell_s, line, self.spindles));
                 }
                 self.stop_next = true;
             }
@@ -252,6 +258,7 @@ impl PathBuilder {
         }
         let dir = delta.map(|d| d / length);
         self.position = *b;
+        self.spindles = seg.spindles;
         let mut next = Chord {
             start: *a,
             end: *b,
@@ -261,6 +268,7 @@ impl PathBuilder {
             speed,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
+            spindles: seg.spindles,
             chord_tolerance,
             end_rule,
             entry_stop: false,
@@ -341,6 +349,7 @@ impl PathBuilder {
             soft,
             entry_stop: false,
             line: next.line,
+            spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
         });
@@ -370,13 +379,14 @@ impl PathBuilder {
             soft: c.soft,
             entry_stop: c.entry_stop && c.start_trim == 0.0,
             line: c.line,
+            spindles: c.spindles,
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
         });
     }
 }
 
-fn dwell_piece(at: Point9, seconds: f64, line: u32) -> Piece {
+fn dwell_piece(at: Point9, seconds: f64, line: u32, spindles: Spindles) -> Piece {
     Piece {
         end: at,
         shape: Shape::Dwell { at, seconds },
@@ -387,6 +397,7 @@ fn dwell_piece(at: Point9, seconds: f64, line: u32) -> Piece {
         soft: false,
         entry_stop: true,
         line,
+        spindles,
         deviation: 0.0,
         tolerance: 0.0,
     }

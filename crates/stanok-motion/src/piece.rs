@@ -4,7 +4,7 @@
 //! axis velocities.
 
 use crate::limits::AxisLimit;
-use crate::segment::Point9;
+use crate::segment::{Point9, Spindles};
 
 /// The geometry of a piece, parameterised by arc length s ∈ [0, length].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -104,6 +104,8 @@ pub struct Piece {
     pub entry_stop: bool,
     /// Source line.
     pub line: u32,
+    /// The spindles' speeds on this piece (evaluated per setpoint under G96).
+    pub spindles: Spindles,
     /// Upper bound of the distance of any point of the piece from the programmed path, unit.
     pub deviation: f64,
     /// The distance allowed (the G64 tolerance in force, or the internal tolerance), unit.

@@ -11,7 +11,7 @@
 //! (9-D length / feed length), so that the feed length advances at exactly the programmed feed while
 //! the other axes follow synchronously.
 
-use stanok_canon::{AccelerationProfile, PathMode};
+use stanok_canon::{AccelerationProfile, PathMode, SurfaceSpeedLaw};
 use stanok_geom::Helix;
 
 /// A point of all nine axes, `Pose::to_array` order (mm / deg).
@@ -27,6 +27,45 @@ pub enum SegmentGeometry {
     /// A curve given as points (a spline tessellated within [`SPLINE_CHORD_TOLERANCE`]), `start`
     /// first and `end` last; the other axes move linearly with the XYZ length.
     Polyline(Vec<Point9>),
+}
+
+/// The speed the main spindle turns at while a segment runs: constant, or the G96 law evaluated at
+/// every point of the path (see [`crate::css`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpindleSpeed {
+    /// Rev/min as last programmed (G97, or no spindle speed yet: 0).
+    Constant(f64),
+    /// Constant surface speed: the speed follows the transverse position.
+    Surface(SurfaceSpeedLaw),
+}
+
+impl Default for SpindleSpeed {
+    fn default() -> Self {
+        SpindleSpeed::Constant(0.0)
+    }
+}
+
+impl SpindleSpeed {
+    /// Rev/min with the tool at `p`.
+    #[inline]
+    pub fn rpm_at(&self, p: &Point9) -> f64 {
+        match self {
+            SpindleSpeed::Constant(rpm) => *rpm,
+            SpindleSpeed::Surface(law) => law.rpm_at(p),
+        }
+    }
+}
+
+/// The speeds of the four spindles (0 = main) while a segment runs.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Spindles(pub [SpindleSpeed; 4]);
+
+impl Spindles {
+    /// Rev/min of every spindle with the tool at `p`.
+    #[inline]
+    pub fn rpm_at(&self, p: &Point9) -> [f64; 4] {
+        std::array::from_fn(|i| self.0[i].rpm_at(p))
+    }
 }
 
 /// Chord tolerance of spline tessellation, mm.
@@ -52,6 +91,8 @@ pub struct PathSegment {
     pub profile: AccelerationProfile,
     /// Source line (1-based) for reports.
     pub line: u32,
+    /// The spindles' speeds while it runs.
+    pub spindles: Spindles,
 }
 
 /// What the planner receives.

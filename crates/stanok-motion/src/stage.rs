@@ -36,6 +36,10 @@ pub struct MotionStage {
     interpolator: Interpolator,
     stats: StageStats,
     finished: Option<f64>,
+    /// The planner inputs of one Canon command (reused: no allocation per command). A command
+    /// makes at most a handful, except a G95 feed under G96, which `css::split` may cut into up to
+    /// `css::MAX_PIECES`.
+    inputs: Vec<PlannerInput>,
 }
 
 impl MotionStage {
@@ -46,6 +50,7 @@ impl MotionStage {
             adapter: CanonAdapter::new(&config),
             builder: PathBuilder::new(&config),
             planner: Planner::new(config.lookahead),
+            inputs: Vec::new(),
             interpolator: Interpolator::new(config.servo_period, [0.0; 9]),
             stats: StageStats::default(),
             finished: None,
@@ -65,6 +70,11 @@ impl MotionStage {
     /// Feed hold at simulated time `at` (s): brake on the path, stand `standstill` s, resume.
     pub fn feed_hold(&mut self, at: f64, standstill: f64) {
         self.interpolator.request_hold(at, standstill);
+    }
+
+    /// Connects the operator's feed-hold button (see [`crate::hold::HoldSwitch`]).
+    pub fn set_hold_switch(&mut self, switch: std::sync::Arc<crate::hold::HoldSwitch>) {
+        self.interpolator.set_hold_switch(switch);
     }
 
     /// Pieces released so far, deviation statistics.
@@ -129,17 +139,13 @@ impl MotionStage {
             self.set_position(position.to_array(), out);
             return;
         }
-        let mut inputs: [Option<PlannerInput>; 5] = Default::default();
-        let mut n = 0;
-        self.adapter.adapt(cmd, line, &mut |input| {
-            if n < inputs.len() {
-                inputs[n] = Some(input);
-                n += 1;
-            }
-        });
-        for input in inputs.into_iter().flatten() {
+        let mut inputs = std::mem::take(&mut self.inputs);
+        self.adapter
+            .adapt(cmd, line, &mut |input| inputs.push(input));
+        for input in inputs.drain(..) {
             self.push_input(input, out);
         }
+        self.inputs = inputs;
     }
 
     /// Runs everything pending (the path stops at its current end).

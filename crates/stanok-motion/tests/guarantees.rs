@@ -127,7 +127,7 @@ proptest! {
         let arc = PlannerInput::Segment(PathSegment {
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0 * (helix.length().powi(2)).sqrt() / helix.length(),
-            rapid: false, path_mode: mode, profile, line: 2,
+            rapid: false, path_mode: mode, profile, line: 2, spindles: Default::default(),
         });
         let inputs = vec![line(before, s, feed, mode, profile), arc, line(e, after, feed, mode, profile)];
         let (trace, mon, t) = run(&cfg, before, inputs);

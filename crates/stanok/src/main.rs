@@ -11,6 +11,7 @@
 //! prints the result (`machine_show.rs`).
 
 mod cli;
+mod cutting;
 mod diagnostics;
 mod machine_show;
 mod progress;
@@ -18,7 +19,9 @@ mod report;
 mod trace;
 
 use clap::Parser;
-use cli::{CanonFormat, Cli, Command, MachineArgs, MachineCommand, MotionArgs, VarArgs};
+use cli::{
+    CanonFormat, Cli, Command, CuttingCommand, MachineArgs, MachineCommand, MotionArgs, VarArgs,
+};
 use machine_show::{DataSource, Sources};
 use stanok_canon::setup::ControlData;
 use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
@@ -77,6 +80,27 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output,
             machine,
         } => plot(&file, dialect.map(Into::into), &output, &machine),
+        Command::Serve {
+            bind,
+            token,
+            programs,
+            upload_limit,
+            time_scale,
+            machine,
+        } => {
+            let machine = match load_machine(&machine) {
+                Ok((m, _)) => m,
+                Err(code) => return Ok(code),
+            };
+            let mut options = stanok_serve::ServeOptions::new(machine, programs);
+            options.bind = bind;
+            options.token = token;
+            options.upload_limit =
+                usize::try_from(upload_limit.saturating_mul(1024 * 1024)).unwrap_or(usize::MAX);
+            options.time_scale = time_scale;
+            stanok_serve::run(options)?;
+            Ok(ExitCode::SUCCESS)
+        }
         Command::Machine {
             command:
                 MachineCommand::Show {
@@ -96,6 +120,24 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             };
             machine_show(&machine, format)
         }
+        Command::Convert {
+            file,
+            dialect,
+            to,
+            output,
+            chord_tolerance,
+            machine,
+        } => convert(
+            &file,
+            dialect.map(Into::into),
+            to.into(),
+            output.as_deref(),
+            chord_tolerance,
+            &machine,
+        ),
+        Command::Cutting {
+            command: CuttingCommand::Turn(args),
+        } => cutting::turn(&args),
     }
 }
 
@@ -554,4 +596,82 @@ fn plot(
     }
     eprintln!("wrote {}", output.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// `stanok convert`: the program's Canon stream written in the target dialect. Nothing is written
+/// when the source has an error (a partial program is not a program); warnings name every command
+/// the target cannot express exactly.
+fn convert(
+    file: &Path,
+    dialect: Option<Dialect>,
+    target: stanok_convert::Target,
+    output: Option<&Path>,
+    chord_tolerance: f64,
+    args: &MachineArgs,
+) -> Result<ExitCode, String> {
+    if !(chord_tolerance.is_finite() && chord_tolerance >= 1e-6) {
+        eprintln!("error: --chord-tolerance must be at least 1e-6 mm, not {chord_tolerance}");
+        return Ok(ExitCode::from(2));
+    }
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
+        Err(code) => return Ok(code),
+    };
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
+    let name = file
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let mut options = stanok_convert::ConvertOptions::new(target, &name, &dialect_id(dialect));
+    options.chord_tolerance_mm = chord_tolerance;
+    let mut converter = stanok_convert::Converter::new(options);
+    let mut text = String::new();
+    let mut failure = None;
+    for item in interp.by_ref() {
+        match item {
+            Ok(cmd) => {
+                converter.push(&cmd);
+                text.push_str(&converter.take_text());
+            }
+            Err(d) => {
+                failure = Some(d);
+                break;
+            }
+        }
+    }
+    for w in interp.take_warnings() {
+        diagnostics::render(file, &w);
+    }
+    if let Some(d) = failure {
+        diagnostics::render(file, &d);
+        eprintln!(
+            "{}: not converted (the program has an error)",
+            file.display()
+        );
+        return Ok(ExitCode::from(1));
+    }
+    converter.finish();
+    text.push_str(&converter.take_text());
+    for w in converter.warnings() {
+        eprintln!("warning: {}:{}: {}", file.display(), w.line, w.message);
+    }
+    match output {
+        Some(path) => {
+            std::fs::write(path, &text)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            eprintln!(
+                "wrote {} ({} warning(s))",
+                path.display(),
+                converter.warnings().len()
+            );
+        }
+        None => write_stdout(&text)?,
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The dialect's name for the converted file's header (its variant name in lower case, so that
+/// dialects added later need no change here).
+fn dialect_id(d: Dialect) -> String {
+    format!("{d:?}").to_lowercase()
 }

@@ -81,6 +81,13 @@ pub fn text(file: &Path, dialect: Dialect, r: &RunReport, failure: Option<&Diagn
             );
         }
     }
+    for sp in &r.spindles {
+        let _ = writeln!(
+            s,
+            "Spindle {}   {:.0}…{:.0} rev/min commanded while moving (G96 evaluated at every setpoint)",
+            sp.spindle, sp.min_rpm, sp.max_rpm
+        );
+    }
     if r.violation_count == 0 {
         let _ = writeln!(
             s,

@@ -40,7 +40,7 @@ impl TraceWriter {
             header.push(',');
             header.push(stanok_canon::AXIS_LETTERS[i]);
         }
-        header.push('\n');
+        header.push_str(",S\n");
         let error = out.write_all(header.as_bytes()).err();
         Ok(TraceWriter {
             path: path.to_path_buf(),
@@ -58,6 +58,7 @@ impl TraceWriter {
         for &i in axes.iter() {
             result = result.and_then(|_| write!(out, ",{:.6}", sp.position[i]));
         }
+        result = result.and_then(|_| write!(out, ",{:.3}", sp.spindle_rpm[0]));
         if let Err(e) = result.and_then(|_| out.write_all(b"\n")) {
             *error = Some(e);
         }

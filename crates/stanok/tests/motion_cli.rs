@@ -37,12 +37,12 @@ fn trace_file_has_one_line_per_period_and_ends_at_the_final_position() {
     assert_eq!(r["servo_period_s"].as_f64(), Some(0.002));
     let text = std::fs::read_to_string(&trace).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines[0], "t,X,Y,Z");
+    assert_eq!(lines[0], "t,X,Y,Z,S");
     assert_eq!(lines.len(), 1027);
-    assert_eq!(lines[1], "0.000000,0.000000,0.000000,0.000000");
+    assert_eq!(lines[1], "0.000000,0.000000,0.000000,0.000000,0.000");
     assert_eq!(
         *lines.last().unwrap(),
-        "2.050000,100.000000,0.000000,0.000000"
+        "2.050000,100.000000,0.000000,0.000000,0.000"
     );
 }
 

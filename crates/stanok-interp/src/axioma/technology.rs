@@ -14,11 +14,15 @@
 //! The interpreter resolves CSS itself, block by block: the spindle speed is recomputed when G96,
 //! S or a limit is programmed and after every block's motion at the tool's new position, and goes
 //! out as `Canon::SetSpindleSpeed` in rev/min (so G95 feeds and every consumer keep reading rpm).
-//! The speed therefore steps at block ends rather than following the tool within a block.
+//! Those steps are what the control's screen shows at block ends. The speed the spindle really
+//! turns at is the law itself: whenever it changes (G96/G97, S, LMAXS/LMINS/REFAX, or the work zero
+//! of the REFAX axis moving with the offsets) it goes out as `Canon::SetSurfaceSpeedLaw`, with the
+//! REFAX axis' work zero as the centre line in machine coordinates, and the planner and the
+//! simulated machine evaluate it at every point of the path (`stanok_motion::css`).
 
 use crate::ctx::Ctx;
 use crate::words::Val;
-use stanok_canon::{Canon, Diagnostic, LengthUnits};
+use stanok_canon::{Canon, Diagnostic, LengthUnits, Pose, SurfaceSpeedLaw};
 use stanok_syntax::{ColSpan, Keyword};
 
 /// G96 state of one spindle.
@@ -45,6 +49,8 @@ pub struct Technology {
     pub css: bool,
     /// Per spindle.
     pub spindles: [SurfaceSpeed; 4],
+    /// The law last sent per spindle as `Canon::SetSurfaceSpeedLaw` (see `publish_laws`).
+    pub laws: [Option<SurfaceSpeedLaw>; 4],
 }
 
 /// The default tables of §3.1/§3.7: the manual prints entries 0…3 and 127 only; the others are
@@ -257,6 +263,41 @@ pub(super) fn refresh(cx: &mut Ctx<'_>) {
     if cx.axioma.tech.css {
         for spindle in 0..4u8 {
             refresh_spindle(cx, spindle);
+        }
+    }
+    if cx.axioma.tech.css || cx.axioma.tech.laws.iter().any(Option::is_some) {
+        publish_laws(cx);
+    }
+}
+
+/// Sends each spindle's G96 law (module doc) when it differs from the one last sent: `None` under
+/// G97 or before a cutting speed was programmed for that spindle.
+fn publish_laws(cx: &mut Ctx<'_>) {
+    for spindle in 0..4usize {
+        let sp = cx.axioma.tech.spindles[spindle];
+        let law = match (cx.axioma.tech.css, sp.speed) {
+            (true, Some(_)) => {
+                let axis = (sp.reference_axis.max(1) - 1).min(8);
+                let mut zero = cx.st.program_position().to_array();
+                zero[axis as usize] = 0.0;
+                let centre =
+                    cx.st.frame.to_machine(&Pose::from_array(zero)).to_array()[axis as usize];
+                Some(SurfaceSpeedLaw {
+                    mm_per_min: sp.mm_per_min,
+                    axis,
+                    centre,
+                    min_rpm: sp.min_rpm.unwrap_or(0.0),
+                    max_rpm: sp.max_rpm.unwrap_or(0.0),
+                })
+            }
+            _ => None,
+        };
+        if law != cx.axioma.tech.laws[spindle] {
+            cx.axioma.tech.laws[spindle] = law;
+            cx.out.push(Canon::SetSurfaceSpeedLaw {
+                spindle: spindle as u8,
+                law,
+            });
         }
     }
 }

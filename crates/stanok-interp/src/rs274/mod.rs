@@ -27,7 +27,9 @@
 use crate::ctx::{is_linear, Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use crate::state::{DistanceMode, MotionMode, PathMode};
-use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection};
+use stanok_canon::{
+    Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection, SurfaceSpeedLaw,
+};
 
 pub(crate) mod cutter_comp;
 mod cycles;
@@ -73,6 +75,12 @@ pub struct Rs274State {
     pub feed_override_disabled: bool,
     /// G96 constant surface speed in force.
     pub css: bool,
+    /// G96's cutting speed, mm/min (from S when G96 or S was programmed).
+    pub css_mm_per_min: f64,
+    /// G96's D limit, rev/min (0 = none).
+    pub css_max_rpm: f64,
+    /// The surface-speed law last sent as `Canon::SetSurfaceSpeedLaw` (see `publish_css_law`).
+    pub css_law: Option<SurfaceSpeedLaw>,
     /// The P, Q of the last G5 (mm): a following G5 without I, J continues tangentially.
     pub g5_pq: [f64; 2],
     /// Cutter radius compensation.
@@ -414,6 +422,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             0.0
         };
         cx.st.rs274.css = css;
+        cx.st.rs274.css_max_rpm = if max_rpm < 1e29 { max_rpm } else { 0.0 };
+        cx.st.rs274.css_mm_per_min = css_mm_per_min(cx, cx.st.spindle_speed[0]);
         cx.out.push(Canon::SetSpindleMode {
             spindle: 0,
             constant_surface_speed: css,
@@ -425,6 +435,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             return Err(cx.err("rs274::negative-s", "Negative spindle speed used", s.span));
         }
         cx.st.spindle_speed[0] = s.v;
+        cx.st.rs274.css_mm_per_min = css_mm_per_min(cx, s.v);
         // Under G96 S is a surface speed: Canon carries it in m/min.
         let rpm = if cx.st.rs274.css && cx.st.units == LengthUnits::Inches {
             s.v * 0.3048
@@ -666,6 +677,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             _ => {}
         }
     }
+    // The G96 law with this block's speed and offsets, before its motion.
+    publish_css_law(cx);
     // 20. Motion.
     let motion = match g.get(Group::Motion) {
         Some((code, span)) => Some((code, span, true)),
@@ -710,11 +723,49 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             60 => return Err(unsupported(cx, "M60", "RS274/NGC completeness", span)),
             _ => {
                 program_end(cx, params, code == 30);
+                publish_css_law(cx);
                 return Ok(Outcome::End);
             }
         }
     }
+    publish_css_law(cx);
     Ok(Outcome::Continue)
+}
+
+/// S as a cutting speed, mm/min: S is m/min under G21 and ft/min under G20.
+fn css_mm_per_min(cx: &Ctx<'_>, s: f64) -> f64 {
+    match cx.st.units {
+        LengthUnits::Inches => s * 304.8,
+        LengthUnits::Millimetres => s * 1000.0,
+    }
+}
+
+/// Sends the G96 law the machine evaluates continuously (`Canon::SetSurfaceSpeedLaw`) whenever it
+/// changes: at G96/G97, a new S or D, and when the offsets move the work zero of X, which LinuxCNC
+/// takes as the spindle centre line (radius = work X). Checked at the end of every block, but only
+/// while G96 is (or was just) in force, so that ordinary blocks pay one comparison.
+fn publish_css_law(cx: &mut Ctx<'_>) {
+    let st = &cx.st.rs274;
+    if !st.css && st.css_law.is_none() {
+        return;
+    }
+    let law = if st.css {
+        let mut zero = cx.st.program_position();
+        zero.x = 0.0;
+        Some(SurfaceSpeedLaw {
+            mm_per_min: st.css_mm_per_min,
+            axis: 0,
+            centre: cx.st.frame.to_machine(&zero).x,
+            min_rpm: 0.0,
+            max_rpm: st.css_max_rpm,
+        })
+    } else {
+        None
+    };
+    if law != cx.st.rs274.css_law {
+        cx.st.rs274.css_law = law;
+        cx.out.push(Canon::SetSurfaceSpeedLaw { spindle: 0, law });
+    }
 }
 
 /// The block's axis words as values (mm for linear axes, degrees for A B C), marked used; absolute,

@@ -41,6 +41,7 @@ pub fn line(
         path_mode: mode,
         profile,
         line: 1,
+        spindles: Default::default(),
     })
 }
 

@@ -462,3 +462,58 @@ fn s6_fixtures_read_feed_and_speed_from_iperm() {
     assert!(err.is_none(), "{err:?}");
     assert_eq!(spindle_speeds(&cmds), [1000.0, 1500.0]);
 }
+
+/// The diagnostic of `text`: its code, line, column and the text its span covers.
+fn located(text: &str) -> (String, u32, u32, String) {
+    let (_, err) = exec(text, opts());
+    let err = err.unwrap_or_else(|| panic!("{text}: no error"));
+    let covered = text
+        .get(err.span.start as usize..err.span.end as usize)
+        .unwrap_or("<outside>")
+        .to_string();
+    (
+        err.code.to_string(),
+        err.span.line,
+        err.span.column,
+        covered,
+    )
+}
+
+#[test]
+fn diagnostics_point_at_the_offending_text() {
+    for (text, want) in [
+        ("int a = b + 1;\nM30\n", ("hll::undeclared", 1, 9, "b")),
+        ("int a;\nint a = 2;\nM30\n", ("hll::redeclared", 2, 5, "a")),
+        (
+            "int z = 0;\nint a = 5 / z;\nM30\n",
+            ("hll::division-by-zero", 2, 9, "5 / z"),
+        ),
+        (
+            "double z = 0;\nG01 X=1/z F100\nM30\n",
+            ("hll::division-by-zero", 2, 7, "1/z"),
+        ),
+        (
+            "int p[3];\np[3] = 1;\nM30\n",
+            ("hll::index-range", 2, 1, "p[3]"),
+        ),
+        (
+            "string s = \"open;\nM30\n",
+            ("syntax::unclosed-string", 1, 12, "\"open;"),
+        ),
+        (
+            "int n = 5;\nMSG(n)\nM30\n",
+            ("hll::type-mismatch", 2, 5, "n"),
+        ),
+        (
+            "G01 X=FTABLE(128) F100\nM30\n",
+            ("axioma::table-index", 1, 7, "FTABLE(128)"),
+        ),
+    ] {
+        let got = located(text);
+        assert_eq!(
+            (got.0.as_str(), got.1, got.2, got.3.as_str()),
+            want,
+            "{text}"
+        );
+    }
+}

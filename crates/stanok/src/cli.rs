@@ -92,6 +92,11 @@ pub struct MachineArgs {
     /// always passed on as OPTIONAL_PROGRAM_STOP, as LinuxCNC's interpreter does).
     #[arg(long)]
     pub skip_optional_stops: bool,
+    /// Passes one loop may make before the run stops with a loop-limit error (AxiOMA `for`/`while`/
+    /// `do`, RS274/NGC `o… while`/`repeat`), so that an endless loop ends with a diagnostic instead of
+    /// running forever. Default 1,000,000.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_loop_iterations: Option<u64>,
     /// The simulated probe's world: where a probe move (G38.n, G75) makes contact, as a half-space
     /// of machine coordinates, e.g. `z<=-3.2` (a surface at Z −3.2 mm, contact below it) or
     /// `x>=50`; `z=-3.2` means `z<=-3.2`. Repeat for several surfaces. Without one the probe never

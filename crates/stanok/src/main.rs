@@ -187,6 +187,9 @@ fn interpreter(
     }
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
+    if let Some(n) = args.max_loop_iterations {
+        opts.max_loop_iterations = n;
+    }
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

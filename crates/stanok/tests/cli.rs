@@ -216,3 +216,30 @@ fn the_optional_stop_switch_decides_whether_m01_stops() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(off.matches("\"program_stop\"").count(), 0, "{off}");
 }
+
+#[test]
+fn axioma_hll_programs_run_and_their_errors_are_located() {
+    // The manual's sprintf fragment: the message "value: 50" at N10 (line 19).
+    let file = corpus("axioma/s2_3-sprintf-msg-fragment.nc");
+    let (code, out, _) = stanok(&["run", &file]);
+    assert_eq!(code, 0);
+    assert!(out.contains("line    19  value: 50"), "{out}");
+    // An undeclared variable in a word value: file:line:column of the name.
+    let bad = temp("hll-bad.nc", "int ab = 2;\nG01 X=ab+cd F100\nM30\n");
+    let (code, _, err) = stanok(&["check", &bad]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("hll-bad.nc:2:10") && err.contains("hll::undeclared"),
+        "{err}"
+    );
+    // An endless loop stops at the configured limit with a diagnostic, after exactly that many
+    // passes of its ISO block.
+    let endless = temp(
+        "hll-endless.nc",
+        "int k = 0;\nwhile (k >= 0) {\nk++;\nG01 X=k F1000\n}\nM30\n",
+    );
+    let (code, out, err) = stanok(&["run", &endless, "--max-loop-iterations", "50"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(err.contains("hll::loop-limit"), "{err}");
+    assert!(out.contains("X50.000"), "{out}");
+}

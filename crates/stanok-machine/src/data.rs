@@ -288,6 +288,7 @@ fn units(value: &Option<Spanned<String>>) -> Result<LengthUnits, Invalid> {
 enum Fragment {
     Tools,
     Offsets,
+    Perm,
 }
 
 impl RawFile {
@@ -357,6 +358,7 @@ impl RawFile {
                 "g92",
                 "parameters",
             ],
+            Fragment::Perm => &["iperm", "dperm"],
         };
         let wrong = self
             .present_keys()
@@ -374,6 +376,10 @@ impl RawFile {
                     "an offset file holds only active_system, [[zero_offset]], [[workpiece]], \
                      [[home]], [g28], [g30], [g92] and [parameters], not `{key}`"
                 ),
+                range,
+            )),
+            (Some((key, range)), Fragment::Perm) => Err((
+                format!("a permanent-parameter file holds only [iperm] and [dperm], not `{key}`"),
                 range,
             )),
         }
@@ -542,6 +548,18 @@ pub fn offsets_from_toml_str(text: &str, file_name: &str) -> Result<StoredOffset
             offsets: c.offsets,
             parameters: c.parameters,
         })
+        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
+}
+
+/// AxiOMA's permanent parameters `$iPerm[n]` / `$dPerm[n]`, as kept between runs.
+pub type PermParameters = (BTreeMap<u32, i64>, BTreeMap<u32, f64>);
+
+/// Reads a permanent-parameter file in machine-data TOML: only `[iperm]` and `[dperm]`.
+pub fn perm_from_toml_str(text: &str, file_name: &str) -> Result<PermParameters, Diagnostic> {
+    let raw = RawFile::parse(text, file_name)?;
+    raw.check_fragment(Fragment::Perm)
+        .and_then(|()| raw.control().validate())
+        .map(|c| (c.perm_int, c.perm_double))
         .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
 }
 

@@ -147,7 +147,7 @@ pub fn parse_probe_surface(s: &str) -> Result<stanok_canon::setup::ProbeSurface,
     })
 }
 
-/// A LinuxCNC parameter file kept from run to run.
+/// Stored parameters kept from run to run (a LinuxCNC parameter file, AxiOMA's $iPerm/$dPerm).
 #[derive(Debug, Clone, Args)]
 pub struct VarArgs {
     /// RS274/NGC: a LinuxCNC parameter file (.var) kept between runs, as LinuxCNC keeps its
@@ -156,6 +156,11 @@ pub struct VarArgs {
     /// (in --linuxcnc-units).
     #[arg(long, value_name = "FILE", conflicts_with = "offsets")]
     pub var: Option<PathBuf>,
+    /// AxiOMA: the permanent parameters $iPerm[n] / $dPerm[n] kept between runs, as the control
+    /// keeps them: a TOML file with [iperm] and [dperm] (`1 = 1500`), read before the run in place
+    /// of the machine's (if it exists), written back after it with what the program left.
+    #[arg(long, value_name = "FILE")]
+    pub perm: Option<PathBuf>,
 }
 
 /// How `stanok run` moves the simulated machine.

@@ -14,6 +14,7 @@ mod cli;
 mod cutting;
 mod diagnostics;
 mod machine_show;
+mod perm;
 mod progress;
 mod report;
 mod trace;
@@ -295,12 +296,14 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
 
 /// `--var FILE`: the machine with its offsets replaced by the parameter file's, if the file exists
 /// (a missing file is created after the run, from the machine's offsets). Only for RS274/NGC.
+/// `--perm FILE` (AxiOMA) is read here too (`perm.rs`).
 fn load_var(
     file: &Path,
     dialect: Option<Dialect>,
     var: &VarArgs,
     machine: &mut MachineData,
 ) -> Result<(), ExitCode> {
+    perm::load(file, dialect, var, machine)?;
     let Some(path) = &var.var else {
         return Ok(());
     };
@@ -327,16 +330,18 @@ fn load_var(
     Ok(())
 }
 
-/// `--var FILE` after the run: writes back what the program left, as LinuxCNC does on exit.
+/// `--var FILE` after the run: writes back what the program left, as LinuxCNC does on exit; the
+/// same for `--perm FILE`.
 fn save_var<R: std::io::BufRead + std::io::Seek>(
     var: &VarArgs,
     interp: &Interpreter<R>,
     units: stanok_canon::LengthUnits,
 ) -> Result<(), String> {
+    let c = interp.control_data();
+    perm::save(var, &c)?;
     let Some(path) = &var.var else {
         return Ok(());
     };
-    let c = interp.control_data();
     let stored = StoredOffsets {
         offsets: c.offsets,
         parameters: c.parameters,

@@ -243,3 +243,36 @@ fn axioma_hll_programs_run_and_their_errors_are_located() {
     assert!(err.contains("hll::loop-limit"), "{err}");
     assert!(out.contains("X50.000"), "{out}");
 }
+
+#[test]
+fn perm_file_keeps_iperm_and_dperm_between_runs() {
+    let program = temp(
+        "perm-count.nc",
+        "$iPerm[1] = $iPerm[1] + 1;\n$dPerm[2] = $dPerm[2] + 0.5;\n\
+         G01 X=$iPerm[1]*10 Y=$dPerm[2] F100\nM30\n",
+    );
+    let perm = temp("perm.toml", "");
+    std::fs::remove_file(&perm).unwrap();
+    // No file yet: the machine's (none: 0) are used, and the file is written after the run.
+    let (code, out, err) = stanok(&["run", &program, "--perm", &perm]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("Final       X10.000 Y0.500"), "{out}");
+    assert_eq!(
+        std::fs::read_to_string(&perm).unwrap(),
+        "[iperm]\n1 = 1\n\n[dperm]\n2 = 0.5\n\n"
+    );
+    // The second run starts from what the first left.
+    let (code, out, _) = stanok(&["run", &program, "--perm", &perm]);
+    assert_eq!(code, 0);
+    assert!(out.contains("Final       X20.000 Y1.000"), "{out}");
+    // A file with anything else is refused at its line; RS274/NGC programs have no $iPerm.
+    let bad = temp(
+        "perm-bad.toml",
+        "[iperm]\n1 = 5\n[parameters]\n5221 = 1.0\n",
+    );
+    let (code, _, err) = stanok(&["run", &program, "--perm", &bad]);
+    assert_eq!(code, 1);
+    assert!(err.contains("perm-bad.toml:3:"), "{err}");
+    let ngc = temp("perm.ngc", "G0 X1\nM2\n");
+    assert_eq!(stanok(&["run", &ngc, "--perm", &perm]).0, 2);
+}

@@ -79,6 +79,11 @@ pub struct MachineData {
     /// The AxiOMA M-function profile of the channel (spec axioma-2 §4, §5): one of
     /// [`M_FUNCTION_PROFILES`]; the interpreter holds the tables themselves.
     pub m_functions: String,
+    /// AxiOMA channel feed table (`FTABLE(i)`, `[feed_table]` with `i = mm/min`, i = 0…127):
+    /// the entries that replace the manual's defaults; the others keep them.
+    pub feed_table: BTreeMap<u32, f64>,
+    /// AxiOMA channel spindle-speed table (`STABLE(i)`, `[speed_table]`, rev/min), as `feed_table`.
+    pub speed_table: BTreeMap<u32, f64>,
 }
 
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
@@ -146,6 +151,8 @@ struct RawFile {
     arc_tolerance: Option<Spanned<f64>>,
     linuxcnc_units: Option<Spanned<String>>,
     m_functions: Option<Spanned<String>>,
+    feed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    speed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     axis: Option<Spanned<Vec<RawAxis>>>,
     active_system: Option<Spanned<String>>,
     zero_offset: Option<Spanned<Vec<Spanned<RawZeroOffset>>>>,
@@ -326,6 +333,8 @@ impl RawFile {
             ("arc_tolerance", at(&self.arc_tolerance)),
             ("linuxcnc_units", at(&self.linuxcnc_units)),
             ("m_functions", at(&self.m_functions)),
+            ("feed_table", at(&self.feed_table)),
+            ("speed_table", at(&self.speed_table)),
             ("axis", at(&self.axis)),
             ("active_system", at(&self.active_system)),
             ("zero_offset", at(&self.zero_offset)),
@@ -436,6 +445,8 @@ impl RawFile {
                 ))
             }
         };
+        let feed_table = rate_table(&self.feed_table, "feed_table")?;
+        let speed_table = rate_table(&self.speed_table, "speed_table")?;
         let Some(raw_axes) = &self.axis else {
             return Err((
                 "missing field `axis` (a machine needs at least one [[axis]])".into(),
@@ -467,8 +478,44 @@ impl RawFile {
             linuxcnc_units,
             control: ControlData::default(),
             m_functions,
+            feed_table,
+            speed_table,
         })
     }
+}
+
+/// `[feed_table]` / `[speed_table]`: `i = value`, i = 0…127 (the AxiOMA channel tables have 128
+/// entries), value a positive finite rate.
+fn rate_table(
+    table: &Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    name: &str,
+) -> Result<BTreeMap<u32, f64>, Invalid> {
+    let mut out = BTreeMap::new();
+    for (key, v) in table.iter().flat_map(|t| t.get_ref()) {
+        let text = key.get_ref();
+        let i = text
+            .trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|i| *i <= 127)
+            .ok_or_else(|| {
+                (
+                    format!("[{name}] index must be 0…127, not \"{text}\""),
+                    key.span(),
+                )
+            })?;
+        let value = *v.get_ref();
+        if !(value.is_finite() && value > 0.0) {
+            return Err((
+                format!("[{name}] {i} must be a positive number, not {value}"),
+                v.span(),
+            ));
+        }
+        if out.insert(i, value).is_some() {
+            return Err((format!("[{name}] {i} is defined twice"), key.span()));
+        }
+    }
+    Ok(out)
 }
 
 /// Line and column (1-based, column in characters) of byte `offset` in `text`.
@@ -603,6 +650,8 @@ impl MachineData {
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
             m_functions: "generic".into(),
+            feed_table: BTreeMap::new(),
+            speed_table: BTreeMap::new(),
         }
     }
 
@@ -633,6 +682,8 @@ impl MachineData {
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
             m_functions: "generic".into(),
+            feed_table: BTreeMap::new(),
+            speed_table: BTreeMap::new(),
         }
     }
 
@@ -673,6 +724,17 @@ impl MachineData {
             let _ = writeln!(out, "m_functions = {}", toml_string(&self.m_functions));
         }
         out.push_str(&control_keys);
+        for (name, table) in [
+            ("feed_table", &self.feed_table),
+            ("speed_table", &self.speed_table),
+        ] {
+            if !table.is_empty() {
+                let _ = writeln!(out, "\n[{name}]");
+                for (i, v) in table {
+                    let _ = writeln!(out, "{i} = {}", toml_float(*v));
+                }
+            }
+        }
         for a in &self.axes {
             let kind = match a.kind {
                 AxisKind::Linear => "linear",

@@ -186,6 +186,8 @@ fn interpreter(
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }
+    opts.axioma
+        .set_table_entries(&machine.feed_table, &machine.speed_table);
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
     if let Some(n) = args.max_loop_iterations {

@@ -276,3 +276,31 @@ fn perm_file_keeps_iperm_and_dperm_between_runs() {
     let ngc = temp("perm.ngc", "G0 X1\nM2\n");
     assert_eq!(stanok(&["run", &ngc, "--perm", &perm]).0, 2);
 }
+
+#[test]
+fn ftable_and_stable_read_the_machine_data_tables() {
+    // The mill with FTABLE entry 20 and STABLE entry 2 configured; the others keep the manual's.
+    let mill = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../machines/mill.toml"
+    ))
+    .unwrap();
+    let machine = temp(
+        "tables.toml",
+        &format!("{mill}\n[feed_table]\n20 = 4321.0\n\n[speed_table]\n2 = 777.0\n"),
+    );
+    let file = corpus("axioma/s6_1-feed-table-ftable-fragment-3.nc");
+    let (code, out, err) = stanok(&["canon", &file, "--machine", &machine]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("\"kind\":\"straight_feed\"") && out.contains("\"feed\":4321.0}"),
+        "{out}"
+    );
+    let program = temp("tables.nc", "S=STABLE(2) M3\nS=STABLE(3) M3\nM30\n");
+    let (code, out, _) = stanok(&["canon", &program, "--machine", &machine]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("\"rpm\":777.0") && out.contains("\"rpm\":1500.0"),
+        "{out}"
+    );
+}

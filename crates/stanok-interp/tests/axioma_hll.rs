@@ -517,3 +517,29 @@ fn diagnostics_point_at_the_offending_text() {
         );
     }
 }
+
+#[test]
+fn decrements_precision_formats_and_loops_counting_down() {
+    // `--` both ways, `%.Nf` and `%.Ne`, and a loop counting down around an ISO block.
+    let text = "int dec = 5; dec--; --dec;\n\
+                int pd = dec--;\n\
+                string s;\n\
+                sprintf(s, \"%.3f|%.0f|%.2e|%05d|%s\", 3.14159, 2.5, 12345.678, 42, \"end\");\n\
+                MSG(s)\n\
+                for (int k = 3; k > 0; k--)\n\
+                  G00 X=k*1.5\n\
+                M30\n";
+    let mut it = Interpreter::from_text(text, opts());
+    let mut cmds = Vec::new();
+    for c in it.by_ref() {
+        cmds.push(c.unwrap());
+    }
+    assert_eq!(it.hll_variable("pd"), Some(HVal::Int(3)));
+    assert_eq!(it.hll_variable("dec"), Some(HVal::Int(2)));
+    // C rounds 2.5 with %.0f to even: "2".
+    assert_eq!(messages(&cmds), ["3.142|2|1.23e+04|00042|end"]);
+    assert_points(
+        &ends(&cmds),
+        &[[4.5, 0.0, 0.0], [3.0, 0.0, 0.0], [1.5, 0.0, 0.0]],
+    );
+}

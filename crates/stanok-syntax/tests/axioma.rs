@@ -569,3 +569,24 @@ fn block_is_reset_between_lines() {
         (7, 103, 4)
     );
 }
+
+#[test]
+fn hll_nesting_is_bounded_with_a_diagnostic() {
+    // 60 levels are fine; past 64 (brackets, unary operators, in statements and in word values)
+    // one `hll::too-deep` and no deeper recursion, however long the line.
+    clean(
+        &format!("int a = {}1{};", "(".repeat(60), ")".repeat(60)),
+        AX,
+    );
+    for text in [
+        format!("int a = {}1{};", "(".repeat(70), ")".repeat(70)),
+        format!("int a = {}1;", "-".repeat(10_000)),
+        format!("G1 X={}", "(".repeat(100_000)),
+        format!("MSG({}\"x\")", "!".repeat(500)),
+    ] {
+        let (_, diags) = one(&text, AX);
+        assert_eq!(diags.len(), 1, "{diags:?}");
+        assert_eq!(diags[0].code.to_string(), "hll::too-deep");
+        assert!(diags[0].message.contains("64"), "{}", diags[0].message);
+    }
+}

@@ -271,9 +271,19 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
     };
     let (mut interp, _) = interpreter(file, dialect, &machine, true, args)?;
     let mut errors = Vec::new();
+    // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
+    // error is listed once.
+    let mut seen = std::collections::HashSet::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
-            errors.push(d);
+            if seen.insert((
+                d.code.to_string(),
+                d.span.start,
+                d.span.end,
+                d.message.clone(),
+            )) {
+                errors.push(d);
+            }
         }
     }
     let mut all: Vec<Diagnostic> = interp.take_warnings();

@@ -232,6 +232,18 @@ fn axioma_hll_programs_run_and_their_errors_are_located() {
         err.contains("hll-bad.nc:2:10") && err.contains("hll::undeclared"),
         "{err}"
     );
+    // In check mode a bad block in a loop is listed once, not once per pass.
+    let looped = temp(
+        "hll-looped.nc",
+        "for (int i = 0; i < 3; i++) {\nG01 X=i*zz F100\n}\nM30\n",
+    );
+    let (code, _, err) = stanok(&["check", &looped]);
+    assert_eq!(code, 1);
+    assert_eq!(err.matches("hll::undeclared").count(), 1, "{err}");
+    assert!(
+        err.contains("hll-looped.nc:2:9") && err.contains("1 error(s)"),
+        "{err}"
+    );
     // An endless loop stops at the configured limit with a diagnostic, after exactly that many
     // passes of its ISO block.
     let endless = temp(

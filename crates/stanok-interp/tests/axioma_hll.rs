@@ -446,10 +446,27 @@ fn s6_fixtures_read_feed_and_speed_from_iperm() {
         })
         .collect();
     assert_eq!(feeds, [(50.0, 1500.0)]);
-    // s6_1 word forms: `F1000`, then `F=$iPerm[1]`: stored, no motion.
-    let (cmds, err) = exec(&fixture("s6_1-feed-word-forms-fragment.nc"), o.clone());
-    assert!(err.is_none(), "{err:?}");
+    // s6_1 word forms: `F1000`, then `F=$iPerm[1]`: stored (modal, 1500 at the end), no motion.
+    let forms = fixture("s6_1-feed-word-forms-fragment.nc");
+    let mut it = Interpreter::from_text(&forms, o.clone());
+    let mut cmds = Vec::new();
+    for c in it.by_ref() {
+        cmds.push(c.unwrap());
+    }
     assert!(ends(&cmds).is_empty());
+    assert_eq!(it.state().feed, 1500.0);
+    // …and a following move runs at it.
+    let text = format!("{}\nG01 X5\n", fixture("s6_1-feed-word-forms-fragment.nc"));
+    let (cmds, err) = exec(&text, o.clone());
+    assert!(err.is_none(), "{err:?}");
+    let feeds: Vec<f64> = cmds
+        .iter()
+        .filter_map(|c| match &c.value {
+            Canon::StraightFeed(m) => Some(m.feed),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds, [1500.0]);
     // s6_8 example 2: `N10 S=$iPerm[5]` — 2400 rpm stored.
     let (cmds, err) = exec(
         &fixture("s6_8-spindle-speed-system-variable-fragment-2.nc"),

@@ -70,6 +70,13 @@ pub struct ConvertOptions {
     pub source_dialect: String,
     /// Largest deviation of the chords written for curves the target cannot express, mm.
     pub chord_tolerance_mm: f64,
+    /// The machine's maximum feed, mm/min: written for a feed move the source gives no feed
+    /// (feed 0, which the machine runs at this feed). Default 5000, the built-in mill's.
+    pub max_feed_mm_per_min: f64,
+    /// The target machine's configured axes (X Y Z A B C U V W): X, Y and Z are written in every
+    /// move only where configured (a lathe's X Z; an unconfigured axis word is an error there),
+    /// the others when they move. Default X Y Z.
+    pub axes: [bool; 9],
 }
 
 impl ConvertOptions {
@@ -80,6 +87,8 @@ impl ConvertOptions {
             source_name: source_name.into(),
             source_dialect: source_dialect.into(),
             chord_tolerance_mm: 0.001,
+            max_feed_mm_per_min: 5000.0,
+            axes: [true, true, true, false, false, false, false, false, false],
         }
     }
 }

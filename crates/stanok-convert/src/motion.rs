@@ -1,6 +1,6 @@
 //! The moves: lines, arcs and helices, splines, probe moves, rigid taps.
 //!
-//! Lines are written absolute with every X Y Z and with A–W only when they move. Arcs keep their
+//! Lines are written absolute with every configured X Y Z (`ConvertOptions::axes`) and with A–W only when they move. Arcs keep their
 //! exact form whenever their axis is the normal of one of the three planes (in the output's frame):
 //! G17/G18/G19, G2 (clockwise: axis = −normal) or G3, the centre as I/J/K offsets from the start
 //! (LinuxCNC's G91.1 default, AxiOMA's G191), the helix end along the normal, and the extra turns
@@ -21,6 +21,14 @@ const PARALLEL: f64 = 1.0 - 1e-12;
 impl Converter {
     /// Writes one motion command.
     pub(crate) fn motion(&mut self, src: u32, c: &Canon) {
+        let with_feed;
+        let c = match self.feed_for_no_feed(src, c) {
+            Some(replaced) => {
+                with_feed = replaced;
+                &with_feed
+            }
+            None => c,
+        };
         match c {
             Canon::StraightTraverse(m) => {
                 let g = if self.rs274() { "G0" } else { "G00" };
@@ -40,6 +48,40 @@ impl Converter {
         }
     }
 
+    /// A feed move without a feed (F 0: the lab controls' "no F", which runs the machine's
+    /// maximum feed; Canon and the motion stage read feed 0 the same way). Neither target accepts
+    /// F0 in a feed move, so the move is written at `ConvertOptions::max_feed_mm_per_min` — the
+    /// same motion on the same machine — with a warning; `None` when the move has a feed.
+    fn feed_for_no_feed(&mut self, src: u32, c: &Canon) -> Option<Canon> {
+        let max = self.opts.max_feed_mm_per_min;
+        let fix = |f: &mut f64| {
+            let missing = !(f.is_finite() && *f > 0.0);
+            if missing {
+                *f = max;
+            }
+            missing
+        };
+        let mut c = c.clone();
+        let missing = match &mut c {
+            Canon::StraightFeed(m) => fix(&mut m.feed),
+            Canon::ArcFeed(a) => fix(&mut a.feed),
+            Canon::SplineFeed(s) => fix(&mut s.feed),
+            Canon::StraightProbe { motion, .. } => fix(&mut motion.feed),
+            _ => false,
+        };
+        if !missing {
+            return None;
+        }
+        self.cannot(
+            src,
+            &format!(
+                "feed move without a feed: written at the machine's maximum feed F{}",
+                num(max)
+            ),
+        );
+        Some(c)
+    }
+
     /// ` X… Y… Z…` plus every other axis that moves, in program coordinates; remembers the end.
     fn axes(&mut self, end_machine: &Pose) -> String {
         let end = self.fold.pose(end_machine);
@@ -47,7 +89,7 @@ impl Converter {
         let e = end.to_array();
         let mut s = String::new();
         for (i, letter) in stanok_canon::AXIS_LETTERS.iter().enumerate() {
-            if i < 3 || (e[i] - before[i]).abs() > 1e-9 {
+            if (i < 3 && self.opts.axes[i]) || (e[i] - before[i]).abs() > 1e-9 {
                 s += &format!(" {letter}{}", num(e[i]));
             }
         }

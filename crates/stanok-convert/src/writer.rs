@@ -542,8 +542,12 @@ impl Converter {
                 &format!("tool {tool} into spindle {spindle}: not converted"),
             ),
             Canon::AuxiliaryFunction { number, .. } => {
-                if !rs {
+                if !rs && self.opts.source_dialect.eq_ignore_ascii_case("axioma") {
                     self.line(src, &format!("M{number}"))
+                } else if !rs {
+                    // Another control's machine function means nothing to an AxiOMA machine (and
+                    // the generic profile refuses numbers outside its M-function table).
+                    self.cannot(src, &format!("M{number} (a machine function of the {} control) has no AxiOMA meaning", self.opts.source_dialect))
                 } else if (100..=199).contains(number) {
                     self.line(src, &format!("M{number}"));
                     self.cannot(src, &format!("M{number} needs LinuxCNC's user M-code program M{number} on the target"))

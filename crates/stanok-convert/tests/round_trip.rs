@@ -13,6 +13,7 @@
 
 mod common;
 use common::*;
+use stanok_canon::Canon;
 use stanok_convert::{convert, ConvertOptions, Target};
 use stanok_syntax::Dialect;
 use std::path::PathBuf;
@@ -125,9 +126,6 @@ const ROWS: &[(Dialect, &str)] = &[
         Dialect::Axioma,
         "axioma/s4_8_1-absolute-centre-turning-example-4_18.nc",
     ),
-    // The lab dialects (corpus/labs) come as rows like these once their interpreters are merged:
-    // (Dialect::Nc31, "labs/nc31-absolute-xz-moves.nc"),
-    // (Dialect::Gost20999, "labs/gost20999-arc-radius-absolute.nc"),
 ];
 
 #[test]
@@ -224,5 +222,69 @@ fn every_corpus_program_that_moves_round_trips() {
     assert!(
         programs >= 100 && tally.motions > 2000,
         "{programs} programs, {tally:?}"
+    );
+}
+
+/// The lab dialects (NC-31, 2P32, MC2101, GOST 20999): every `corpus/labs` fixture that moves
+/// before its first error round-trips in both targets (the same comparison). The fixtures'
+/// annotations (`;` lines, `//` tails) are stripped first, as `--strip-fixture-comments` does;
+/// the dialect comes from the file-name prefix, as on the command line.
+#[test]
+fn every_lab_program_that_moves_round_trips() {
+    let mut failures = Vec::new();
+    let mut tally = Tally::default();
+    let mut programs = 0;
+    let base = path_of("labs");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&base)
+        .unwrap_or_else(|e| panic!("labs: {e}"))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "nc"))
+        .collect();
+    files.sort();
+    let mut by_dialect = std::collections::BTreeMap::new();
+    for path in files {
+        let dialect = Dialect::from_path(&path);
+        assert!(dialect.is_lab(), "{}", path.display());
+        let text = std::fs::read_to_string(&path).unwrap();
+        let text = stanok_syntax::labs::strip_fixture_comments(&text);
+        let mut source = interpret_lab_prefix(&text, dialect, &base);
+        // "No feed" (feed 0) runs the machine's maximum feed, which the converter writes.
+        for c in &mut source {
+            match &mut c.value {
+                Canon::StraightFeed(m) if m.feed == 0.0 => m.feed = 5000.0,
+                Canon::ArcFeed(a) if a.feed == 0.0 => a.feed = 5000.0,
+                _ => {}
+            }
+        }
+        if !source.iter().any(|c| c.value.motion().is_some()) {
+            continue;
+        }
+        programs += 1;
+        *by_dialect.entry(dialect.id()).or_insert(0) += 1;
+        let row = format!("labs/{}", path.file_name().unwrap().to_string_lossy());
+        for target in [Target::Rs274ngc, Target::Axioma] {
+            let opts = ConvertOptions::new(target, &row, dialect.id());
+            let (converted, _) = convert(&source, opts);
+            match interpret(&converted, target_dialect(target), &base) {
+                Err(e) => failures.push(format!(
+                    "{row} → {}: does not run: {e}\n{converted}",
+                    target.id()
+                )),
+                Ok(again) => {
+                    if let Err(e) = compare(&source, &again, &mut tally) {
+                        failures.push(format!("{row} → {}: {e}\n{converted}", target.id()));
+                    }
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    eprintln!("{programs} lab programs {by_dialect:?}, {tally:?}");
+    // Every lab dialect is exercised, with arcs (NC-31 about Y, GOST 20999 in G17).
+    assert_eq!(by_dialect.len(), 4, "{by_dialect:?}");
+    assert!(programs >= 22, "{programs} programs");
+    assert!(
+        tally.arcs_by_normal.iter().sum::<usize>() >= 10,
+        "{tally:?}"
     );
 }

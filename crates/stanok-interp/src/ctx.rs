@@ -305,7 +305,7 @@ impl Ctx<'_> {
         if let Some((l, v)) = self.words.first_unused() {
             let msg = match self.opts.dialect {
                 Dialect::Rs274ngc => format!("{} word with no g code that uses it", l as char),
-                Dialect::Axioma => format!("{} has no meaning in this block", l as char),
+                _ => format!("{} has no meaning in this block", l as char),
             };
             return Err(self.err("interp::unused-word", msg, v.span));
         }
@@ -335,6 +335,6 @@ pub fn axis_not_configured(dialect: Dialect, letter: u8) -> String {
             (letter as char).to_ascii_lowercase(),
             letter as char
         ),
-        Dialect::Axioma => format!("{} axis is not configured on this machine", letter as char),
+        _ => format!("{} axis is not configured on this machine", letter as char),
     }
 }

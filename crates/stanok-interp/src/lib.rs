@@ -30,6 +30,7 @@ mod ctx;
 mod flow;
 mod frame;
 mod hll;
+mod labs;
 mod params;
 mod predefined;
 mod rs274;
@@ -41,6 +42,7 @@ pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
 pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use hll::value::HVal;
+pub use labs::{LabMachineParams, LabState};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -108,6 +110,12 @@ pub struct InterpOptions {
     pub axioma: AxiomaMachineParams,
     /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
     pub optional_stop: bool,
+    /// Machine data of the lab controls (NC-31, 2P32, MC2101, GOST-20999): correctors, turret
+    /// codes, work offsets, gearbox table.
+    pub labs: LabMachineParams,
+    /// Lab dialects: blank out the lab corpus's fixture annotations (`;` lines, `//` to the end of
+    /// a line) before reading; they are not program text of these controls. Off by default.
+    pub strip_fixture_comments: bool,
 }
 
 impl InterpOptions {
@@ -135,6 +143,8 @@ impl InterpOptions {
             g92_persistence: true,
             axioma: AxiomaMachineParams::default(),
             optional_stop: true,
+            labs: LabMachineParams::default(),
+            strip_fixture_comments: false,
         }
     }
 }
@@ -185,6 +195,8 @@ pub struct Interpreter<R: BufRead + Seek> {
     errors: usize,
     percent_open: bool,
     first_line: bool,
+    /// The lab dialects' front end (None for AxiOMA and RS274/NGC).
+    lab: Option<Box<labs::LabRun>>,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -196,18 +208,24 @@ impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
 
 impl<R: BufRead + Seek> Interpreter<R> {
     /// An interpreter reading `source`.
-    pub fn new(source: R, opts: InterpOptions) -> Self {
+    pub fn new(mut source: R, opts: InterpOptions) -> Self {
+        // The lab dialects hold their (short) program in memory: see `labs`.
+        let lab = opts.dialect.is_lab().then(|| {
+            let mut bytes = Vec::new();
+            let _ = std::io::Read::read_to_end(&mut source, &mut bytes);
+            Box::new(labs::LabRun::new(&String::from_utf8_lossy(&bytes), &opts))
+        });
         let state = ModalState {
             motion: match opts.dialect {
                 Dialect::Rs274ngc => MotionMode::None,
-                Dialect::Axioma => MotionMode::Rapid,
+                _ => MotionMode::Rapid,
             },
             plane: Plane::XY,
             distance: DistanceMode::Absolute,
             arc_distance: DistanceMode::Incremental,
             units: match opts.dialect {
                 Dialect::Rs274ngc => opts.initial_units,
-                Dialect::Axioma => LengthUnits::Millimetres,
+                _ => LengthUnits::Millimetres,
             },
             feed_mode: FeedMode::UnitsPerMinute,
             feed: 0.0,
@@ -225,7 +243,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             flood: false,
             g5x_index: match opts.dialect {
                 Dialect::Rs274ngc => 1,
-                Dialect::Axioma => 0,
+                _ => 0,
             },
             frame: WorkFrame::default(),
             xy_rotation_deg: 0.0,
@@ -278,6 +296,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             errors: 0,
             percent_open: false,
             first_line: true,
+            lab,
             opts,
         }
     }
@@ -312,9 +331,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// positions, G92, active system, tool table and preset parameters updated.
     pub fn control_data(&self) -> ControlData {
         match self.opts.dialect {
-            Dialect::Rs274ngc => self.params.to_control(&self.opts.control),
             // AxiOMA: `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote.
             Dialect::Axioma => self.opts.control.clone(),
+            // RS274/NGC (and the lab dialects, as main has them): the numbered parameters.
+            _ => self.params.to_control(&self.opts.control),
         }
     }
 
@@ -397,6 +417,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
 
     /// Executes one line. Ok(true) when the program is over.
     fn step(&mut self) -> Result<bool, Diagnostic> {
+        if self.lab.is_some() {
+            return self.lab_step();
+        }
         let here = self.read_position();
         if !self.read()? {
             return self.end_of_input();
@@ -511,6 +534,34 @@ impl<R: BufRead + Seek> Interpreter<R> {
         self.execute_block()
     }
 
+    /// Lab dialects: one execution unit of the front end (an NC-31 group, or one block).
+    #[cold]
+    fn lab_step(&mut self) -> Result<bool, Diagnostic> {
+        let Some(lab) = self.lab.as_deref_mut() else {
+            return Ok(true);
+        };
+        let (done, units) = lab.step(&mut self.queue, &mut self.warnings, &self.opts)?;
+        self.stats.lines_read += units;
+        self.stats.blocks_executed += units;
+        if self.stats.blocks_executed > self.opts.max_blocks {
+            return Err(Diagnostic::error(
+                "interp::too-many-blocks",
+                format!(
+                    "more than {} blocks executed: stopping (endless loop?)",
+                    self.opts.max_blocks
+                ),
+                stanok_canon::Span::default(),
+            ));
+        }
+        Ok(done)
+    }
+
+    /// Lab dialects (NC-31, 2P32, MC2101, GOST-20999): their modal state after the commands
+    /// produced so far. None for AxiOMA and RS274/NGC.
+    pub fn lab_state(&self) -> Option<&LabState> {
+        self.lab.as_deref().map(labs::LabRun::state)
+    }
+
     fn count_block(&mut self) -> Result<(), Diagnostic> {
         self.stats.blocks_executed += 1;
         if self.stats.blocks_executed > self.opts.max_blocks {
@@ -602,7 +653,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         let target = match dialect {
             Dialect::Axioma => &mut self.axioma_held,
-            Dialect::Rs274ngc => &mut self.queue,
+            _ => &mut self.queue,
         };
         let mark = target.len();
         let span = self.block.span();
@@ -688,7 +739,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             };
             match dialect {
                 Dialect::Rs274ngc => rs274::execute(&mut cx, &mut self.params),
-                Dialect::Axioma => axioma::execute(&mut cx),
+                _ => axioma::execute(&mut cx),
             }
         };
         let outcome = match result {

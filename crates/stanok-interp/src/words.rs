@@ -169,7 +169,7 @@ impl Words {
                                             block.span_of(w.span),
                                         ))
                                     }
-                                    Dialect::Axioma => warnings.push(
+                                    _ => warnings.push(
                                         Diagnostic::warning(
                                             "axioma::repeated-word",
                                             format!(

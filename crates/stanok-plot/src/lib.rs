@@ -56,6 +56,9 @@ pub struct PlotOptions {
     /// A second stream whose feed moves are drawn under the path in their own colour: the
     /// programmed contour when the path is the compensated tool centre (empty = none).
     pub reference: Vec<Spanned<Canon>>,
+    /// A lathe program (X = radius, Z along the spindle): the front view becomes the lathe's ZX
+    /// view, Z to the right and X (radius) up, as a turning drawing is read.
+    pub lathe: bool,
 }
 
 impl Default for PlotOptions {
@@ -67,6 +70,7 @@ impl Default for PlotOptions {
             height: 900,
             chord_tolerance: 0.01,
             reference: Vec::new(),
+            lathe: false,
         }
     }
 }
@@ -238,7 +242,7 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
     match start {
         Some(start) if !segments.is_empty() => {
             legend(&mut out, width, with_reference);
-            let views = view::layout(width, height, HEADER);
+            let views = view::layout(width, height, HEADER, options.lathe);
             let (lo, hi) = bounds(&segments, start);
             let mappings = view::fit(&views, lo, hi);
             let tolerance = options.chord_tolerance;

@@ -309,6 +309,7 @@ fn text_is_escaped_and_bad_numbers_are_dropped() {
         height: 10,
         chord_tolerance: f64::NAN,
         reference: Vec::new(),
+        lathe: false,
     };
     let mut cmds = sample_program();
     cmds.push(feed(p(0.0, 20.0, 5.0), p(f64::NAN, 0.0, 0.0)));
@@ -445,4 +446,22 @@ fn a_reference_is_drawn_under_the_path_in_its_own_class() {
     );
     let xy = view(&svg, "xy");
     assert!(xy.find(r#"class="programmed""#).unwrap() < xy.find(r#"class="feed""#).unwrap());
+}
+
+#[test]
+fn lathe_sheet_shows_z_right_and_x_up() {
+    // A turning move: Z from 0 to −40 at radius 10, then a face out to radius 30.
+    let cmds = vec![
+        feed(p(10.0, 0.0, 0.0), p(10.0, 0.0, -40.0)),
+        feed(p(10.0, 0.0, -40.0), p(30.0, 0.0, -40.0)),
+    ];
+    let lathe = PlotOptions {
+        lathe: true,
+        ..Default::default()
+    };
+    let svg = render_svg(&cmds, &lathe);
+    assert!(svg.contains(r#"data-view="zx""#) && !svg.contains(r#"data-view="xz""#));
+    assert!(svg.contains("ZX (lathe: Z right, X radius up)"));
+    let mill = render_svg(&cmds, &PlotOptions::default());
+    assert!(mill.contains(r#"data-view="xz""#) && !mill.contains(r#"data-view="zx""#));
 }

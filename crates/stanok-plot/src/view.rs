@@ -113,8 +113,9 @@ const TITLE_BAND: f64 = 28.0;
 const FOOT_BAND: f64 = 46.0;
 const SIDE_MARGIN: f64 = 18.0;
 
-/// The four views for a sheet of `width` × `height` px with a header band of `header` px.
-pub(crate) fn layout(width: f64, height: f64, header: f64) -> [View; 4] {
+/// The four views for a sheet of `width` × `height` px with a header band of `header` px. For a
+/// lathe the front view is ZX: Z to the right, X (the radius) up.
+pub(crate) fn layout(width: f64, height: f64, header: f64, lathe: bool) -> [View; 4] {
     let cw = width / 2.0;
     let ch = (height - header) / 2.0;
     let view = |id, title, projection, col: f64, row: f64| {
@@ -141,13 +142,23 @@ pub(crate) fn layout(width: f64, height: f64, header: f64) -> [View; 4] {
     [
         view("xy", "XY (top)", Projection::Ortho { h: 0, v: 1 }, 0.0, 0.0),
         view("iso", "isometric", Projection::Iso, 1.0, 0.0),
-        view(
-            "xz",
-            "XZ (front)",
-            Projection::Ortho { h: 0, v: 2 },
-            0.0,
-            1.0,
-        ),
+        if lathe {
+            view(
+                "zx",
+                "ZX (lathe: Z right, X radius up)",
+                Projection::Ortho { h: 2, v: 0 },
+                0.0,
+                1.0,
+            )
+        } else {
+            view(
+                "xz",
+                "XZ (front)",
+                Projection::Ortho { h: 0, v: 2 },
+                0.0,
+                1.0,
+            )
+        },
         view(
             "yz",
             "YZ (side)",
@@ -256,7 +267,7 @@ mod tests {
 
     #[test]
     fn orthographic_views_share_scale_and_align() {
-        let views = layout(1000.0, 840.0, 40.0);
+        let views = layout(1000.0, 840.0, 40.0, false);
         let m = fit(&views, [0.0, 0.0, -10.0], [100.0, 50.0, 0.0]);
         assert_eq!(m[0].scale, m[2].scale);
         assert_eq!(m[0].scale, m[3].scale);

@@ -21,15 +21,61 @@ pub enum Dialect {
     Axioma,
     /// LinuxCNC RS274/NGC (`.ngc`).
     Rs274ngc,
+    /// Elektronika NC-31 on the 16K20F3 lathe: one address per frame, `*` groups (spec
+    /// lab-collection §2). Read by the lab front end (`stanok_syntax::labs::nc31`).
+    Nc31,
+    /// 2P32 turning-milling centre: integers in 0.001 mm, X on the radius (spec lab-collection §3).
+    P2p32,
+    /// Elektronika MC2101 notation of the lab collection: 6-digit increments in 0.01 mm (§3.10).
+    Mc2101,
+    /// The unnamed GOST 20999-83 control of the lab collection's section 6.3 (spec §4).
+    Gost20999,
 }
 
 impl Dialect {
-    /// The dialect a file name implies: `.ngc` is RS274/NGC, anything else AxiOMA.
+    /// The dialect a file name implies: `.ngc` is RS274/NGC; a name starting with a lab dialect's
+    /// id and `-` or `_` (`nc31-…`, `2p32-…`, `mc2101-…`, `gost20999-…`, the lab corpus's
+    /// convention) is that dialect; anything else AxiOMA.
     pub fn from_path(path: &std::path::Path) -> Dialect {
+        if let Some(name) = path.file_name().and_then(|n| n.to_str()) {
+            let lower = name.to_ascii_lowercase();
+            for d in Dialect::LABS {
+                if let Some(rest) = lower.strip_prefix(d.id()) {
+                    if rest.starts_with('-') || rest.starts_with('_') {
+                        return d;
+                    }
+                }
+            }
+        }
         match path.extension().and_then(|e| e.to_str()) {
             Some(e) if e.eq_ignore_ascii_case("ngc") => Dialect::Rs274ngc,
             _ => Dialect::Axioma,
         }
+    }
+
+    /// The lab-collection dialects, read by the lab front ends instead of [`crate::BlockParser`].
+    pub const LABS: [Dialect; 4] = [
+        Dialect::Nc31,
+        Dialect::P2p32,
+        Dialect::Mc2101,
+        Dialect::Gost20999,
+    ];
+
+    /// The dialect's id on the command line and in reports.
+    pub fn id(self) -> &'static str {
+        match self {
+            Dialect::Axioma => "axioma",
+            Dialect::Rs274ngc => "rs274ngc",
+            Dialect::Nc31 => "nc31",
+            Dialect::P2p32 => "2p32",
+            Dialect::Mc2101 => "mc2101",
+            Dialect::Gost20999 => "gost20999",
+        }
+    }
+
+    /// True for the lab-collection dialects (NC-31, 2P32, MC2101, GOST-20999).
+    pub fn is_lab(self) -> bool {
+        !matches!(self, Dialect::Axioma | Dialect::Rs274ngc)
     }
 }
 

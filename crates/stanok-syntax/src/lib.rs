@@ -72,6 +72,7 @@ mod axioma;
 mod expr;
 pub mod hll;
 mod hll_parse;
+pub mod labs;
 mod lexer;
 mod number;
 mod reader;
@@ -163,6 +164,11 @@ impl BlockParser {
                 axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
             }
             Dialect::Rs274ngc => rs274::parse_line(text, block, &mut self.pending),
+            // The lab dialects are read by their own front ends (`labs`); a block parser made
+            // for one reads ISO words as RS274/NGC does.
+            Dialect::Nc31 | Dialect::P2p32 | Dialect::Mc2101 | Dialect::Gost20999 => {
+                rs274::parse_line(text, block, &mut self.pending)
+            }
         }
     }
 

@@ -11,13 +11,23 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// Program language, when the file extension does not say it (`.ngc` → rs274ngc, else axioma).
+/// Program language, when the file name does not say it (`.ngc` → rs274ngc; a name starting
+/// `nc31-`, `2p32-`, `mc2101-` or `gost20999-` → that lab dialect; else axioma).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum DialectArg {
     /// AxiOMA Control (ISO with Sinumerik-style keywords).
     Axioma,
     /// LinuxCNC RS274/NGC.
     Rs274ngc,
+    /// Elektronika NC-31 (16K20F3 lathe): one address per frame, `*` groups.
+    Nc31,
+    /// 2P32 turning-milling centre (integers in 0.001 mm, X on the radius).
+    #[value(name = "2p32")]
+    P2p32,
+    /// Elektronika MC2101 notation (6-digit increments in 0.01 mm).
+    Mc2101,
+    /// The GOST 20999-83 control of the lab collection (section 6.3).
+    Gost20999,
 }
 
 impl From<DialectArg> for stanok_syntax::Dialect {
@@ -25,6 +35,10 @@ impl From<DialectArg> for stanok_syntax::Dialect {
         match d {
             DialectArg::Axioma => stanok_syntax::Dialect::Axioma,
             DialectArg::Rs274ngc => stanok_syntax::Dialect::Rs274ngc,
+            DialectArg::Nc31 => stanok_syntax::Dialect::Nc31,
+            DialectArg::P2p32 => stanok_syntax::Dialect::P2p32,
+            DialectArg::Mc2101 => stanok_syntax::Dialect::Mc2101,
+            DialectArg::Gost20999 => stanok_syntax::Dialect::Gost20999,
         }
     }
 }
@@ -103,6 +117,31 @@ pub struct MachineArgs {
     /// trips.
     #[arg(long, value_name = "AXIS<=VALUE", value_parser = parse_probe_surface)]
     pub probe_surface: Vec<stanok_canon::setup::ProbeSurface>,
+    /// Lab dialects: blank out the lab corpus's fixture annotations before reading (lines starting
+    /// with `;`, and `//` to the end of a line), so that `corpus/labs` files run as printed.
+    #[arg(long)]
+    pub strip_fixture_comments: bool,
+    /// Lab dialects (2P32, GOST-20999): the value of corrector N in mm, e.g. `16=42` (repeat for
+    /// several). Correctors not given hold 0.
+    #[arg(long, value_name = "N=MM", value_parser = parse_corrector)]
+    pub corrector: Vec<(u32, f64)>,
+}
+
+/// `16=42`: a lab corrector number and its value in mm.
+pub fn parse_corrector(s: &str) -> Result<(u32, f64), String> {
+    let (n, v) = s.split_once('=').ok_or("expected N=MM")?;
+    let n: u32 = n
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{}` is not a corrector number", n.trim()))?;
+    let v: f64 = v
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{}` is not a number", v.trim()))?;
+    if !v.is_finite() {
+        return Err("the value must be finite".into());
+    }
+    Ok((n, v))
 }
 
 /// `z<=-3.2`, `x>=50`, `z=-3.2` (= `<=`): a probe surface (machine coordinates, mm/deg).

@@ -193,6 +193,8 @@ fn interpreter(
     if let Some(n) = args.max_loop_iterations {
         opts.max_loop_iterations = n;
     }
+    opts.strip_fixture_comments = args.strip_fixture_comments;
+    opts.labs.correctors.extend(args.corrector.iter().copied());
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 
@@ -500,7 +502,7 @@ fn canon(
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
-        Dialect::Axioma => CanonFormat::Jsonl,
+        _ => CanonFormat::Jsonl,
     });
     let stdout = std::io::stdout();
     let mut out = BufWriter::new(stdout.lock());
@@ -586,7 +588,7 @@ fn plot(
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
     };
-    let (mut interp, _) = interpreter(file, dialect, &machine, false, args)?;
+    let (mut interp, used) = interpreter(file, dialect, &machine, false, args)?;
     let mut commands: Vec<Spanned<Canon>> = Vec::new();
     let mut failure = None;
     for item in interp.by_ref() {
@@ -605,6 +607,8 @@ fn plot(
     let options = stanok_plot::PlotOptions {
         title,
         reference: programmed_contour(file, dialect, &machine, args, &commands),
+        // The lab lathes (X = radius): the turning drawing's ZX view.
+        lathe: matches!(used, Dialect::Nc31 | Dialect::P2p32),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);
@@ -642,8 +646,10 @@ fn convert(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let mut options = stanok_convert::ConvertOptions::new(target, &name, &dialect_id(dialect));
+    let mut options = stanok_convert::ConvertOptions::new(target, &name, dialect.id());
     options.chord_tolerance_mm = chord_tolerance;
+    options.max_feed_mm_per_min = machine.max_feed;
+    options.axes = machine.axis_mask();
     let mut converter = stanok_convert::Converter::new(options);
     let mut text = String::new();
     let mut failure = None;
@@ -688,10 +694,4 @@ fn convert(
         None => write_stdout(&text)?,
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// The dialect's name for the converted file's header (its variant name in lower case, so that
-/// dialects added later need no change here).
-fn dialect_id(d: Dialect) -> String {
-    format!("{d:?}").to_lowercase()
 }

@@ -8,10 +8,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 fn dialect_name(d: Dialect) -> &'static str {
-    match d {
-        Dialect::Axioma => "axioma",
-        Dialect::Rs274ngc => "rs274ngc",
-    }
+    d.id()
 }
 
 /// The human-readable report.

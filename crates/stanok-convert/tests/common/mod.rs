@@ -49,6 +49,16 @@ pub fn interpret_prefix(text: &str, dialect: Dialect, dir: &Path) -> Vec<Spanned
         .collect()
 }
 
+/// Interprets a lab-dialect program (held in memory whole, as the lab front ends need) up to its
+/// first error.
+pub fn interpret_lab_prefix(text: &str, dialect: Dialect, dir: &Path) -> Vec<Spanned<Canon>> {
+    let mut opts = InterpOptions::new(dialect);
+    opts.subroutine_path = vec![dir.to_path_buf()];
+    Interpreter::from_text(text, opts)
+        .map_while(Result::ok)
+        .collect()
+}
+
 /// Interprets `text` (a converted program), which must run without an error.
 pub fn interpret(text: &str, dialect: Dialect, dir: &Path) -> Result<Vec<Spanned<Canon>>, String> {
     let mut opts = InterpOptions::new(dialect);

@@ -177,6 +177,11 @@ pub struct ControlData {
     /// The simulated probe's world: where a probe move (G38.n, G75) makes contact. Empty = the
     /// probe never makes contact (LinuxCNC's standalone interpreter behaves so).
     pub probe_surfaces: Vec<ProbeSurface>,
+    /// AxiOMA permanent integer parameters `$iPerm[n]` (n = 0…999), stored with the machine
+    /// data; absent = 0.
+    pub perm_int: BTreeMap<u32, i64>,
+    /// AxiOMA permanent floating parameters `$dPerm[n]` (n = 0…999); absent = 0.
+    pub perm_double: BTreeMap<u32, f64>,
 }
 
 /// A half-space of machine coordinates in which the probe is in contact, e.g. `z <= -3.2` (the top

@@ -2,6 +2,8 @@
 //! count instructions per block (a figure that, unlike wall time, does not depend on machine load):
 //!
 //! `valgrind --tool=callgrind target/release/examples/probe parse|interpret FILE`
+//!
+//! The dialect follows the file name: `.ngc` is RS274/NGC, anything else AxiOMA.
 
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::{Block, BlockParser, Dialect};
@@ -11,9 +13,10 @@ fn main() {
     let mode = args.next().unwrap_or_default();
     let path = args.next().expect("usage: probe parse|interpret FILE");
     let text = std::fs::read_to_string(&path).expect("read the program");
+    let dialect = Dialect::from_path(std::path::Path::new(&path));
     match mode.as_str() {
         "parse" => {
-            let mut parser = BlockParser::new(Dialect::Rs274ngc);
+            let mut parser = BlockParser::new(dialect);
             let mut block = Block::default();
             let mut diags = Vec::new();
             let (mut words, mut offset) = (0usize, 0u64);
@@ -29,7 +32,7 @@ fn main() {
             );
         }
         _ => {
-            let n = Interpreter::from_text(&text, InterpOptions::new(Dialect::Rs274ngc))
+            let n = Interpreter::from_text(&text, InterpOptions::new(dialect))
                 .filter(|c| c.is_ok())
                 .count();
             println!("{n} commands");

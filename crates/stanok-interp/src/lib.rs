@@ -32,6 +32,7 @@ mod balt_spline;
 mod ctx;
 mod flow;
 mod frame;
+mod hll;
 mod labs;
 mod lathe;
 mod mazatrol;
@@ -46,6 +47,7 @@ mod words;
 pub use axioma::mtable::{MEntry, MGroup, MKind, MTable};
 pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
+pub use hll::value::HVal;
 pub use labs::{LabMachineParams, LabState};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
@@ -195,6 +197,11 @@ pub struct Interpreter<R: BufRead + Seek> {
     axioma_held: VecDeque<Spanned<Canon>>,
     /// AxiOMA: cutter compensation look-ahead, canned-cycle and output state (not `Copy`).
     axioma: axioma::Extension,
+    /// AxiOMA high-level language: variables and control flow; `None` until the first HLL line
+    /// or expression, so that programs without HLL keep their speed.
+    hll: Option<Box<hll::Hll>>,
+    /// AxiOMA: the text of the next block's `MSG(expr)`, handed to its words.
+    hll_message: Option<String>,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -306,6 +313,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             queue: VecDeque::new(),
             axioma_held: VecDeque::new(),
             axioma: axioma::Extension::default(),
+            hll: None,
+            hll_message: None,
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -349,7 +358,17 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// `.var` file and tool table when it exits — the options' data with the offsets, G28/G30
     /// positions, G92, active system, tool table and preset parameters updated.
     pub fn control_data(&self) -> ControlData {
-        self.params.to_control(&self.opts.control)
+        match self.opts.dialect {
+            // AxiOMA: `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote.
+            Dialect::Axioma => self.opts.control.clone(),
+            // RS274/NGC (and the lab dialects, as main has them): the numbered parameters.
+            _ => self.params.to_control(&self.opts.control),
+        }
+    }
+
+    /// AxiOMA: the value of a high-level-language variable (a scalar) visible now.
+    pub fn hll_variable(&self, name: &str) -> Option<HVal> {
+        self.hll.as_deref()?.vars.get(name).cloned()
     }
 
     /// AxiOMA: the M vector ("active functions" screen) after the blocks run so far: each modal
@@ -524,6 +543,20 @@ impl<R: BufRead + Seek> Interpreter<R> {
             if self.block.block_delete && self.opts.block_delete {
                 return Ok(false);
             }
+        } else if self.hll.is_some() || self.block.hll.statement {
+            match self.hll_step(here, first_error)? {
+                hll::HllStep::Done => return Ok(false),
+                hll::HllStep::Execute(owner) => {
+                    self.count_block()?;
+                    let end = self.execute_block()?;
+                    if let Some(owner) = owner {
+                        if !end {
+                            self.hll_after_iso(owner)?;
+                        }
+                    }
+                    return Ok(end);
+                }
+            }
         } else if let Some(e) = first_error {
             return Err(e);
         }
@@ -611,7 +644,29 @@ impl<R: BufRead + Seek> Interpreter<R> {
         rs274::modal_context::restore(&mut cx, &mut self.params, saved);
     }
 
+    #[inline(always)]
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
+        // AxiOMA words with HLL expressions are evaluated first (journalled, undone on failure);
+        // every other block goes straight on (one test: programs without HLL keep their speed).
+        if self.block.hll.exprs.is_empty() {
+            return self.execute_words(&[]);
+        }
+        self.execute_block_with_expressions()
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn execute_block_with_expressions(&mut self) -> Result<bool, Diagnostic> {
+        let values = self.hll_prepare_block()?;
+        let result = self.execute_words(&values);
+        if result.is_err() {
+            self.hll_rollback();
+        }
+        result
+    }
+
+    /// Executes the block with `hll_values`, the values of its HLL expression words.
+    fn execute_words(&mut self, hll_values: &[(u32, f64)]) -> Result<bool, Diagnostic> {
         let dialect = self.opts.dialect;
         // The block runs on the live state; a failure restores this copy (one copy per block).
         let backup = self.state;
@@ -655,8 +710,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 params: &self.params,
                 state: &self.state,
             };
-            self.words
-                .fill(&self.block, &eval, dialect, &mut self.warnings)?;
+            self.words.fill(
+                &self.block,
+                &eval,
+                dialect,
+                &mut self.warnings,
+                hll_values,
+                &mut self.hll_message,
+            )?;
             // Assignments are evaluated with the old values and applied after the line.
             for a in &self.block.assignments {
                 let v = eval.eval(a.value)?;
@@ -792,6 +853,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 &mut self.warnings,
             )?;
         }
+        self.hll_end_of_input()?;
         if let Some(d) = self.flow.unterminated(&self.block) {
             return Err(d);
         }

@@ -36,6 +36,8 @@ pub struct Words {
     pub indexed: Vec<(u8, u8, Val)>,
     /// AxiOMA keywords with their index and value.
     pub keywords: Vec<(Keyword, Option<u8>, Option<Val>, ColSpan)>,
+    /// AxiOMA `MSG(expr)`: the message text the high-level language evaluated for this block.
+    pub message: Option<String>,
 }
 
 impl Default for Words {
@@ -51,6 +53,7 @@ impl Default for Words {
             used: 0,
             indexed: Vec::new(),
             keywords: Vec::new(),
+            message: None,
         }
     }
 }
@@ -81,6 +84,7 @@ impl Words {
         self.used = 0;
         self.indexed.clear();
         self.keywords.clear();
+        self.message = None;
     }
 
     /// Evaluates and sorts the words of `block`.
@@ -90,13 +94,24 @@ impl Words {
         eval: &Evaluator<'_>,
         dialect: Dialect,
         warnings: &mut Vec<Diagnostic>,
+        hll_values: &[(u32, f64)],
+        message: &mut Option<String>,
     ) -> Result<(), Diagnostic> {
         self.clear();
+        // Cold: only blocks with `MSG(expr)` have one (moved, not copied).
+        if message.is_some() {
+            self.message = message.take();
+        }
         for w in &block.words {
             let value = match w.value {
                 Value::None => None,
                 Value::Number(v) => Some(v),
                 Value::Expr(e) => Some(eval.eval(e)?),
+                // Evaluated by the HLL before the block (`hll/driver.rs`).
+                Value::Hll(e) => hll_values
+                    .iter()
+                    .find(|(id, _)| *id == e.0)
+                    .map(|&(_, v)| v),
             };
             let val = value.map(|v| Val { v, span: w.span });
             match w.address {

@@ -214,13 +214,19 @@ fn s2_3_msg_and_dwell() {
 }
 
 #[test]
-fn s2_3_sprintf_needs_the_high_level_language() {
-    // The HLL (string/long variables, sprintf) is issue "AxiOMA parametric programming"; until then
-    // the fixture must stop at its first HLL line with a clear error, not run half of it.
+fn s2_3_sprintf_formats_the_message_value_50() {
+    // `string str; long num = 50; sprintf(str, "value: %d", num); N10 MSG(str)`: the operator
+    // message "value: 50" at N10 (line 19), and nothing else.
     let (cmds, err) = run(&program("s2_3-sprintf-msg-fragment.nc"), Dialect::Axioma);
-    let err = err.expect("HLL lines are an error until the HLL issue lands");
-    assert_eq!(err.span.line, 14, "{err}");
-    assert!(err.message.contains("high-level"), "{err}");
+    assert!(err.is_none(), "{err:?}");
+    let messages: Vec<(u32, Option<u32>, &str)> = cmds
+        .iter()
+        .filter_map(|c| match &c.value {
+            Canon::Message { text } => Some((c.span.line, c.block_number, text.as_str())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(messages, [(19, Some(10), "value: 50")]);
     assert!(motions(&cmds).is_empty());
 }
 

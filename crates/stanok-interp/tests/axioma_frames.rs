@@ -203,10 +203,11 @@ fn s4_3_3_relative_rotation_table() {
 }
 
 #[test]
-fn s4_3_3_rotation_loop_compensated_first_slot_then_stops_at_the_high_level_language() {
-    // The slots are cut with G143/G42 compensation inside an HLL loop (`int ii=0; for(…){…}`,
-    // issue "AxiOMA parametric programming"). The first slot (angle 0) is machined; the program
-    // stops at the first HLL statement (line 37) with a clear diagnostic, before the loop.
+fn s4_3_3_rotation_loop_cuts_eight_compensated_slots_45_degrees_apart() {
+    // Example 4.6: the slot at 0°, then an HLL loop `for(ii=1; ii<8; ii++) { … }` whose ISO
+    // blocks rotate by a further 45° (G91 G273 Q45 about the absolute pole (0,0), G190) and cut
+    // the slot again: eight slots at 0°, 45°, …, 315°. Tool T2 r = 5, G42 inside the clockwise
+    // obround: the compensated path runs at y = ±15 and on arcs of radius 20 − 5 = 15.
     let mut opts = InterpOptions::new(Dialect::Axioma);
     let mut tools = ControlData::default();
     tools.tools.tools.insert(
@@ -222,37 +223,80 @@ fn s4_3_3_rotation_loop_compensated_first_slot_then_stops_at_the_high_level_lang
     );
     opts.control = tools;
     let mut cmds = Vec::new();
-    let mut err = None;
     for item in Interpreter::from_text(&fixture("s4_3_3-rotation-loop-slots-example-4_6.nc"), opts)
     {
-        match item {
-            Ok(c) => cmds.push(c),
-            Err(d) => {
-                err = Some(d);
-                break;
-            }
+        cmds.push(item.unwrap_or_else(|d| panic!("unexpected error {d}")));
+    }
+    let rot = |deg: f64, p: [f64; 2]| {
+        let (s, c) = deg.to_radians().sin_cos();
+        [c * p[0] - s * p[1], s * p[0] + c * p[1]]
+    };
+    let mvs = moves(&cmds);
+    // The blocks of one slot: the first at N40/N70/N100, the loop's at N160/N190/N220.
+    let labels = |approach: u32, back: u32, exit: u32| -> Vec<(u32, [f64; 2])> {
+        vec![
+            (approach, [80.0, 15.0]),
+            (back, [80.0, -15.0]),
+            (exit, [80.0, 0.0]),
+        ]
+    };
+    let ends = |n: u32| -> Vec<[f64; 3]> {
+        mvs.iter()
+            .filter(|m| m.0 == Some(n) && m.2.is_none())
+            .map(|m| m.1)
+            .collect()
+    };
+    for (n, p) in labels(40, 70, 100) {
+        let e = ends(n);
+        let last = e.last().unwrap_or_else(|| panic!("N{n} has no move"));
+        assert!(
+            (last[0] - p[0]).abs() < TOL && (last[1] - p[1]).abs() < TOL,
+            "N{n}: {last:?}"
+        );
+    }
+    for (n, p) in labels(160, 190, 220) {
+        let e = ends(n);
+        assert_eq!(e.len(), 7, "N{n} runs once per pass ii = 1 … 7: {e:?}");
+        for (k, got) in e.iter().enumerate() {
+            let want = rot(45.0 * (k + 1) as f64, p);
+            assert!(
+                (got[0] - want[0]).abs() < TOL && (got[1] - want[1]).abs() < TOL,
+                "N{n} pass {}: {got:?} != {want:?}",
+                k + 1
+            );
+            assert!(got[2].abs() < TOL, "N{n} at Z0");
         }
     }
-    let err = err.expect("high-level language");
-    assert_eq!(
-        err.code,
-        DiagCode::Stanok("syntax::hll-not-supported"),
-        "{err}"
-    );
-    assert_eq!(err.span.line, 37);
-    // r = 5, tool inside the clockwise obround (G42 + G02: concave, ρ = 20 − 5).
-    let mvs = moves(&cmds);
-    assert_ends(
-        &mvs,
-        &[(40, [80.0, 15.0]), (70, [80.0, -15.0]), (100, [80.0, 0.0])],
-    );
+    // 16 arcs, clockwise, radius 15 about the rotated end-circle centres.
     let arcs: Vec<&Move> = mvs.iter().filter(|m| m.2.is_some()).collect();
-    assert_eq!(arcs.len(), 2);
-    for (m, centre) in arcs.iter().zip([[180.0, 0.0], [80.0, 0.0]]) {
+    assert_eq!(arcs.len(), 16);
+    for (i, m) in arcs.iter().enumerate() {
+        let slot = (i / 2) as f64;
+        let centre = rot(
+            45.0 * slot,
+            if i % 2 == 0 {
+                [180.0, 0.0]
+            } else {
+                [80.0, 0.0]
+            },
+        );
         let (c, ccw) = m.2.unwrap();
-        assert!(!ccw && (c[0] - centre[0]).abs() < TOL && c[1].abs() < TOL);
+        assert!(!ccw, "arc {i} is clockwise");
+        assert!(
+            (c[0] - centre[0]).abs() < TOL && (c[1] - centre[1]).abs() < TOL,
+            "arc {i}: centre {c:?} != {centre:?}"
+        );
         assert!(((m.1[0] - c[0]).hypot(m.1[1] - c[1]) - 15.0).abs() < TOL);
     }
+    // The last slot's retract N230 Z10 at 315°, then G191 G272 and M30.
+    let last = mvs.last().unwrap();
+    let want = rot(315.0, [80.0, 0.0]);
+    assert!((last.1[0] - want[0]).abs() < TOL && (last.1[1] - want[1]).abs() < TOL);
+    assert!((last.1[2] - 10.0).abs() < TOL);
+    assert!(matches!(
+        cmds.last().map(|c| &c.value),
+        Some(Canon::ProgramEnd)
+    ));
 }
 
 #[test]

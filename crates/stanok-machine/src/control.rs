@@ -243,7 +243,38 @@ pub(crate) struct RawControl<'a> {
     pub g30: &'a Option<Spanned<RawPose>>,
     pub g92: &'a Option<Spanned<RawG92>>,
     pub parameters: &'a Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    /// AxiOMA `$iPerm[n]`: `[iperm]` with `n = value`.
+    pub iperm: &'a Option<Spanned<BTreeMap<Spanned<String>, Spanned<i64>>>>,
+    /// AxiOMA `$dPerm[n]`: `[dperm]` with `n = value`.
+    pub dperm: &'a Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     pub tool: &'a Option<Spanned<Vec<Spanned<RawTool>>>>,
+}
+
+/// `[iperm]` / `[dperm]`: AxiOMA permanent parameters `n = value`, n = 0…999.
+fn perm<T, V>(
+    table: &Option<Spanned<BTreeMap<Spanned<String>, Spanned<V>>>>,
+    name: &str,
+    into: &mut BTreeMap<u32, T>,
+    value: impl Fn(&Spanned<V>) -> Result<T, Invalid>,
+) -> Result<(), Invalid> {
+    for (key, v) in table.iter().flat_map(|p| p.get_ref()) {
+        let text = key.get_ref();
+        let n = text
+            .trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|n| *n <= 999)
+            .ok_or_else(|| {
+                (
+                    format!("[{name}] index must be 0…999, not \"{text}\""),
+                    key.span(),
+                )
+            })?;
+        if into.insert(n, value(v)?).is_some() {
+            return Err((format!("[{name}] {n} is defined twice"), key.span()));
+        }
+    }
+    Ok(())
 }
 
 fn finite(value: &Spanned<f64>, what: &str) -> Result<f64, Invalid> {
@@ -560,6 +591,12 @@ impl RawControl<'_> {
             self.validate_positions(offsets),
             self.validate_parameters(&mut control.parameters),
             self.validate_tools(&mut control.tools),
+            perm(self.iperm, "iperm", &mut control.perm_int, |v| {
+                Ok(*v.get_ref())
+            }),
+            perm(self.dperm, "dperm", &mut control.perm_double, |v| {
+                finite(v, "a $dPerm value")
+            }),
         ];
         first_error(results)?;
         Ok(control)

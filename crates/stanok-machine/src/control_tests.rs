@@ -256,3 +256,42 @@ fn the_writer_is_sparse() {
         c.offsets
     );
 }
+
+#[test]
+fn axioma_permanent_parameters_are_read_checked_and_written_back() {
+    let m = machine("[iperm]\n1 = 1500\n5 = -2\n[dperm]\n0 = 0.25\n").unwrap();
+    assert_eq!(m.control.perm_int.get(&1), Some(&1500));
+    assert_eq!(m.control.perm_int.get(&5), Some(&-2));
+    assert_eq!(m.control.perm_double.get(&0), Some(&0.25));
+    let (msg, line, _) = err("[iperm]\n1000 = 1\n");
+    assert!(msg.contains("0…999"), "{msg}");
+    assert_eq!(line, 2);
+    let (msg, _, _) = err("[dperm]\n\"x\" = 1.0\n");
+    assert!(msg.contains("0…999"), "{msg}");
+    let text = control_to_toml(&m.control);
+    assert!(text.contains("[iperm]\n1 = 1500\n5 = -2\n"), "{text}");
+    assert!(text.contains("[dperm]\n0 = 0.25\n"), "{text}");
+}
+
+#[test]
+fn axioma_feed_and_speed_tables_are_read_checked_and_written_back() {
+    let m = machine("[feed_table]\n20 = 4321.0\n127 = 9000.0\n[speed_table]\n2 = 777.0\n").unwrap();
+    assert_eq!(m.feed_table.get(&20), Some(&4321.0));
+    assert_eq!(m.feed_table.get(&127), Some(&9000.0));
+    assert_eq!(m.speed_table.get(&2), Some(&777.0));
+    let (msg, line, _) = err("[feed_table]\n128 = 1.0\n");
+    assert!(msg.contains("0…127"), "{msg}");
+    assert_eq!(line, 2);
+    let (msg, line, _) = err("[speed_table]\n3 = 0.0\n");
+    assert!(msg.contains("positive"), "{msg}");
+    assert_eq!(line, 2);
+    // Written sparsely and read back to the same machine.
+    let text = m.to_toml();
+    assert!(
+        text.contains("[feed_table]\n20 = 4321.0\n127 = 9000.0\n"),
+        "{text}"
+    );
+    assert_eq!(MachineData::from_toml_str(&text, "back.toml").unwrap(), m);
+    // An offset file may not hold them.
+    assert!(offsets_from_toml_str("[feed_table]\n1 = 2.0\n", "o.toml").is_err());
+}

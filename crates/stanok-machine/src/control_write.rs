@@ -54,6 +54,15 @@ pub fn control_to_toml(c: &ControlData) -> String {
     keys + &tables
 }
 
+/// The `[iperm]` / `[dperm]` sections of `c` alone: what `perm_from_toml_str` reads back.
+pub fn perm_to_toml(c: &ControlData) -> String {
+    control_to_toml(&ControlData {
+        perm_int: c.perm_int.clone(),
+        perm_double: c.perm_double.clone(),
+        ..ControlData::default()
+    })
+}
+
 /// The top-level keys (which TOML wants before any table) and the tables of [`control_to_toml`].
 pub(crate) fn control_toml_parts(c: &ControlData) -> (String, String) {
     let mut keys = String::new();
@@ -114,6 +123,20 @@ pub(crate) fn control_toml_parts(c: &ControlData) -> (String, String) {
     if !c.parameters.is_empty() {
         out.push_str("[parameters]\n");
         for (n, v) in &c.parameters {
+            let _ = writeln!(out, "{n} = {}", toml_float(*v));
+        }
+        out.push('\n');
+    }
+    if !c.perm_int.is_empty() {
+        out.push_str("[iperm]\n");
+        for (n, v) in &c.perm_int {
+            let _ = writeln!(out, "{n} = {v}");
+        }
+        out.push('\n');
+    }
+    if !c.perm_double.is_empty() {
+        out.push_str("[dperm]\n");
+        for (n, v) in &c.perm_double {
             let _ = writeln!(out, "{n} = {}", toml_float(*v));
         }
         out.push('\n');

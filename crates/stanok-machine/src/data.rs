@@ -83,6 +83,11 @@ pub struct MachineData {
     /// The machine's kinematics (`[kinematics]`); None = Cartesian (3-axis, or rotary axes
     /// without tool-centre-point control).
     pub kinematics: Option<KinematicsData>,
+    /// AxiOMA channel feed table (`FTABLE(i)`, `[feed_table]` with `i = mm/min`, i = 0…127):
+    /// the entries that replace the manual's defaults; the others keep them.
+    pub feed_table: BTreeMap<u32, f64>,
+    /// AxiOMA channel spindle-speed table (`STABLE(i)`, `[speed_table]`, rev/min), as `feed_table`.
+    pub speed_table: BTreeMap<u32, f64>,
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
@@ -178,6 +183,8 @@ struct RawFile {
     arc_tolerance: Option<Spanned<f64>>,
     linuxcnc_units: Option<Spanned<String>>,
     m_functions: Option<Spanned<String>>,
+    feed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    speed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     axis: Option<Spanned<Vec<RawAxis>>>,
     active_system: Option<Spanned<String>>,
     zero_offset: Option<Spanned<Vec<Spanned<RawZeroOffset>>>>,
@@ -187,6 +194,8 @@ struct RawFile {
     g30: Option<Spanned<RawPose>>,
     g92: Option<Spanned<RawG92>>,
     parameters: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    iperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<i64>>>>,
+    dperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
     kinematics: Option<Spanned<KinematicsData>>,
 }
@@ -319,6 +328,7 @@ fn units(value: &Option<Spanned<String>>) -> Result<LengthUnits, Invalid> {
 enum Fragment {
     Tools,
     Offsets,
+    Perm,
 }
 
 impl RawFile {
@@ -337,6 +347,8 @@ impl RawFile {
             g30: &self.g30,
             g92: &self.g92,
             parameters: &self.parameters,
+            iperm: &self.iperm,
+            dperm: &self.dperm,
             tool: &self.tool,
         }
     }
@@ -354,6 +366,8 @@ impl RawFile {
             ("arc_tolerance", at(&self.arc_tolerance)),
             ("linuxcnc_units", at(&self.linuxcnc_units)),
             ("m_functions", at(&self.m_functions)),
+            ("feed_table", at(&self.feed_table)),
+            ("speed_table", at(&self.speed_table)),
             ("axis", at(&self.axis)),
             ("active_system", at(&self.active_system)),
             ("zero_offset", at(&self.zero_offset)),
@@ -363,6 +377,8 @@ impl RawFile {
             ("g30", at(&self.g30)),
             ("g92", at(&self.g92)),
             ("parameters", at(&self.parameters)),
+            ("iperm", at(&self.iperm)),
+            ("dperm", at(&self.dperm)),
             ("tool", at(&self.tool)),
         ];
         keys.into_iter()
@@ -384,6 +400,7 @@ impl RawFile {
                 "g92",
                 "parameters",
             ],
+            Fragment::Perm => &["iperm", "dperm"],
         };
         let wrong = self
             .present_keys()
@@ -401,6 +418,10 @@ impl RawFile {
                     "an offset file holds only active_system, [[zero_offset]], [[workpiece]], \
                      [[home]], [g28], [g30], [g92] and [parameters], not `{key}`"
                 ),
+                range,
+            )),
+            (Some((key, range)), Fragment::Perm) => Err((
+                format!("a permanent-parameter file holds only [iperm] and [dperm], not `{key}`"),
                 range,
             )),
         }
@@ -457,6 +478,8 @@ impl RawFile {
                 ))
             }
         };
+        let feed_table = rate_table(&self.feed_table, "feed_table")?;
+        let speed_table = rate_table(&self.speed_table, "speed_table")?;
         let Some(raw_axes) = &self.axis else {
             return Err((
                 "missing field `axis` (a machine needs at least one [[axis]])".into(),
@@ -493,6 +516,8 @@ impl RawFile {
             control: ControlData::default(),
             m_functions,
             kinematics,
+            feed_table,
+            speed_table,
         })
     }
 }
@@ -531,6 +556,40 @@ fn validate_kinematics(
     data.build()
         .map_err(|e| (format!("kinematics: {e}"), k.span()))?;
     Ok(data)
+}
+
+/// `[feed_table]` / `[speed_table]`: `i = value`, i = 0…127 (the AxiOMA channel tables have 128
+/// entries), value a positive finite rate.
+fn rate_table(
+    table: &Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    name: &str,
+) -> Result<BTreeMap<u32, f64>, Invalid> {
+    let mut out = BTreeMap::new();
+    for (key, v) in table.iter().flat_map(|t| t.get_ref()) {
+        let text = key.get_ref();
+        let i = text
+            .trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|i| *i <= 127)
+            .ok_or_else(|| {
+                (
+                    format!("[{name}] index must be 0…127, not \"{text}\""),
+                    key.span(),
+                )
+            })?;
+        let value = *v.get_ref();
+        if !(value.is_finite() && value > 0.0) {
+            return Err((
+                format!("[{name}] {i} must be a positive number, not {value}"),
+                v.span(),
+            ));
+        }
+        if out.insert(i, value).is_some() {
+            return Err((format!("[{name}] {i} is defined twice"), key.span()));
+        }
+    }
+    Ok(out)
 }
 
 /// Line and column (1-based, column in characters) of byte `offset` in `text`.
@@ -613,6 +672,18 @@ pub fn offsets_from_toml_str(text: &str, file_name: &str) -> Result<StoredOffset
         .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
 }
 
+/// AxiOMA's permanent parameters `$iPerm[n]` / `$dPerm[n]`, as kept between runs.
+pub type PermParameters = (BTreeMap<u32, i64>, BTreeMap<u32, f64>);
+
+/// Reads a permanent-parameter file in machine-data TOML: only `[iperm]` and `[dperm]`.
+pub fn perm_from_toml_str(text: &str, file_name: &str) -> Result<PermParameters, Diagnostic> {
+    let raw = RawFile::parse(text, file_name)?;
+    raw.check_fragment(Fragment::Perm)
+        .and_then(|()| raw.control().validate())
+        .map(|c| (c.perm_int, c.perm_double))
+        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
+}
+
 impl MachineData {
     /// The built-in machine called `name` (`"mill"`), if there is one.
     pub fn builtin(name: &str) -> Option<MachineData> {
@@ -664,6 +735,8 @@ impl MachineData {
             control: ControlData::default(),
             m_functions: "generic".into(),
             kinematics: None,
+            feed_table: BTreeMap::new(),
+            speed_table: BTreeMap::new(),
         }
     }
 
@@ -695,6 +768,8 @@ impl MachineData {
             control: ControlData::default(),
             m_functions: "generic".into(),
             kinematics: None,
+            feed_table: BTreeMap::new(),
+            speed_table: BTreeMap::new(),
         }
     }
 
@@ -735,6 +810,17 @@ impl MachineData {
             let _ = writeln!(out, "m_functions = {}", toml_string(&self.m_functions));
         }
         out.push_str(&control_keys);
+        for (name, table) in [
+            ("feed_table", &self.feed_table),
+            ("speed_table", &self.speed_table),
+        ] {
+            if !table.is_empty() {
+                let _ = writeln!(out, "\n[{name}]");
+                for (i, v) in table {
+                    let _ = writeln!(out, "{i} = {}", toml_float(*v));
+                }
+            }
+        }
         for a in &self.axes {
             let kind = match a.kind {
                 AxisKind::Linear => "linear",

@@ -26,9 +26,18 @@ pub fn check(
     opts.continue_after_error = true;
     let mut interp = Interpreter::from_text(text, opts);
     let mut all: Vec<Alarm> = Vec::new();
+    // A bad block inside a loop fails on every pass: each error is listed once (as `stanok check`).
+    let mut seen = std::collections::HashSet::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
-            all.push(Alarm::of(&d));
+            if seen.insert((
+                d.code.to_string(),
+                d.span.start,
+                d.span.end,
+                d.message.clone(),
+            )) {
+                all.push(Alarm::of(&d));
+            }
         }
     }
     all.extend(interp.take_warnings().iter().map(Alarm::of));
@@ -147,5 +156,21 @@ pub fn preview(
         truncated,
         cycle_time_s: report.cycle_time_s,
         final_position: report.final_position.to_array(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_bad_block_in_a_loop_is_listed_once() {
+        let text = "for (int i = 0; i < 3; i++) {\nG01 X=i*zz F100\n}\nM30\n";
+        let alarms = check(text, Dialect::Axioma, &MachineData::default_mill(), &[]);
+        let found: Vec<(u32, u32, &str)> = alarms
+            .iter()
+            .map(|a| (a.line, a.column, a.code.as_str()))
+            .collect();
+        assert_eq!(found, [(2, 9, "hll::undeclared")]);
     }
 }

@@ -307,6 +307,8 @@ pub fn interp_options(
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }
+    opts.axioma
+        .set_table_entries(&machine.feed_table, &machine.speed_table);
     opts.subroutine_path = subroutine_path.to_vec();
     // M01 reaches the machine thread, which decides with the operator's switch.
     opts.optional_stop = true;

@@ -225,6 +225,8 @@ pub enum Value {
     Number(f64),
     /// An RS274/NGC real value that is not a plain number (`[1+2]`, `#5`, `-#<x>`, `sin[30]`).
     Expr(ExprId),
+    /// An AxiOMA high-level-language expression (`X=ii*10`, `F=$iPerm[1]`), in [`Block::hll`].
+    Hll(crate::hll::HExprId),
 }
 
 /// One word: an address and its value.
@@ -424,6 +426,9 @@ pub struct Block {
     pub oword: Option<OWord>,
     /// Expression arena: nodes and the text each came from.
     pub exprs: Vec<(ExprNode, ColSpan)>,
+    /// AxiOMA high-level language: the statements of an HLL line, the expressions of ISO words
+    /// and of `MSG(expr)`.
+    pub hll: crate::hll::HllLine,
 }
 
 impl Block {
@@ -442,6 +447,7 @@ impl Block {
         self.assignments.clear();
         self.oword = None;
         self.exprs.clear();
+        self.hll.clear();
     }
 
     /// The text a column span covers.
@@ -489,5 +495,7 @@ impl Block {
             && self.message.is_none()
             && self.assignments.is_empty()
             && self.oword.is_none()
+            && !self.hll.statement
+            && self.hll.message.is_none()
     }
 }

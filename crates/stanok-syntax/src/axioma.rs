@@ -20,11 +20,14 @@
 //!    value is the table index). Value keywords take `=` and/or blanks before the value, and an index
 //!    before `=` (`LMAXS2=4500`, `LMAXS 5000`).
 //! 5. **Comments.** `( … )` closed on the same line, `;` and `//` to the end of the line, `/* … */`.
-//! 6. **High-level language.** The manual's C-like language (`int ii=0;`, `for(…)`, `{`, `sprintf`,
-//!    `$iPerm[1]`, `MSG(str)`) is not implemented yet: a line that starts with such a statement gets
-//!    ONE error covering the statement and nothing else on it is parsed (its `//` or `/* */` comment
-//!    is still recorded, so that the comment state stays right); an HLL expression as a value gets
-//!    one error for that word.
+//! 6. **High-level language** (spec §3 proposal 1, parsed by `hll_parse.rs`). A line whose
+//!    first item (after an optional block number) is `{`, `}`, `$…`, an HLL keyword (`int`,
+//!    `for`, `if`, `else`, `do`, `while`, `break`, …), a multi-letter name followed by `(`, `[`,
+//!    `=`, `++`/`--`, or a one-letter name followed by `++ -- += -= *= /= %= [` is an HLL line:
+//!    its statements go to `Block::hll`, `;` ends a statement there and is no comment. A plain
+//!    `i = 5` stays the ISO word `I=5` (one-letter names are address letters). In ISO blocks a
+//!    value after `=` that is not a plain number (`X=ii*10`, `F=$iPerm[1]`, `X=1/z`,
+//!    `X=(a+b)*2`) is an HLL expression (`Value::Hll`), and `MSG(expr)` takes an expression.
 //!
 //! Recovery: an error skips the offending word (up to the next blank or comment) and parsing goes
 //! on; an unclosed `(` or string ends the line. Nothing here allocates unless a diagnostic is made.
@@ -108,7 +111,42 @@ const HLL_WORDS: &[&[u8]] = &[
     b"SHORT",
 ];
 
-const HLL_STATEMENT: &str = "high-level language statements are not supported yet";
+/// A compound assignment operator (`+=`, `<<=`, …) at the start of `rest`.
+fn compound(rest: &[u8]) -> bool {
+    [
+        &b"+="[..],
+        b"-=",
+        b"*=",
+        b"/=",
+        b"%=",
+        b"&=",
+        b"|=",
+        b"^=",
+        b"<<=",
+        b">>=",
+    ]
+    .iter()
+    .any(|op| rest.starts_with(op))
+}
+
+/// After a one-letter name at the start of a block: `i++`, `i += 2`, `a[2] = 1` are HLL
+/// statements (a plain `i = 5` is the ISO word `I=5`).
+fn single_letter_statement(rest: &[u8]) -> bool {
+    [b"++", b"--", b"+=", b"-=", b"*=", b"/=", b"%="]
+        .iter()
+        .any(|op| rest.starts_with(*op))
+        || rest.first() == Some(&b'[')
+}
+
+/// After a number in `X=<value>`: an operator right after it (`X=1/z`, `Q=90*$dPerm[2]`) makes
+/// the value a high-level-language expression; `//` and `/*` are comments.
+fn continues_expression(rest: &[u8]) -> bool {
+    match rest.first() {
+        Some(b'/') => !matches!(rest.get(1), Some(b'/' | b'*')),
+        Some(c) => b"*%+-<>=!&|^?[".contains(c),
+        None => false,
+    }
+}
 
 fn keyword(ident: &[u8]) -> Option<Keyword> {
     KEYWORDS
@@ -443,8 +481,11 @@ impl Line<'_> {
             }
             None => {
                 let q = skip_blanks(b, p);
-                if b.get(q) == Some(&b'=') {
+                if b.get(q) == Some(&b'=') && b.get(q + 1) != Some(&b'=') {
                     return self.value_after_eq(Address::Letter(letter), start, q + 1);
+                }
+                if self.at_block_start() && single_letter_statement(&b[q..]) {
+                    return self.hll_statement(start);
                 }
                 self.missing_value(start, p)
             }
@@ -510,8 +551,10 @@ impl Line<'_> {
         let b = self.b;
         let p = skip_blanks(b, eq_end);
         if let Some(n) = parse_number(b, p, false) {
-            self.word(address, Value::Number(n.value), start, n.end);
-            return n.end;
+            if !continues_expression(&b[n.end..]) {
+                self.word(address, Value::Number(n.value), start, n.end);
+                return n.end;
+            }
         }
         let ident_end = letters_end(b, p);
         let ident = &b[p..ident_end];
@@ -550,6 +593,14 @@ impl Line<'_> {
                     }
                 }
             }
+            if close_char == b')' {
+                // `F=FTABLE(n+1)`: a computed index is a high-level-language call.
+                let mut scratch = Pendings(Vec::new());
+                if let Some((e, end)) = crate::hll_parse::word_value(b, p, self.out, &mut scratch) {
+                    self.word(address, Value::Hll(e), start, end);
+                    return end;
+                }
+            }
             let stop = self.bracketed_end(ident_end);
             self.diags.error(
                 "syntax::bad-number",
@@ -563,22 +614,27 @@ impl Line<'_> {
             );
             return stop;
         }
-        // Nothing, a comment, or the next address word (`S2= M3`): the value is missing.
-        let next_word = ident_end == p + 1 && !matches!(b.get(ident_end), Some(b'(' | b'['));
-        if p >= b.len() || matches!(b[p], b';' | b'(' | b'/') || next_word {
+        // Nothing, a comment, or the next address word (`S2= M3`: blanks after `=`, then a
+        // letter and a number): the value is missing.
+        let next_word = p > eq_end
+            && ident_end == p + 1
+            && b.get(ident_end)
+                .is_some_and(|c| c.is_ascii_digit() || matches!(c, b'-' | b'+' | b'.'));
+        // `X=(a+b)*2` is an expression; `X= (text)` a missing value and a comment.
+        let comment = matches!(b[p.min(b.len() - 1)], b';' | b'/')
+            || (b[p.min(b.len() - 1)] == b'(' && p > eq_end);
+        if p >= b.len() || comment || next_word {
             return self.missing_value(start, eq_end);
         }
-        let stop = self.expression_end(p);
-        self.diags.error(
-            "syntax::hll-not-supported",
-            format!(
-                "`{}`: expressions and variables are high-level language, not supported yet",
-                excerpt(b, start, stop)
-            ),
-            start,
-            stop,
-        );
-        stop
+        // `X=ii*10`, `F=$iPerm[1]`, `F=FTABLE(i)`: a high-level-language expression, evaluated
+        // when the block executes.
+        match crate::hll_parse::word_value(b, p, self.out, self.diags) {
+            Some((e, end)) => {
+                self.word(address, Value::Hll(e), start, end);
+                end
+            }
+            None => self.expression_end(p).max(p + 1),
+        }
     }
 
     #[inline(never)]
@@ -611,18 +667,13 @@ impl Line<'_> {
                     return len;
                 }
             },
-            _ => {
-                let stop = find_byte(b, p, b')').map_or(len, |q| q + 1);
-                self.diags.error(
-                    "syntax::hll-not-supported",
-                    "`MSG` of a string variable is high-level language, not supported yet",
-                    start,
-                    stop,
-                );
-                return stop;
-            }
+            _ => return self.message_expression(p),
         };
         let close = skip_blanks(b, after);
+        if b.get(p) == Some(&b'"') && b.get(close).is_some_and(|&c| c != b')') {
+            // `MSG("a" + s)`: an expression that starts with a string.
+            return self.message_expression(p);
+        }
         if b.get(close) != Some(&b')') {
             self.diags.error(
                 "syntax::unbalanced-brackets",
@@ -637,17 +688,34 @@ impl Line<'_> {
     }
 
     #[inline(never)]
+    /// `MSG(<expr>)`: the message is the value of a high-level-language expression.
+    fn message_expression(&mut self, p: usize) -> usize {
+        match crate::hll_parse::message_arg(self.b, p, self.out, self.diags) {
+            Some((e, end)) => {
+                self.out.hll.message = Some(e);
+                end
+            }
+            None => self.b.len(),
+        }
+    }
+
+    #[inline(never)]
     /// A multi-letter identifier that is no keyword.
     fn unknown_word(&mut self, start: usize, end: usize) -> usize {
         let b = self.b;
         if self.at_block_start() {
+            // HLL names may contain digits and `_` (`settable_zs`, `ii2`).
+            let mut end = end;
+            while end < b.len() && (b[end].is_ascii_alphanumeric() || b[end] == b'_') {
+                end += 1;
+            }
             let ident = &b[start..end];
             let next = skip_blanks(b, end);
             let call_or_assign = match b.get(next) {
                 Some(b'(' | b'[') => true,
                 Some(b'=') => b.get(next + 1) != Some(&b'='),
-                Some(&c @ (b'+' | b'-')) => b.get(next + 1) == Some(&c),
-                _ => false,
+                Some(&c @ (b'+' | b'-')) => b.get(next + 1) == Some(&c) || compound(&b[next..]),
+                _ => compound(&b[next..]),
             };
             if call_or_assign || HLL_WORDS.iter().any(|w| w.eq_ignore_ascii_case(ident)) {
                 return self.hll_statement(start);
@@ -664,43 +732,9 @@ impl Line<'_> {
     }
 
     #[inline(never)]
-    /// A high-level-language statement from `start`: one error, its comments kept, rest skipped.
+    /// High-level-language statements from `start` to the end of the line (`hll_parse.rs`).
     fn hll_statement(&mut self, start: usize) -> usize {
-        let b = self.b;
-        let len = b.len();
-        let mut i = start;
-        let mut in_string = false;
-        let mut end = len;
-        while i < len {
-            match b[i] {
-                b'"' => in_string = !in_string,
-                b'/' if !in_string && b.get(i + 1) == Some(&b'/') => {
-                    self.comment(CommentKind::Line, i + 2, len);
-                    end = i;
-                    break;
-                }
-                b'/' if !in_string && b.get(i + 1) == Some(&b'*') => {
-                    if let Some(q) = find(b, i + 2, b"*/") {
-                        self.comment(CommentKind::Block, i + 2, q);
-                        i = q + 2;
-                        continue;
-                    }
-                    self.comment(CommentKind::Block, i + 2, len);
-                    *self.in_comment = true;
-                    end = i;
-                    break;
-                }
-                _ => {}
-            }
-            i += 1;
-        }
-        let mut stmt_end = end;
-        while stmt_end > start && is_blank(b[stmt_end - 1]) {
-            stmt_end -= 1;
-        }
-        self.diags
-            .error("syntax::hll-not-supported", HLL_STATEMENT, start, stmt_end);
-        len
+        crate::hll_parse::statements(self.b, start, self.out, self.diags, self.in_comment)
     }
 
     #[inline(never)]

@@ -36,6 +36,7 @@
 //!
 //! `lexer.rs` (byte helpers, pending diagnostics), `number.rs` (numbers), `axioma.rs` (AxiOMA lines),
 //! `rs274.rs` (RS274/NGC lines and O-words), `expr.rs` (RS274/NGC real values and expressions),
+//! `hll.rs` / `hll_parse.rs` (the AxiOMA high-level language: tree and parser),
 //! `reader.rs` (streaming and seeking).
 //!
 //! ## Diagnostic codes
@@ -50,7 +51,10 @@
 //! | `syntax::unknown-word` | error | an unknown multi-letter word, or unknown RS274/NGC function |
 //! | `syntax::misplaced-word` | error | AxiOMA `FTABLE`/`STABLE` outside `F=`/`S=` |
 //! | `syntax::bad-message` | error | AxiOMA `MSG` not followed by `(` |
-//! | `syntax::hll-not-supported` | error | AxiOMA high-level-language statement or expression value |
+//! | `hll::syntax` | error | AxiOMA high-level language: a token where C expects another |
+//! | `hll::unsupported` | error | AxiOMA HLL keywords Stanok does not offer (`switch`, `goto`, …) |
+//! | `hll::not-assignable` | error | assignment or `++`/`--` to something not a variable |
+//! | `hll::too-deep` | error | an HLL expression nested deeper than 64 levels |
 //! | `syntax::unexpected-character` | error | a character that cannot start an item there |
 //! | `syntax::unbalanced-brackets` | error | `[` without `]`, stray `]`, `MSG(` without `)` |
 //! | `syntax::expression-too-deep` | error | RS274/NGC expression nested deeper than 64 levels |
@@ -67,6 +71,8 @@ mod ast;
 mod axioma;
 mod balt;
 mod expr;
+pub mod hll;
+mod hll_parse;
 pub mod labs;
 mod lexer;
 mod number;

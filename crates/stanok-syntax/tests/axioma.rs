@@ -285,13 +285,9 @@ fn feed_and_speed_tables() {
     single_error("F=FTABLE(#1)", AX, "syntax::bad-number", 1, "F=FTABLE(#1)");
     single_error("F=FTABLE", AX, "syntax::bad-number", 1, "F=FTABLE");
     single_error("G1 FTABLE(3)", AX, "syntax::misplaced-word", 4, "FTABLE(3)");
-    single_error(
-        "F=STABLE(2)",
-        AX,
-        "syntax::hll-not-supported",
-        1,
-        "F=STABLE(2)",
-    );
+    // Any other form is a high-level-language expression, evaluated by the interpreter.
+    let b = clean("F=STABLE(2)", AX);
+    assert!(matches!(b.words[0].value, Value::Hll(_)));
 }
 
 #[test]
@@ -303,64 +299,114 @@ fn unknown_words_are_skipped() {
     );
     let b = single_error("G1 XYZ=5 M3", AX, "syntax::unknown-word", 4, "XYZ=5");
     assert_eq!(words(&b).len(), 2);
-    // The same first on a line reads as a high-level-language assignment.
-    single_error(
-        "N10 XYZ=5 M3",
-        AX,
-        "syntax::hll-not-supported",
-        5,
-        "XYZ=5 M3",
-    );
+    // The same first on a line reads as a high-level-language assignment, which must end
+    // with `;` as in C.
+    single_error("N10 XYZ=5 M3", AX, "hll::syntax", 11, "M3");
 }
 
 #[test]
-fn high_level_language_lines_give_one_error() {
-    for (text, covered) in [
-        ("int ii=0;", "int ii=0;"),
-        ("for(ii=1; ii<8; ii++)", "for(ii=1; ii<8; ii++)"),
+fn high_level_language_lines_are_statements() {
+    use stanok_syntax::hll::{HExpr, HItem, HType};
+    for (text, kinds) in [
+        ("int ii=0;", "D"),
+        ("for(ii=1; ii<8; ii++)", "F"),
         ("{", "{"),
-        ("}", "}"),
         ("    }  ", "}"),
-        ("string str;          //создание переменной", "string str;"),
-        ("long num = 50;      // создание", "long num = 50;"),
+        ("string str;          //создание переменной", "D"),
+        ("long num = 50;      // создание", "D"),
         (
             "sprintf (str, \"value: %d\", num); //форматирование строки",
-            "sprintf (str, \"value: %d\", num);",
+            "E",
         ),
-        ("ii++;", "ii++;"),
-        ("$iPerm[1] = 5", "$iPerm[1] = 5"),
+        ("ii++;", "E"),
+        ("kk += 1; kk <<= 2; kk |= 1;", "EEE"),
+        ("i++;", "E"),
+        ("$iPerm[1] = 5;", "E"),
+        ("} else if (a >= 2 && !b) { x = a ? 1 : 2; }", "}LI{E}"),
+        ("do { k += 2; } while (k < 7);", "O{E}W"),
+        ("while (k > 0) k--;", "WE"),
+        ("break; continue; ;", "BC;"),
+        ("double p[3] = {1, 2.5, -3}, q;", "D"),
     ] {
-        let column = (text.len() - text.trim_start().len() + 1) as u32;
-        let b = single_error(text, AX, "syntax::hll-not-supported", column, covered);
-        assert!(b.words.is_empty(), "{text}");
+        let b = clean(text, AX);
+        assert!(b.hll.statement && b.words.is_empty(), "{text}");
+        let got: String = b
+            .hll
+            .items
+            .iter()
+            .map(|(i, _)| match i {
+                HItem::Decl { .. } => 'D',
+                HItem::Expr(_) => 'E',
+                HItem::If(_) => 'I',
+                HItem::Else => 'L',
+                HItem::While { .. } => 'W',
+                HItem::Do => 'O',
+                HItem::For { .. } => 'F',
+                HItem::Open => '{',
+                HItem::Close => '}',
+                HItem::Break => 'B',
+                HItem::Continue => 'C',
+                HItem::Empty => ';',
+            })
+            .collect();
+        assert_eq!(got, kinds, "{text}");
         if text.contains("//") {
             assert_eq!(b.comments.len(), 1);
             assert_eq!(b.comments[0].kind, CommentKind::Line);
         }
     }
-    let b = single_error(
-        "G1 X1 F=$iPerm[1] Y2",
-        AX,
-        "syntax::hll-not-supported",
-        7,
-        "F=$iPerm[1]",
+    // Precedence: `1 + 2 * 3 == 7` is `(1 + (2 * 3)) == 7`.
+    let b = clean("xx = 1 + 2 * 3 == 7;", AX);
+    let HItem::Expr(root) = &b.hll.items[0].0 else {
+        panic!()
+    };
+    let HExpr::Assign(None, _, value) = b.hll.expr(*root) else {
+        panic!()
+    };
+    assert_eq!(b.slice(b.hll.expr_span(*value)), "1 + 2 * 3 == 7");
+    let HExpr::Binary(op, lhs, _) = b.hll.expr(*value) else {
+        panic!()
+    };
+    assert_eq!(op.symbol(), "==");
+    assert_eq!(b.slice(b.hll.expr_span(*lhs)), "1 + 2 * 3");
+    let b = clean("const double d[2];", AX);
+    assert!(
+        matches!(&b.hll.items[0].0, HItem::Decl { ty: HType::Double, vars } if vars[0].len.is_some())
     );
-    assert_eq!(words(&b).len(), 3);
-    single_error(
-        "N10 MSG(str)        // выдача",
-        AX,
-        "syntax::hll-not-supported",
-        5,
-        "MSG(str)",
+    // Expression values of ISO words end where the expression ends.
+    let b = clean("G1 X=ii * 10 Y=$iPerm[1] (c) F=FTABLE(n+1) Z2", AX);
+    let spans: Vec<&str> = b.words.iter().map(|w| b.slice(w.span)).collect();
+    assert_eq!(
+        spans,
+        ["G1", "X=ii * 10", "Y=$iPerm[1]", "F=FTABLE(n+1)", "Z2"]
     );
-    // A `/*` in an HLL line still opens a multi-line comment.
-    let mut parser = BlockParser::new(AX);
-    let mut block = stanok_syntax::Block::default();
-    let mut diags = Vec::new();
-    parser.parse_line("int a; /* open", 1, 0, &mut block, &mut diags);
-    parser.parse_line("G1 X1", 2, 15, &mut block, &mut diags);
-    assert!(block.words.is_empty());
-    assert_eq!(diags.len(), 1);
+    assert_eq!(b.comments.len(), 1);
+    // `X=ii (comment)`: a blank before `(` in a word value is no call.
+    let b = clean("X=ii (comment) ; more", AX);
+    assert_eq!(b.comments.len(), 2);
+    let b = clean("N10 MSG(str)        // выдача", AX);
+    assert!(b.hll.message.is_some() && b.message.is_none());
+    let b = clean("MSG(\"a\" + s)", AX);
+    assert!(b.hll.message.is_some());
+    // Errors: one diagnostic with its span, the rest of the line skipped.
+    single_error("int x = ;", AX, "hll::syntax", 9, ";");
+    single_error("xx = 1", AX, "hll::syntax", 7, "");
+    single_error("s = \"open;", AX, "syntax::unclosed-string", 5, "\"open;");
+    single_error("for (i = 0; i < 3) {", AX, "hll::syntax", 18, ")");
+    single_error("switch (a) {", AX, "hll::unsupported", 1, "switch");
+    single_error("ii++ = 3;", AX, "hll::not-assignable", 1, "ii++");
+    single_error("G1 X=(a", AX, "hll::syntax", 8, "");
+    let b = clean("G1 X=(a+b)*2 Y1", AX);
+    assert_eq!(b.slice(b.words[1].span), "X=(a+b)*2");
+    // A `/*` in an HLL line still opens a multi-line comment, also after an error.
+    for first in ["int a; /* open", "int = 1; /* open"] {
+        let mut parser = BlockParser::new(AX);
+        let mut block = stanok_syntax::Block::default();
+        let mut diags = Vec::new();
+        parser.parse_line(first, 1, 0, &mut block, &mut diags);
+        parser.parse_line("G1 X1", 2, 15, &mut block, &mut diags);
+        assert!(block.words.is_empty(), "{first}");
+    }
 }
 
 #[test]
@@ -376,13 +422,8 @@ fn messages() {
     assert_eq!(words(&b), vec![(l('G'), n(1.0), "G1")]);
     single_error("MSG(\"open", AX, "syntax::unclosed-string", 5, "\"open");
     single_error("MSG \"x\"", AX, "syntax::bad-message", 1, "MSG");
-    single_error(
-        "MSG(\"x\" G1",
-        AX,
-        "syntax::unbalanced-brackets",
-        1,
-        "MSG(\"x\" ",
-    );
+    // After the string, anything but `)` continues an expression (`MSG("a" + s)`).
+    single_error("MSG(\"x\" G1", AX, "hll::syntax", 9, "G1");
 }
 
 #[test]
@@ -527,4 +568,25 @@ fn block_is_reset_between_lines() {
         ),
         (7, 103, 4)
     );
+}
+
+#[test]
+fn hll_nesting_is_bounded_with_a_diagnostic() {
+    // 60 levels are fine; past 64 (brackets, unary operators, in statements and in word values)
+    // one `hll::too-deep` and no deeper recursion, however long the line.
+    clean(
+        &format!("int a = {}1{};", "(".repeat(60), ")".repeat(60)),
+        AX,
+    );
+    for text in [
+        format!("int a = {}1{};", "(".repeat(70), ")".repeat(70)),
+        format!("int a = {}1;", "-".repeat(10_000)),
+        format!("G1 X={}", "(".repeat(100_000)),
+        format!("MSG({}\"x\")", "!".repeat(500)),
+    ] {
+        let (_, diags) = one(&text, AX);
+        assert_eq!(diags.len(), 1, "{diags:?}");
+        assert_eq!(diags[0].code.to_string(), "hll::too-deep");
+        assert!(diags[0].message.contains("64"), "{}", diags[0].message);
+    }
 }

@@ -112,6 +112,11 @@ pub struct MachineArgs {
     /// always passed on as OPTIONAL_PROGRAM_STOP, as LinuxCNC's interpreter does).
     #[arg(long)]
     pub skip_optional_stops: bool,
+    /// Passes one loop may make before the run stops with a loop-limit error (AxiOMA `for`/`while`/
+    /// `do`, RS274/NGC `o… while`/`repeat`), so that an endless loop ends with a diagnostic instead of
+    /// running forever. Default 1,000,000.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_loop_iterations: Option<u64>,
     /// The simulated probe's world: where a probe move (G38.n, G75) makes contact, as a half-space
     /// of machine coordinates, e.g. `z<=-3.2` (a surface at Z −3.2 mm, contact below it) or
     /// `x>=50`; `z=-3.2` means `z<=-3.2`. Repeat for several surfaces. Without one the probe never
@@ -187,7 +192,7 @@ pub fn parse_probe_surface(s: &str) -> Result<stanok_canon::setup::ProbeSurface,
     })
 }
 
-/// A LinuxCNC parameter file kept from run to run.
+/// Stored parameters kept from run to run (a LinuxCNC parameter file, AxiOMA's $iPerm/$dPerm).
 #[derive(Debug, Clone, Args)]
 pub struct VarArgs {
     /// RS274/NGC: a LinuxCNC parameter file (.var) kept between runs, as LinuxCNC keeps its
@@ -196,6 +201,11 @@ pub struct VarArgs {
     /// (in --linuxcnc-units).
     #[arg(long, value_name = "FILE", conflicts_with = "offsets")]
     pub var: Option<PathBuf>,
+    /// AxiOMA: the permanent parameters $iPerm[n] / $dPerm[n] kept between runs, as the control
+    /// keeps them: a TOML file with [iperm] and [dperm] (`1 = 1500`), read before the run in place
+    /// of the machine's (if it exists), written back after it with what the program left.
+    #[arg(long, value_name = "FILE")]
+    pub perm: Option<PathBuf>,
 }
 
 /// How `stanok run` moves the simulated machine.

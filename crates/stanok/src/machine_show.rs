@@ -210,6 +210,22 @@ pub fn text(m: &MachineData, sources: &Sources) -> String {
         units_name(m.linuxcnc_units)
     );
     let _ = writeln!(s, "M functions {} profile (AxiOMA)", m.m_functions);
+    for (label, table, unit) in [
+        ("FTABLE", &m.feed_table, "mm/min"),
+        ("STABLE", &m.speed_table, "rev/min"),
+    ] {
+        if !table.is_empty() {
+            let entries: Vec<String> = table
+                .iter()
+                .map(|(i, v)| format!("{i}: {}", num(*v)))
+                .collect();
+            let _ = writeln!(
+                s,
+                "{label}      {} {unit} (others: the manual's defaults)",
+                entries.join(", ")
+            );
+        }
+    }
     axes_table(&mut s, &m.axes);
 
     let o = &m.control.offsets;
@@ -305,6 +321,8 @@ struct JsonMachine<'a> {
     arc_tolerance: f64,
     linuxcnc_units: &'static str,
     m_functions: &'a str,
+    feed_table: &'a BTreeMap<u32, f64>,
+    speed_table: &'a BTreeMap<u32, f64>,
     axes: &'a [AxisData],
 }
 
@@ -359,6 +377,8 @@ pub fn json(m: &MachineData, sources: &Sources) -> String {
             arc_tolerance: m.arc_tolerance,
             linuxcnc_units: units_name(m.linuxcnc_units),
             m_functions: &m.m_functions,
+            feed_table: &m.feed_table,
+            speed_table: &m.speed_table,
             axes: &m.axes,
         },
         sources,

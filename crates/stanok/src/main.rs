@@ -14,6 +14,7 @@ mod cli;
 mod cutting;
 mod diagnostics;
 mod machine_show;
+mod perm;
 mod progress;
 mod report;
 mod tool_axis;
@@ -186,8 +187,13 @@ fn interpreter(
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }
+    opts.axioma
+        .set_table_entries(&machine.feed_table, &machine.speed_table);
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
+    if let Some(n) = args.max_loop_iterations {
+        opts.max_loop_iterations = n;
+    }
     opts.strip_fixture_comments = args.strip_fixture_comments;
     opts.labs.correctors.extend(args.corrector.iter().copied());
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
@@ -278,9 +284,19 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
     };
     let (mut interp, _) = interpreter(file, dialect, &machine, true, args)?;
     let mut errors = Vec::new();
+    // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
+    // error is listed once.
+    let mut seen = std::collections::HashSet::new();
     for item in interp.by_ref() {
         if let Err(d) = item {
-            errors.push(d);
+            if seen.insert((
+                d.code.to_string(),
+                d.span.start,
+                d.span.end,
+                d.message.clone(),
+            )) {
+                errors.push(d);
+            }
         }
     }
     let mut all: Vec<Diagnostic> = interp.take_warnings();
@@ -305,12 +321,14 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
 
 /// `--var FILE`: the machine with its offsets replaced by the parameter file's, if the file exists
 /// (a missing file is created after the run, from the machine's offsets). Only for RS274/NGC.
+/// `--perm FILE` (AxiOMA) is read here too (`perm.rs`).
 fn load_var(
     file: &Path,
     dialect: Option<Dialect>,
     var: &VarArgs,
     machine: &mut MachineData,
 ) -> Result<(), ExitCode> {
+    perm::load(file, dialect, var, machine)?;
     let Some(path) = &var.var else {
         return Ok(());
     };
@@ -337,16 +355,18 @@ fn load_var(
     Ok(())
 }
 
-/// `--var FILE` after the run: writes back what the program left, as LinuxCNC does on exit.
+/// `--var FILE` after the run: writes back what the program left, as LinuxCNC does on exit; the
+/// same for `--perm FILE`.
 fn save_var<R: std::io::BufRead + std::io::Seek>(
     var: &VarArgs,
     interp: &Interpreter<R>,
     units: stanok_canon::LengthUnits,
 ) -> Result<(), String> {
+    let c = interp.control_data();
+    perm::save(var, &c)?;
     let Some(path) = &var.var else {
         return Ok(());
     };
-    let c = interp.control_data();
     let stored = StoredOffsets {
         offsets: c.offsets,
         parameters: c.parameters,

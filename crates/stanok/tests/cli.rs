@@ -216,3 +216,103 @@ fn the_optional_stop_switch_decides_whether_m01_stops() {
     assert_eq!(code, 0, "{err}");
     assert_eq!(off.matches("\"program_stop\"").count(), 0, "{off}");
 }
+
+#[test]
+fn axioma_hll_programs_run_and_their_errors_are_located() {
+    // The manual's sprintf fragment: the message "value: 50" at N10 (line 19).
+    let file = corpus("axioma/s2_3-sprintf-msg-fragment.nc");
+    let (code, out, _) = stanok(&["run", &file]);
+    assert_eq!(code, 0);
+    assert!(out.contains("line    19  value: 50"), "{out}");
+    // An undeclared variable in a word value: file:line:column of the name.
+    let bad = temp("hll-bad.nc", "int ab = 2;\nG01 X=ab+cd F100\nM30\n");
+    let (code, _, err) = stanok(&["check", &bad]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("hll-bad.nc:2:10") && err.contains("hll::undeclared"),
+        "{err}"
+    );
+    // In check mode a bad block in a loop is listed once, not once per pass.
+    let looped = temp(
+        "hll-looped.nc",
+        "for (int i = 0; i < 3; i++) {\nG01 X=i*zz F100\n}\nM30\n",
+    );
+    let (code, _, err) = stanok(&["check", &looped]);
+    assert_eq!(code, 1);
+    assert_eq!(err.matches("hll::undeclared").count(), 1, "{err}");
+    assert!(
+        err.contains("hll-looped.nc:2:9") && err.contains("1 error(s)"),
+        "{err}"
+    );
+    // An endless loop stops at the configured limit with a diagnostic, after exactly that many
+    // passes of its ISO block.
+    let endless = temp(
+        "hll-endless.nc",
+        "int k = 0;\nwhile (k >= 0) {\nk++;\nG01 X=k F1000\n}\nM30\n",
+    );
+    let (code, out, err) = stanok(&["run", &endless, "--max-loop-iterations", "50"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(err.contains("hll::loop-limit"), "{err}");
+    assert!(out.contains("X50.000"), "{out}");
+}
+
+#[test]
+fn perm_file_keeps_iperm_and_dperm_between_runs() {
+    let program = temp(
+        "perm-count.nc",
+        "$iPerm[1] = $iPerm[1] + 1;\n$dPerm[2] = $dPerm[2] + 0.5;\n\
+         G01 X=$iPerm[1]*10 Y=$dPerm[2] F100\nM30\n",
+    );
+    let perm = temp("perm.toml", "");
+    std::fs::remove_file(&perm).unwrap();
+    // No file yet: the machine's (none: 0) are used, and the file is written after the run.
+    let (code, out, err) = stanok(&["run", &program, "--perm", &perm]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(out.contains("Final       X10.000 Y0.500"), "{out}");
+    assert_eq!(
+        std::fs::read_to_string(&perm).unwrap(),
+        "[iperm]\n1 = 1\n\n[dperm]\n2 = 0.5\n\n"
+    );
+    // The second run starts from what the first left.
+    let (code, out, _) = stanok(&["run", &program, "--perm", &perm]);
+    assert_eq!(code, 0);
+    assert!(out.contains("Final       X20.000 Y1.000"), "{out}");
+    // A file with anything else is refused at its line; RS274/NGC programs have no $iPerm.
+    let bad = temp(
+        "perm-bad.toml",
+        "[iperm]\n1 = 5\n[parameters]\n5221 = 1.0\n",
+    );
+    let (code, _, err) = stanok(&["run", &program, "--perm", &bad]);
+    assert_eq!(code, 1);
+    assert!(err.contains("perm-bad.toml:3:"), "{err}");
+    let ngc = temp("perm.ngc", "G0 X1\nM2\n");
+    assert_eq!(stanok(&["run", &ngc, "--perm", &perm]).0, 2);
+}
+
+#[test]
+fn ftable_and_stable_read_the_machine_data_tables() {
+    // The mill with FTABLE entry 20 and STABLE entry 2 configured; the others keep the manual's.
+    let mill = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../machines/mill.toml"
+    ))
+    .unwrap();
+    let machine = temp(
+        "tables.toml",
+        &format!("{mill}\n[feed_table]\n20 = 4321.0\n\n[speed_table]\n2 = 777.0\n"),
+    );
+    let file = corpus("axioma/s6_1-feed-table-ftable-fragment-3.nc");
+    let (code, out, err) = stanok(&["canon", &file, "--machine", &machine]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.contains("\"kind\":\"straight_feed\"") && out.contains("\"feed\":4321.0}"),
+        "{out}"
+    );
+    let program = temp("tables.nc", "S=STABLE(2) M3\nS=STABLE(3) M3\nM30\n");
+    let (code, out, _) = stanok(&["canon", &program, "--machine", &machine]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("\"rpm\":777.0") && out.contains("\"rpm\":1500.0"),
+        "{out}"
+    );
+}

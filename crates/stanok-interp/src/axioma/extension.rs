@@ -88,6 +88,28 @@ impl Default for AxiomaMachineParams {
     }
 }
 
+impl AxiomaMachineParams {
+    /// Replaces the table entries the machine data gives (`[feed_table]`, `[speed_table]`:
+    /// index 0…127 → value); the others keep their defaults. Indices past the table are ignored
+    /// (the machine data refuses them).
+    pub fn set_table_entries<'a>(
+        &mut self,
+        feed: impl IntoIterator<Item = (&'a u32, &'a f64)>,
+        speed: impl IntoIterator<Item = (&'a u32, &'a f64)>,
+    ) {
+        for (table, entries) in [
+            (&mut self.feed_table, feed.into_iter().collect::<Vec<_>>()),
+            (&mut self.speed_table, speed.into_iter().collect()),
+        ] {
+            for (&i, &v) in entries {
+                if let Some(slot) = table.get_mut(i as usize) {
+                    *slot = v;
+                }
+            }
+        }
+    }
+}
+
 /// Compensation, cycle and release state of one AxiOMA run.
 #[derive(Debug, Clone, Default)]
 pub struct Extension {

@@ -370,6 +370,8 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     if let Some(text) = cx.block.message {
         let text = cx.block.slice(text).to_string();
         cx.out.push(Canon::Message { text });
+    } else if let Some(text) = cx.words.message.take() {
+        cx.out.push(Canon::Message { text });
     }
     // 2. Modal G codes.
     let mut motion_code: Option<(MotionMode, ColSpan)> = None;

@@ -205,3 +205,36 @@ proptest! {
         }
     }
 }
+
+/// The case the property test once drew (to the printed 3 decimals): a cubic piece that turns
+/// sharply, where the sampled flatness test let a chord deviate 0.109 mm at a 0.1 mm tolerance.
+/// With the convex-hull bound no point of the curve is farther than the tolerance from the chords.
+#[test]
+fn a_sharply_turning_piece_stays_within_the_chord_tolerance() {
+    let pts: Vec<Vec3> = vec![
+        [-8.797, -41.097, 0.0],
+        [18.089, -29.136, -6.176],
+        [-72.062, 85.509, 9.823],
+        [27.797, -39.214, -9.129],
+        [0.0, 0.0, 0.0],
+    ];
+    let knots = bezier_knots(3);
+    let w = [1.0; 4];
+    for tol in [0.1, 0.01, 0.001] {
+        for seg in akima_beziers(&pts) {
+            let c = Nurbs::new(3, &seg, &w, &knots);
+            let mut poly = Vec::new();
+            c.tessellate(tol, &mut poly);
+            let mut worst: f64 = 0.0;
+            for k in 0..=20_000 {
+                let p = c.point_at(k as f64 / 20_000.0);
+                let d = poly
+                    .windows(2)
+                    .map(|s| stanok_geom::distance_to_segment(p, s[0], s[1]))
+                    .fold(f64::INFINITY, f64::min);
+                worst = worst.max(d);
+            }
+            assert!(worst <= tol, "deviation {worst} > {tol}");
+        }
+    }
+}

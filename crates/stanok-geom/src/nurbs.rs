@@ -266,8 +266,9 @@ fn subdivide_bezier(h: &[Homogeneous], tol: f64, depth: u32, out: &mut Vec<Vec3>
         left[r] = work[0];
         right[n - 1 - r] = work[n - 1 - r];
         for i in 0..n - 1 - r {
-            for c in 0..4 {
-                work[i][c] = 0.5 * (work[i][c] + work[i + 1][c]);
+            let next = work[i + 1];
+            for (c, value) in work[i].iter_mut().enumerate() {
+                *value = 0.5 * (*value + next[c]);
             }
         }
     }

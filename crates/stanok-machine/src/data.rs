@@ -709,6 +709,23 @@ impl MachineData {
             .and_then(|k| k.build().ok().flatten())
     }
 
+    /// The kinematics the interpreter may use for tool-centre-point control: the machine's, when
+    /// its data allows that control (`tcp_allowed`); None = not allowed (AxiOMA error 654).
+    pub fn tcp_kinematics(&self) -> Option<FiveAxis> {
+        self.kinematics
+            .as_ref()
+            .filter(|k| k.tcp_allowed)
+            .and_then(|_| self.five_axis())
+    }
+
+    /// Mazatrol tool tip point control programs X Y Z in the workpiece frame (machine data
+    /// `ttpc_frame = "workpiece"`) rather than the table frame.
+    pub fn ttpc_workpiece_frame(&self) -> bool {
+        self.kinematics
+            .as_ref()
+            .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece)
+    }
+
     /// The default 3-axis mill: X, Y ±500 mm, Z ±300 mm, 10 000 mm/min per axis and rapid, 5 000
     /// mm/min feed, 1 000 mm/s², 20 000 mm/s³; no stored data. Equal to `machines/mill.toml`.
     pub fn default_mill() -> MachineData {

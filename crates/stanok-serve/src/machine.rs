@@ -310,6 +310,9 @@ pub fn interp_options(
     opts.axioma
         .set_table_entries(&machine.feed_table, &machine.speed_table);
     opts.subroutine_path = subroutine_path.to_vec();
+    // Tool-centre-point control (TRAORI, CVU, G43.4/G43.5) as on the command line.
+    opts.five_axis = machine.tcp_kinematics();
+    opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
     // M01 reaches the machine thread, which decides with the operator's switch.
     opts.optional_stop = true;
     opts
@@ -428,6 +431,7 @@ fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, j
         shared.clone(),
         config.time_scale,
         abandoned.clone(),
+        config.machine.five_axis(),
     ));
     let mut search = job.search_line.map(BlockSearch::new);
     let mark_line = job.search_line.or(job.mark_line);
@@ -621,6 +625,7 @@ fn setpoint_sink(
     shared: Arc<Shared>,
     time_scale: f64,
     abandoned: Rc<Cell<bool>>,
+    kinematics: Option<stanok_kin::FiveAxis>,
 ) -> Box<dyn FnMut(&Setpoint)> {
     let mut pacer = Pacer {
         scale: time_scale,
@@ -643,8 +648,13 @@ fn setpoint_sink(
                 controls.hold.set(false);
             }
         }
+        // The tool axis from the rotary axes' positions (a 3-axis machine: +Z, as at start).
+        let tool_axis = kinematics.as_ref().map_or([0.0, 0.0, 1.0], |k| {
+            k.tool_vector_at(&stanok_canon::Pose::from_array(sp.position))
+        });
         shared.publish(|s| {
             s.machine_position = sp.position;
+            s.tool_axis = tool_axis;
             s.work_position = s.state.work_of(&sp.position);
             s.line = sp.line;
             s.elapsed_s = sp.t;

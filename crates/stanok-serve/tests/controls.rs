@@ -253,3 +253,37 @@ fn feed_override_scales_the_feed_moves() {
         400
     );
 }
+
+/// On a 5-axis machine the panel runs tool-centre-point programs as the command line does
+/// (TRAORI allowed by the machine data, not error 654) and shows the tool axis from the rotary
+/// axes: after orienting to the vector (0, 0.6, 0.8) on `5axis-bc-head` it is that vector (1e-9),
+/// with B = 36.87° and C = 90° (`stanok run` gives the same).
+#[test]
+fn a_five_axis_program_runs_and_the_tool_axis_follows_the_rotary_axes() {
+    let mut o = options(temp_programs("five-axis"));
+    o.machine = stanok_machine::MachineData::builtin("5axis-bc-head").unwrap();
+    let server = Server::start(o);
+    let idle = server.state();
+    assert_eq!(
+        [0, 1, 2].map(|i| idle["tool_axis"][i].as_f64().unwrap()),
+        [0.0, 0.0, 1.0]
+    );
+    load(
+        &server,
+        "orient.nc",
+        "G0 X0 Y0 Z100 B0 C0\nTRAORI\nG1 X10 Y0 Z50 A3=0 B3=0.6 C3=0.8 F1000\nTRAFOOF\nM30\n",
+    );
+    start(&server);
+    let s = server.wait_for(&["finished", "alarm"], LONG);
+    assert_eq!(s["run_state"], "finished", "{s}");
+    let axis = [0, 1, 2].map(|i| s["tool_axis"][i].as_f64().unwrap());
+    for (got, want) in axis.iter().zip([0.0, 0.6, 0.8]) {
+        assert!((got - want).abs() < 1e-9, "tool axis {axis:?}");
+    }
+    let b = s["machine_position"][4].as_f64().unwrap();
+    let c = s["machine_position"][5].as_f64().unwrap();
+    assert!(
+        (b - 0.8f64.acos().to_degrees()).abs() < 1e-6 && (c - 90.0).abs() < 1e-6,
+        "{s}"
+    );
+}

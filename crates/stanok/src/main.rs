@@ -197,15 +197,8 @@ fn interpreter(
     opts.strip_fixture_comments = args.strip_fixture_comments;
     opts.labs.correctors.extend(args.corrector.iter().copied());
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
-    opts.five_axis = machine
-        .kinematics
-        .as_ref()
-        .filter(|k| k.tcp_allowed)
-        .and_then(|_| machine.five_axis());
-    opts.ttpc_workpiece_frame = machine
-        .kinematics
-        .as_ref()
-        .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece);
+    opts.five_axis = machine.tcp_kinematics();
+    opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
     Ok((Interpreter::new(BufReader::new(f), opts), dialect))
 }
 

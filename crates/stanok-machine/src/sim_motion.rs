@@ -91,21 +91,41 @@ pub struct SpindleRange {
 /// The motion part of a simulated run (module doc).
 pub(crate) struct MotionRun {
     stage: MotionStage,
-    monitor: TraceMonitor,
-    travel: [Option<(char, f64, f64)>; 9],
+    checks: SetpointChecks,
     limits: [AxisLimit; 9],
     observer: Option<SetpointSink>,
-    travel_violations: Vec<LoggedEvent>,
-    travel_violation_count: u64,
     feed_override: f64,
     cycle_time: Option<f64>,
+}
+
+/// What the machine does with every setpoint, wherever the stage releases it (a command, a drain,
+/// the end): one place, so no path of release can skip a check.
+struct SetpointChecks {
+    monitor: TraceMonitor,
+    travel: [Option<(char, f64, f64)>; 9],
+    travel_violations: Vec<LoggedEvent>,
+    travel_violation_count: u64,
     spindle_rpm_range: [Option<(f64, f64)>; 4],
+}
+
+impl SetpointChecks {
+    /// Measures the setpoint, checks the travel, widens the spindle ranges.
+    fn observe(&mut self, sp: &Setpoint) {
+        execute(
+            sp,
+            &mut self.monitor,
+            &self.travel,
+            &mut self.travel_violations,
+            &mut self.travel_violation_count,
+        );
+        track_spindles(&mut self.spindle_rpm_range, &sp.spindle_rpm);
+    }
 }
 
 impl std::fmt::Debug for MotionRun {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("MotionRun")
-            .field("setpoints", &self.monitor.count())
+            .field("setpoints", &self.checks.monitor.count())
             .finish_non_exhaustive()
     }
 }
@@ -132,15 +152,17 @@ impl MotionRun {
         }
         MotionRun {
             stage,
-            monitor: TraceMonitor::new(limits, config.servo_period),
-            travel,
+            checks: SetpointChecks {
+                monitor: TraceMonitor::new(limits, config.servo_period),
+                travel,
+                travel_violations: Vec::new(),
+                travel_violation_count: 0,
+                spindle_rpm_range: [None; 4],
+            },
             limits,
             observer: None,
-            travel_violations: Vec::new(),
-            travel_violation_count: 0,
             feed_override: config.feed_override,
             cycle_time: None,
-            spindle_rpm_range: [None; 4],
         }
     }
 
@@ -152,23 +174,12 @@ impl MotionRun {
     pub(crate) fn apply(&mut self, cmd: &Canon, line: u32) {
         let Self {
             stage,
-            monitor,
-            travel,
+            checks,
             observer,
-            travel_violations,
-            travel_violation_count,
-            spindle_rpm_range,
             ..
         } = self;
         let mut sink = |sp: &Setpoint| {
-            execute(
-                sp,
-                monitor,
-                travel,
-                travel_violations,
-                travel_violation_count,
-            );
-            track_spindles(spindle_rpm_range, &sp.spindle_rpm);
+            checks.observe(sp);
             if let Some(o) = observer.as_mut() {
                 o(sp);
             }
@@ -180,21 +191,12 @@ impl MotionRun {
     pub(crate) fn drain(&mut self) {
         let Self {
             stage,
-            monitor,
-            travel,
+            checks,
             observer,
-            travel_violations,
-            travel_violation_count,
             ..
         } = self;
         let mut sink = |sp: &Setpoint| {
-            execute(
-                sp,
-                monitor,
-                travel,
-                travel_violations,
-                travel_violation_count,
-            );
+            checks.observe(sp);
             if let Some(o) = observer.as_mut() {
                 o(sp);
             }
@@ -225,23 +227,12 @@ impl MotionRun {
         }
         let Self {
             stage,
-            monitor,
-            travel,
+            checks,
             observer,
-            travel_violations,
-            travel_violation_count,
-            spindle_rpm_range,
             ..
         } = self;
         let mut sink = |sp: &Setpoint| {
-            execute(
-                sp,
-                monitor,
-                travel,
-                travel_violations,
-                travel_violation_count,
-            );
-            track_spindles(spindle_rpm_range, &sp.spindle_rpm);
+            checks.observe(sp);
             if let Some(o) = observer.as_mut() {
                 o(sp);
             }
@@ -251,13 +242,14 @@ impl MotionRun {
 
     /// The motion fields of the report.
     pub(crate) fn fill(&self, r: &mut crate::RunReport) {
-        r.cycle_time_s = self.cycle_time.unwrap_or(self.monitor.last_t);
+        let c = &self.checks;
+        r.cycle_time_s = self.cycle_time.unwrap_or(c.monitor.last_t);
         r.servo_period_s = self.stage.servo_period();
-        r.setpoints = self.monitor.count();
+        r.setpoints = c.monitor.count();
         r.feed_override_percent = self.feed_override * 100.0;
         r.spindles = (0..4u8)
             .filter_map(|i| {
-                let (min_rpm, max_rpm) = self.spindle_rpm_range[i as usize]?;
+                let (min_rpm, max_rpm) = c.spindle_rpm_range[i as usize]?;
                 Some(SpindleRange {
                     spindle: i,
                     min_rpm,
@@ -269,8 +261,8 @@ impl MotionRun {
         r.max_path_deviation_mm = stats.max_deviation;
         r.axes = (0..9)
             .filter_map(|i| {
-                let (axis, ..) = self.travel[i]?;
-                let (l, p) = (self.limits[i], self.monitor.peaks[i]);
+                let (axis, ..) = c.travel[i]?;
+                let (l, p) = (self.limits[i], c.monitor.peaks[i]);
                 Some(AxisMotion {
                     axis,
                     max_velocity: l.velocity,
@@ -285,8 +277,8 @@ impl MotionRun {
                 })
             })
             .collect();
-        let mut v: Vec<LoggedEvent> = self.travel_violations.clone();
-        for x in &self.monitor.violations {
+        let mut v: Vec<LoggedEvent> = c.travel_violations.clone();
+        for x in &c.monitor.violations {
             v.push(LoggedEvent {
                 line: x.line,
                 text: format!(
@@ -306,7 +298,7 @@ impl MotionRun {
         }
         r.violations = v;
         r.violation_count =
-            self.travel_violation_count + self.monitor.violation_count + stats.tolerance_violations;
+            c.travel_violation_count + c.monitor.violation_count + stats.tolerance_violations;
     }
 }
 

@@ -344,3 +344,43 @@ fn feed_override_scales_the_planned_time() {
     assert!((r.cycle_time_s - 1.1).abs() < 1e-9, "{}", r.cycle_time_s);
     assert_eq!(r.feed_override_percent, 200.0);
 }
+
+/// Setpoints released by a drain (an operator's single block or program stop) count like any
+/// other: here every setpoint of a G96 cut from X50 to X20 (200 m/min) comes out of the drain, and
+/// the report's spindle range spans law(50) = 636.62 … law(20) = 1591.55 rev/min (1e-6). When the
+/// drain skipped the tracking, only the final setpoint counted: 1591.55 … 1591.55.
+#[test]
+fn a_drain_counts_its_setpoints_in_the_spindle_range() {
+    let law = |x: f64| 200_000.0 / (2.0 * PI * x);
+    let mut sim = SimMachine::new(MachineData::default_mill());
+    for c in [
+        init(p(50.0, 0.0, 0.0)),
+        Canon::SetSpindleSpeed {
+            spindle: 0,
+            rpm: 500.0,
+        },
+        Canon::SetSurfaceSpeedLaw {
+            spindle: 0,
+            law: Some(stanok_canon::SurfaceSpeedLaw {
+                mm_per_min: 200_000.0,
+                axis: 0,
+                centre: 0.0,
+                min_rpm: 0.0,
+                max_rpm: 3000.0,
+            }),
+        },
+        Canon::StartSpindle {
+            spindle: 0,
+            direction: stanok_canon::SpindleDirection::Clockwise,
+        },
+        Canon::StraightFeed(line(p(50.0, 0.0, 0.0), p(20.0, 0.0, 0.0), 600.0)),
+    ] {
+        sim.apply(&at(1, c)).unwrap();
+    }
+    sim.drain_motion();
+    let report = sim.finish();
+    assert_eq!(report.spindles.len(), 1, "{:?}", report.spindles);
+    let s = &report.spindles[0];
+    assert!((s.min_rpm - law(50.0)).abs() < 1e-6, "{s:?}");
+    assert!((s.max_rpm - law(20.0)).abs() < 1e-6, "{s:?}");
+}

@@ -42,7 +42,7 @@
 use crate::control::{control_toml_parts, toml_float, toml_string, RawControl};
 use crate::control::{RawG92, RawHome, RawPose, RawTool, RawWorkpiece, RawZeroOffset};
 use serde::{Deserialize, Serialize};
-use stanok_canon::setup::{ControlData, OffsetTables, ToolTable};
+use stanok_canon::setup::ControlData;
 use stanok_canon::{Diagnostic, LengthUnits, Span, AXIS_LETTERS};
 use stanok_kin::{FiveAxis, KinematicsData};
 use std::collections::BTreeMap;
@@ -50,6 +50,13 @@ use std::fmt::Write;
 use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
+
+mod sections;
+mod stored;
+use sections::{rate_table, validate_kinematics};
+pub use stored::{
+    offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, PermParameters, StoredOffsets,
+};
 
 /// Diagnostic code of every machine-data problem.
 pub const BAD_DATA: &str = "machine::bad-data";
@@ -522,76 +529,6 @@ impl RawFile {
     }
 }
 
-/// The `[kinematics]` section checked against the machine type and the `[[axis]]` list: every
-/// rotary orientation axis must be an axis of the machine, and takes its travel limits and
-/// velocity from there (so they are given once).
-fn validate_kinematics(
-    k: &Spanned<KinematicsData>,
-    axes: &[AxisData],
-) -> Result<KinematicsData, Invalid> {
-    let mut data = k.get_ref().clone();
-    if let (Some(fat), true) = (&data.fat, data.rotary.is_empty()) {
-        let machine = stanok_kin::from_fat(fat).map_err(|e| {
-            (
-                format!("kinematics: FAT error {}: {}", e.code, e.message),
-                k.span(),
-            )
-        })?;
-        data.rotary = machine.rotary_axes().cloned().collect();
-    }
-    for r in &mut data.rotary {
-        let Some(axis) = axes.iter().find(|a| a.name == r.name.to_ascii_uppercase()) else {
-            return Err((
-                format!(
-                    "kinematics: rotary axis {} is not one of the machine's [[axis]] entries",
-                    r.name
-                ),
-                k.span(),
-            ));
-        };
-        r.min = axis.min;
-        r.max = axis.max;
-        r.max_velocity = axis.max_velocity;
-    }
-    data.build()
-        .map_err(|e| (format!("kinematics: {e}"), k.span()))?;
-    Ok(data)
-}
-
-/// `[feed_table]` / `[speed_table]`: `i = value`, i = 0…127 (the AxiOMA channel tables have 128
-/// entries), value a positive finite rate.
-fn rate_table(
-    table: &Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
-    name: &str,
-) -> Result<BTreeMap<u32, f64>, Invalid> {
-    let mut out = BTreeMap::new();
-    for (key, v) in table.iter().flat_map(|t| t.get_ref()) {
-        let text = key.get_ref();
-        let i = text
-            .trim()
-            .parse::<u32>()
-            .ok()
-            .filter(|i| *i <= 127)
-            .ok_or_else(|| {
-                (
-                    format!("[{name}] index must be 0…127, not \"{text}\""),
-                    key.span(),
-                )
-            })?;
-        let value = *v.get_ref();
-        if !(value.is_finite() && value > 0.0) {
-            return Err((
-                format!("[{name}] {i} must be a positive number, not {value}"),
-                v.span(),
-            ));
-        }
-        if out.insert(i, value).is_some() {
-            return Err((format!("[{name}] {i} is defined twice"), key.span()));
-        }
-    }
-    Ok(out)
-}
-
 /// Line and column (1-based, column in characters) of byte `offset` in `text`.
 pub(crate) fn line_column(text: &str, offset: usize) -> (u32, u32) {
     let mut end = offset.min(text.len());
@@ -638,50 +575,6 @@ pub(crate) fn read_text(path: &Path, what: &str) -> Result<String, Diagnostic> {
             Span::default(),
         )
     })
-}
-
-/// Reads a tool file in machine-data TOML: only `[[tool]]` sections. `file_name` is only used in
-/// the diagnostic's note.
-pub fn tools_from_toml_str(text: &str, file_name: &str) -> Result<ToolTable, Diagnostic> {
-    let raw = RawFile::parse(text, file_name)?;
-    raw.check_fragment(Fragment::Tools)
-        .and_then(|()| raw.control().validate())
-        .map(|c| c.tools)
-        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
-}
-
-/// Offset tables and the other numbered parameters: what `--offsets` replaces.
-#[derive(Debug, Clone, PartialEq, Default, Serialize)]
-pub struct StoredOffsets {
-    /// Zero offsets, workpiece frames, home and stored positions.
-    pub offsets: OffsetTables,
-    /// Other numbered parameters to preset (see `ControlData::parameters`).
-    pub parameters: BTreeMap<u32, f64>,
-}
-
-/// Reads an offset file in machine-data TOML: only `active_system`, `[[zero_offset]]`,
-/// `[[workpiece]]`, `[[home]]`, `[g28]`, `[g30]`, `[g92]` and `[parameters]`.
-pub fn offsets_from_toml_str(text: &str, file_name: &str) -> Result<StoredOffsets, Diagnostic> {
-    let raw = RawFile::parse(text, file_name)?;
-    raw.check_fragment(Fragment::Offsets)
-        .and_then(|()| raw.control().validate())
-        .map(|c| StoredOffsets {
-            offsets: c.offsets,
-            parameters: c.parameters,
-        })
-        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
-}
-
-/// AxiOMA's permanent parameters `$iPerm[n]` / `$dPerm[n]`, as kept between runs.
-pub type PermParameters = (BTreeMap<u32, i64>, BTreeMap<u32, f64>);
-
-/// Reads a permanent-parameter file in machine-data TOML: only `[iperm]` and `[dperm]`.
-pub fn perm_from_toml_str(text: &str, file_name: &str) -> Result<PermParameters, Diagnostic> {
-    let raw = RawFile::parse(text, file_name)?;
-    raw.check_fragment(Fragment::Perm)
-        .and_then(|()| raw.control().validate())
-        .map(|c| (c.perm_int, c.perm_double))
-        .map_err(|(message, range)| bad_data(text, &data_note(file_name), &message, Some(range)))
 }
 
 impl MachineData {

@@ -96,7 +96,7 @@ fn g_name(code: u32) -> String {
     }
 }
 
-fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
+pub(crate) fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
     cx.opts.five_axis.clone().ok_or_else(|| {
         cx.err(
             "mazatrol::option-not-installed",

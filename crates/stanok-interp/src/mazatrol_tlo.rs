@@ -137,11 +137,7 @@ pub(crate) fn length_offset(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Resul
     let before = cx.st.program_position();
     if from_ttpc {
         // TTPC off without motion: the axes stay, the control point becomes the virtual tip.
-        let base = cx
-            .opts
-            .five_axis
-            .clone()
-            .expect("TTPC runs on a 5-axis machine");
+        let base = crate::mazatrol::kinematics(cx, span)?;
         let kin = base
             .clone()
             .with_tool_offset(base.base().map(|x| x * cx.st.mazatrol.length));

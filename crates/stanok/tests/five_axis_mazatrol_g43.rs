@@ -416,3 +416,25 @@ fn type1_start_with_motion_on_each_machine() {
         (1, text.find("C30").unwrap() + 1)
     );
 }
+
+#[test]
+fn g44_and_the_tool_change_in_ttpc() {
+    // G44 H2: the virtual tip at B = 0 is L above the holder face: m = P + w − L·ẑ (L = 80).
+    let r = head_table("N1 G44 H2\nN2 G01 F1000 X1 Y2 Z3\nN3 G49\nM30\n");
+    r.ok();
+    assert_axes(r.end_of("N1"), [0.0, 0.0, 120.0], &[], TOL, "N1");
+    assert_axes(
+        r.end_of("N2"),
+        [1.0, 2.0, 3.0 - 300.0 - 80.0],
+        &[],
+        TOL,
+        "N2",
+    );
+    assert_axes(r.end_of("N3"), [1.0, 2.0, 3.0 - 300.0], &[], TOL, "N3");
+    // M6 in TTPC is refused at the M word's block, nothing of it moves.
+    let r = head_table("N1 G01 F1000\nN2 G43.4 H1\nN3 T02 M6\nM30\n");
+    let e = r.error.clone().expect("M6 refused");
+    assert_eq!(e.code.to_string(), "mazatrol::code-not-allowed-in-ttpc");
+    assert_eq!((e.span.line, e.span.column), (3, 8));
+    assert!(r.block("N3").is_empty());
+}

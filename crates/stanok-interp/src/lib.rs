@@ -37,6 +37,7 @@ mod labs;
 mod lathe;
 mod mazatrol;
 mod mazatrol_arc;
+mod mazatrol_tlo;
 mod params;
 mod predefined;
 mod rs274;

@@ -2,7 +2,8 @@
 //! (type 2, I J K tool vector), G49 cancel (spec mazatrol-tool-tip-control.md §2–§7, §13, §15).
 //!
 //! This front end runs the TTPC programs of the spec: G00/G01, G90/G91, F, G43.4/G43.5 with or
-//! without motion, G49, X Y Z A B C I J K H, M00/M01/M02/M30. Anything else is refused with a
+//! without motion, G49, X Y Z A B C I J K H, M00/M01/M02/M30, and (mazatrol_tlo.rs) G43/G44 H,
+//! `T01 T02 M6` and the G43/G44 ↔ G43.4/G43.5 switching of §11. Anything else is refused with a
 //! diagnostic (under TTPC as `mazatrol::code-not-allowed-in-ttpc`, the compatibility tables' "no").
 //!
 //! # The stream
@@ -66,6 +67,8 @@ pub struct MazatrolState {
     pub length: f64,
     /// The last type-2 tool vector (table frame, unit).
     pub vector: Option<[f64; 3]>,
+    /// G43/G44 in force (outside TTPC; mazatrol_tlo.rs).
+    pub offset: crate::mazatrol_tlo::LengthOffset,
 }
 
 const G0: u32 = 0;
@@ -75,6 +78,8 @@ const G3: u32 = 30;
 const G43_4: u32 = 434;
 const G43_5: u32 = 435;
 const G49: u32 = 490;
+const G43: u32 = crate::mazatrol_tlo::G43;
+const G44: u32 = crate::mazatrol_tlo::G44;
 const G90: u32 = 900;
 const G91: u32 = 910;
 /// Feed per minute: the only feed mode built (§9: F is the tip's speed relative to the
@@ -91,7 +96,7 @@ fn g_name(code: u32) -> String {
     }
 }
 
-fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
+pub(crate) fn kinematics(cx: &Ctx<'_>, at: ColSpan) -> Result<FiveAxis, Diagnostic> {
     cx.opts.five_axis.clone().ok_or_else(|| {
         cx.err(
             "mazatrol::option-not-installed",
@@ -117,6 +122,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         .iter()
         .find(|(c, _)| matches!(*c, G43_4 | G43_5))
         .copied();
+    let g43 = gs.iter().find(|(c, _)| matches!(*c, G43 | G44)).copied();
     let g49 = gs.iter().find(|(c, _)| *c == G49).copied();
     // G49 alone (a sequence number is not a word here).
     if let Some((_, span)) = g49 {
@@ -152,7 +158,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let active = cx.st.mazatrol.mode != TtpcMode::Off;
     for &(code, span) in &gs {
         match code {
-            G0 | G1 | G90 | G91 | G94 | G43_4 | G43_5 | G49 | G17 | G18 | G19 => {}
+            G0 | G1 | G90 | G91 | G94 | G43_4 | G43_5 | G49 | G17 | G18 | G19 | G43 | G44 => {}
             // M-series note 3: arcs under type 1 with the workpiece frame (mazatrol_arc.rs).
             G2 | G3 if cx.st.mazatrol.mode == TtpcMode::Type1 && cx.opts.ttpc_workpiece_frame => {}
             G2 | G3 if active => {
@@ -202,8 +208,20 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         cx.st.feed = cx.mm(f.v);
         cx.out.push(Canon::SetFeedRate { feed: cx.st.feed });
     }
+    let m6 = cx.words.m.iter().find(|(m, _)| *m == 6).copied();
+    if let Some((_, span)) = m6 {
+        crate::mazatrol_tlo::tool_change(cx, span)?;
+    } else {
+        crate::mazatrol_tlo::select_tool(cx)?;
+    }
     if let Some((_, span)) = g49 {
-        cancel(cx, span)?;
+        if cx.st.mazatrol.offset != crate::mazatrol_tlo::LengthOffset::Off {
+            crate::mazatrol_tlo::cancel_length_offset(cx, span)?;
+        } else {
+            cancel(cx, span)?;
+        }
+    } else if let Some((code, span)) = g43 {
+        crate::mazatrol_tlo::length_offset(cx, code, span)?;
     } else if let Some((code, span)) = ttpc_g {
         start(cx, code, span)?;
     } else if active {
@@ -216,6 +234,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     for &(m, span) in &cx.words.m.clone() {
         match m {
             0 | 1 => cx.out.push(Canon::ProgramStop { optional: m == 1 }),
+            6 => {}
             2 | 30 => {
                 cx.out.push(Canon::ProgramEnd);
                 outcome = Outcome::End;
@@ -234,7 +253,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
 }
 
 /// A straight move to `end` (program coordinates) in the current motion mode.
-fn move_to(cx: &mut Ctx<'_>, end: Pose, at: ColSpan) -> Result<(), Diagnostic> {
+pub(crate) fn move_to(cx: &mut Ctx<'_>, end: Pose, at: ColSpan) -> Result<(), Diagnostic> {
     let rapid = cx.st.motion == MotionMode::Rapid;
     let feed = if rapid { 0.0 } else { cx.st.feed };
     if !rapid && feed <= 0.0 {
@@ -247,13 +266,7 @@ fn move_to(cx: &mut Ctx<'_>, end: Pose, at: ColSpan) -> Result<(), Diagnostic> {
 /// The tool length amount of offset number H (the tool's first edge, L1 + wear).
 fn length_of(cx: &Ctx<'_>, h: crate::words::Val) -> Result<f64, Diagnostic> {
     let n = cx.non_negative_integer(h, "tool length offset number H")?;
-    Ok(cx
-        .opts
-        .control
-        .tools
-        .get(n)
-        .and_then(|t| t.edges.first())
-        .map_or(0.0, |e| e.length[0] + e.length_wear[0]))
+    Ok(crate::mazatrol_tlo::tool_length(cx, n))
 }
 
 /// The I J K of a type-2 block, normalised; None when all are omitted.
@@ -277,9 +290,11 @@ fn vector_words(cx: &mut Ctx<'_>) -> Result<Option<[f64; 3]>, Diagnostic> {
 /// G43.4 / G43.5 (§5).
 fn start(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
     let base = kinematics(cx, span)?;
-    if let Some(h) = cx.words.take(b'H') {
-        cx.st.mazatrol.length = length_of(cx, h)?;
-    }
+    cx.st.mazatrol.length = match cx.words.take(b'H') {
+        Some(h) => length_of(cx, h)?,
+        None => crate::mazatrol_tlo::length_without_h(cx),
+    };
+    let direct = crate::mazatrol_tlo::leave_for_ttpc(cx, code, span)?;
     let b = base.base();
     let c0 = b.map(|x| x * cx.st.mazatrol.length);
     let kin = base.clone().with_tool_offset(c0);
@@ -309,6 +324,9 @@ fn start(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
     let has_motion = cx.has_axis_words() || cx.words.any(b"IJK");
     if has_motion {
         ttpc_motion(cx, span)
+    } else if direct {
+        // §11.1: a direct switch on its own moves no axis (the control point changes).
+        Ok(())
     } else {
         // Independent start (§5.1): the tip goes where the holder face was.
         let holder = base

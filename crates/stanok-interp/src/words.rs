@@ -38,6 +38,8 @@ pub struct Words {
     pub keywords: Vec<(Keyword, Option<u8>, Option<Val>, ColSpan)>,
     /// AxiOMA `MSG(expr)`: the message text the high-level language evaluated for this block.
     pub message: Option<String>,
+    /// Mazatrol: the second T word of `T01 T02 M6` (the tool prepared next).
+    pub next_tool: Option<Val>,
 }
 
 impl Default for Words {
@@ -54,6 +56,7 @@ impl Default for Words {
             indexed: Vec::new(),
             keywords: Vec::new(),
             message: None,
+            next_tool: None,
         }
     }
 }
@@ -85,6 +88,7 @@ impl Words {
         self.indexed.clear();
         self.keywords.clear();
         self.message = None;
+        self.next_tool = None;
     }
 
     /// Evaluates and sorts the words of `block`.
@@ -156,6 +160,15 @@ impl Words {
                         }
                         b'A'..=b'Z' | b'@' | b'^' => {
                             let i = idx(l);
+                            // Mazatrol `T01 T02 M6`: the second T is the next tool (prepared).
+                            if dialect == Dialect::Mazatrol
+                                && l == b'T'
+                                && self.present & (1 << i) != 0
+                                && self.next_tool.is_none()
+                            {
+                                self.next_tool = Some(val);
+                                continue;
+                            }
                             if self.present & (1 << i) != 0 {
                                 let prev = self.letter[i];
                                 match dialect {

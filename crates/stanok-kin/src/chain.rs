@@ -265,6 +265,11 @@ impl FiveAxis {
         self
     }
 
+    /// True if joint X is a diameter value (a mill-turn on its C spindle).
+    pub fn x_is_diameter(&self) -> bool {
+        self.x_is_diameter
+    }
+
     /// The spindle base vector b.
     pub fn base(&self) -> [f64; 3] {
         self.base.into()

@@ -201,8 +201,6 @@ pub struct Interpreter<R: BufRead + Seek> {
     /// AxiOMA high-level language: variables and control flow; `None` until the first HLL line
     /// or expression, so that programs without HLL keep their speed.
     hll: Option<Box<hll::Hll>>,
-    /// AxiOMA: the text of the next block's `MSG(expr)`, handed to its words.
-    hll_message: Option<String>,
     warnings: Vec<Diagnostic>,
     syntax: Vec<Diagnostic>,
     phase: Phase,
@@ -315,7 +313,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma_held: VecDeque::new(),
             axioma: axioma::Extension::default(),
             hll: None,
-            hll_message: None,
             warnings: Vec::new(),
             syntax: Vec::new(),
             phase: Phase::Start,
@@ -544,25 +541,39 @@ impl<R: BufRead + Seek> Interpreter<R> {
             if self.block.block_delete && self.opts.block_delete {
                 return Ok(false);
             }
-        } else if self.hll.is_some() || self.block.hll.statement {
-            match self.hll_step(here, first_error)? {
-                hll::HllStep::Done => return Ok(false),
-                hll::HllStep::Execute(owner) => {
-                    self.count_block()?;
-                    let end = self.execute_block()?;
-                    if let Some(owner) = owner {
-                        if !end {
-                            self.hll_after_iso(owner)?;
-                        }
-                    }
-                    return Ok(end);
-                }
-            }
+        } else if self.hll.is_some() || self.block.hll().statement {
+            // Out of line: the HLL path must not enlarge `step`, which every block of every
+            // program runs (a second inlined `execute_block` here cost plain programs registers).
+            return self.hll_line(here, first_error);
         } else if let Some(e) = first_error {
             return Err(e);
         }
         self.count_block()?;
         self.execute_block()
+    }
+
+    /// AxiOMA: a line once the program has HLL (or its first HLL line): statements, control flow
+    /// and the ISO blocks inside it.
+    #[cold]
+    #[inline(never)]
+    fn hll_line(
+        &mut self,
+        here: SourcePos,
+        first_error: Option<Diagnostic>,
+    ) -> Result<bool, Diagnostic> {
+        match self.hll_step(here, first_error)? {
+            hll::HllStep::Done => Ok(false),
+            hll::HllStep::Execute(owner) => {
+                self.count_block()?;
+                let end = self.execute_block()?;
+                if let Some(owner) = owner {
+                    if !end {
+                        self.hll_after_iso(owner)?;
+                    }
+                }
+                Ok(end)
+            }
+        }
     }
 
     /// Lab dialects: one execution unit of the front end (an NC-31 group, or one block).
@@ -648,8 +659,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
     #[inline(always)]
     fn execute_block(&mut self) -> Result<bool, Diagnostic> {
         // AxiOMA words with HLL expressions are evaluated first (journalled, undone on failure);
-        // every other block goes straight on (one test: programs without HLL keep their speed).
-        if self.block.hll.exprs.is_empty() {
+        // every other block goes straight on. Invariant: a line of a program without HLL has no
+        // HLL box at all (`Block::hll`), so this is one pointer test for every RS274/NGC block.
+        if !self.block.has_hll_exprs() {
             return self.execute_words(&[]);
         }
         self.execute_block_with_expressions()
@@ -658,8 +670,12 @@ impl<R: BufRead + Seek> Interpreter<R> {
     #[cold]
     #[inline(never)]
     fn execute_block_with_expressions(&mut self) -> Result<bool, Diagnostic> {
+        // Sets `words.message` for `MSG(expr)`: `Words::fill` leaves it alone, the AxiOMA
+        // executor takes it. Invariant: `words.message` is `None` outside this function, so the
+        // per-block path neither clears nor tests it.
         let values = self.hll_prepare_block()?;
         let result = self.execute_words(&values);
+        self.words.message = None;
         if result.is_err() {
             self.hll_rollback();
         }
@@ -711,14 +727,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 params: &self.params,
                 state: &self.state,
             };
-            self.words.fill(
-                &self.block,
-                &eval,
-                dialect,
-                &mut self.warnings,
-                hll_values,
-                &mut self.hll_message,
-            )?;
+            self.words
+                .fill(&self.block, &eval, dialect, &mut self.warnings, hll_values)?;
             // Assignments are evaluated with the old values and applied after the line.
             for a in &self.block.assignments {
                 let v = eval.eval(a.value)?;

@@ -87,8 +87,9 @@ impl Words {
         self.used = 0;
         self.indexed.clear();
         self.keywords.clear();
-        self.message = None;
         self.next_tool = None;
+        // `message` is not cleared here: it is `None` on every block but while
+        // `execute_block_with_expressions` runs one with `MSG(expr)` (which resets it).
     }
 
     /// Evaluates and sorts the words of `block`.
@@ -99,13 +100,8 @@ impl Words {
         dialect: Dialect,
         warnings: &mut Vec<Diagnostic>,
         hll_values: &[(u32, f64)],
-        message: &mut Option<String>,
     ) -> Result<(), Diagnostic> {
         self.clear();
-        // Cold: only blocks with `MSG(expr)` have one (moved, not copied).
-        if message.is_some() {
-            self.message = message.take();
-        }
         for w in &block.words {
             let value = match w.value {
                 Value::None => None,

@@ -427,8 +427,14 @@ pub struct Block {
     /// Expression arena: nodes and the text each came from.
     pub exprs: Vec<(ExprNode, ColSpan)>,
     /// AxiOMA high-level language: the statements of an HLL line, the expressions of ISO words
-    /// and of `MSG(expr)`.
-    pub hll: crate::hll::HllLine,
+    /// and of `MSG(expr)`. Read it with [`Block::hll`], write it with [`Block::hll_mut`].
+    ///
+    /// Invariant (hot path): `None` on every line until the parser meets the first HLL content
+    /// of the reader's program; afterwards the box stays (cleared per line, allocations kept).
+    /// Programs without HLL — every RS274/NGC program and most AxiOMA ones — therefore pay one
+    /// pointer test per line instead of clearing and copying the HLL arena, and `Block` stays
+    /// one pointer larger than before the language existed.
+    pub hll: crate::hll::HllSlot,
 }
 
 impl Block {
@@ -447,7 +453,27 @@ impl Block {
         self.assignments.clear();
         self.oword = None;
         self.exprs.clear();
-        self.hll.clear();
+        if let Some(hll) = self.hll.0.as_deref_mut() {
+            hll.clear();
+        }
+    }
+
+    /// The HLL content of the line (empty for a line without HLL).
+    #[inline]
+    pub fn hll(&self) -> &crate::hll::HllLine {
+        self.hll.get()
+    }
+
+    /// The HLL content of the line, allocated on first use (see the field's invariant).
+    #[inline]
+    pub fn hll_mut(&mut self) -> &mut crate::hll::HllLine {
+        self.hll.0.get_or_insert_with(Default::default)
+    }
+
+    /// True when the line has HLL expressions (word values or `MSG(expr)`) or statements.
+    #[inline(always)]
+    pub fn has_hll_exprs(&self) -> bool {
+        self.hll.0.as_deref().is_some_and(|h| !h.exprs.is_empty())
     }
 
     /// The text a column span covers.
@@ -495,7 +521,10 @@ impl Block {
             && self.message.is_none()
             && self.assignments.is_empty()
             && self.oword.is_none()
-            && !self.hll.statement
-            && self.hll.message.is_none()
+            && self
+                .hll
+                .0
+                .as_deref()
+                .is_none_or(|h| !h.statement && h.message.is_none())
     }
 }

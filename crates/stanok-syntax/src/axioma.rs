@@ -692,7 +692,7 @@ impl Line<'_> {
     fn message_expression(&mut self, p: usize) -> usize {
         match crate::hll_parse::message_arg(self.b, p, self.out, self.diags) {
             Some((e, end)) => {
-                self.out.hll.message = Some(e);
+                self.out.hll_mut().message = Some(e);
                 end
             }
             None => self.b.len(),

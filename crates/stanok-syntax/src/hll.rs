@@ -236,7 +236,37 @@ pub struct HllLine {
     pub message: Option<HExprId>,
 }
 
+/// [`crate::Block::hll`]: the HLL content of a line, allocated on the first line that has some
+/// (see the field's invariant). Compares as the content it stands for: no box equals an empty one.
+#[derive(Debug, Clone, Default)]
+pub struct HllSlot(pub Option<Box<HllLine>>);
+
+/// What [`HllSlot::get`] returns for a line of a program without HLL.
+static NO_HLL: HllLine = HllLine::EMPTY;
+
+impl HllSlot {
+    /// The content (empty when nothing was allocated).
+    #[inline]
+    pub fn get(&self) -> &HllLine {
+        self.0.as_deref().unwrap_or(&NO_HLL)
+    }
+}
+
+impl PartialEq for HllSlot {
+    fn eq(&self, other: &Self) -> bool {
+        self.get() == other.get()
+    }
+}
+
 impl HllLine {
+    /// A line without HLL (what [`crate::Block::hll`] returns when the line has none).
+    pub const EMPTY: HllLine = HllLine {
+        statement: false,
+        items: Vec::new(),
+        exprs: Vec::new(),
+        message: None,
+    };
+
     /// Clears everything but keeps the allocations. Called for every line of every program:
     /// lines without HLL (all but a few) leave everything empty, so one test skips the rest.
     #[inline(always)]

@@ -259,7 +259,7 @@ impl<'a> Parser<'a> {
 
     fn node(&mut self, e: HExpr, start: usize) -> HExprId {
         let end = self.last_end.max(start);
-        self.out.hll.push(e, ColSpan::new(start, end))
+        self.out.hll_mut().push(e, ColSpan::new(start, end))
     }
 
     // ------------------------------------------------------------------ expressions
@@ -298,7 +298,7 @@ impl<'a> Parser<'a> {
             _ => return Ok(lhs),
         };
         if !self.lvalue(lhs) {
-            let span = self.out.hll.expr_span(lhs);
+            let span = self.out.hll().expr_span(lhs);
             self.error(
                 "hll::not-assignable",
                 "only a variable or an array element can be assigned to".into(),
@@ -313,7 +313,7 @@ impl<'a> Parser<'a> {
 
     fn lvalue(&self, id: HExprId) -> bool {
         matches!(
-            self.out.hll.expr(id),
+            self.out.hll().expr(id),
             HExpr::Var(_) | HExpr::Index(..) | HExpr::System(_)
         )
     }
@@ -411,7 +411,7 @@ impl<'a> Parser<'a> {
 
     fn incdec(&mut self, inc: bool, prefix: bool, target: HExprId, start: usize) -> R<HExprId> {
         if !self.lvalue(target) {
-            let span = self.out.hll.expr_span(target);
+            let span = self.out.hll().expr_span(target);
             self.error(
                 "hll::not-assignable",
                 format!(
@@ -504,7 +504,7 @@ impl<'a> Parser<'a> {
                 let e = self.expr()?;
                 self.eat(")")?;
                 // The parenthesised expression keeps its own node; its span now covers the brackets.
-                self.out.hll.exprs[e.0 as usize].1 = ColSpan::new(start, self.last_end);
+                self.out.hll_mut().exprs[e.0 as usize].1 = ColSpan::new(start, self.last_end);
                 Ok(e)
             }
             _ => {
@@ -582,11 +582,11 @@ pub(crate) fn statements(
     diags: &mut Pendings,
     in_comment: &mut bool,
 ) -> usize {
-    out.hll.statement = true;
+    out.hll_mut().statement = true;
     let mut p = Parser::new(b, start, out, diags, in_comment, false);
     if p.items().is_err() {
         let from = p.span.end.max(p.span.start) as usize;
-        p.out.hll.items.clear();
+        p.out.hll_mut().items.clear();
         p.skip_rest(from);
     }
     b.len()

@@ -329,9 +329,9 @@ fn high_level_language_lines_are_statements() {
         ("double p[3] = {1, 2.5, -3}, q;", "D"),
     ] {
         let b = clean(text, AX);
-        assert!(b.hll.statement && b.words.is_empty(), "{text}");
+        assert!(b.hll().statement && b.words.is_empty(), "{text}");
         let got: String = b
-            .hll
+            .hll()
             .items
             .iter()
             .map(|(i, _)| match i {
@@ -357,21 +357,21 @@ fn high_level_language_lines_are_statements() {
     }
     // Precedence: `1 + 2 * 3 == 7` is `(1 + (2 * 3)) == 7`.
     let b = clean("xx = 1 + 2 * 3 == 7;", AX);
-    let HItem::Expr(root) = &b.hll.items[0].0 else {
+    let HItem::Expr(root) = &b.hll().items[0].0 else {
         panic!()
     };
-    let HExpr::Assign(None, _, value) = b.hll.expr(*root) else {
+    let HExpr::Assign(None, _, value) = b.hll().expr(*root) else {
         panic!()
     };
-    assert_eq!(b.slice(b.hll.expr_span(*value)), "1 + 2 * 3 == 7");
-    let HExpr::Binary(op, lhs, _) = b.hll.expr(*value) else {
+    assert_eq!(b.slice(b.hll().expr_span(*value)), "1 + 2 * 3 == 7");
+    let HExpr::Binary(op, lhs, _) = b.hll().expr(*value) else {
         panic!()
     };
     assert_eq!(op.symbol(), "==");
-    assert_eq!(b.slice(b.hll.expr_span(*lhs)), "1 + 2 * 3");
+    assert_eq!(b.slice(b.hll().expr_span(*lhs)), "1 + 2 * 3");
     let b = clean("const double d[2];", AX);
     assert!(
-        matches!(&b.hll.items[0].0, HItem::Decl { ty: HType::Double, vars } if vars[0].len.is_some())
+        matches!(&b.hll().items[0].0, HItem::Decl { ty: HType::Double, vars } if vars[0].len.is_some())
     );
     // Expression values of ISO words end where the expression ends.
     let b = clean("G1 X=ii * 10 Y=$iPerm[1] (c) F=FTABLE(n+1) Z2", AX);
@@ -385,9 +385,9 @@ fn high_level_language_lines_are_statements() {
     let b = clean("X=ii (comment) ; more", AX);
     assert_eq!(b.comments.len(), 2);
     let b = clean("N10 MSG(str)        // выдача", AX);
-    assert!(b.hll.message.is_some() && b.message.is_none());
+    assert!(b.hll().message.is_some() && b.message.is_none());
     let b = clean("MSG(\"a\" + s)", AX);
-    assert!(b.hll.message.is_some());
+    assert!(b.hll().message.is_some());
     // Errors: one diagnostic with its span, the rest of the line skipped.
     single_error("int x = ;", AX, "hll::syntax", 9, ";");
     single_error("xx = 1", AX, "hll::syntax", 7, "");

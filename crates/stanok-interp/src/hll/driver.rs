@@ -44,7 +44,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             }
             return Err(e);
         }
-        let statement = self.block.hll.statement;
+        let statement = self.block.hll().statement;
         if statement && !self.hll_state().skipping() {
             self.count_block()?;
         }
@@ -127,14 +127,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
                     values.push((e.0, env.number(e)?));
                 }
             }
-            if let Some(m) = block.hll.message {
+            if let Some(m) = block.hll().message {
                 match env.eval(m)? {
                     HVal::Str(s) => message = Some(s),
                     v => {
                         return Err(Diagnostic::error(
                             "hll::type-mismatch",
                             format!("MSG needs a string, not a {}", v.kind()),
-                            block.span_of(block.hll.expr_span(m)),
+                            block.span_of(block.hll().expr_span(m)),
                         )
                         .with_note("format numbers with sprintf"))
                     }
@@ -146,13 +146,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
             env.vars.rollback(env.control);
             return Err(d);
         }
-        self.hll_message = message;
+        // Taken by the AxiOMA executor; reset after the block (`execute_block_with_expressions`).
+        self.words.message = message;
         Ok(values)
     }
 
     /// Undoes the HLL writes of a failing block.
     pub(crate) fn hll_rollback(&mut self) {
-        self.hll_message = None;
+        self.words.message = None;
         if let Some(hll) = self.hll.as_deref_mut() {
             hll.vars.rollback(&mut self.opts.control);
         }

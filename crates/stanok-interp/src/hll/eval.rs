@@ -159,7 +159,7 @@ impl Env<'_> {
     }
 
     pub(super) fn span(&self, e: HExprId) -> ColSpan {
-        self.block.hll.expr_span(e)
+        self.block.hll().expr_span(e)
     }
 
     pub(super) fn name(&self, c: ColSpan) -> &str {
@@ -277,7 +277,7 @@ impl Env<'_> {
     /// Evaluates an expression.
     pub fn eval(&mut self, e: HExprId) -> R<HVal> {
         let at = self.span(e);
-        match self.block.hll.expr(e) {
+        match self.block.hll().expr(e) {
             HExpr::Int(i) => Ok(HVal::Int(*i)),
             HExpr::Float(f) => Ok(HVal::Double(*f)),
             HExpr::Bool(b) => Ok(HVal::Bool(*b)),
@@ -356,7 +356,7 @@ impl Env<'_> {
     /// Resolves a variable, element or system variable.
     pub(super) fn place(&mut self, e: HExprId) -> R<Place> {
         let at = self.span(e);
-        match self.block.hll.expr(e) {
+        match self.block.hll().expr(e) {
             HExpr::Var(n) => {
                 let name = self.name(*n);
                 let Some(i) = self.vars.find(name) else {
@@ -384,7 +384,7 @@ impl Env<'_> {
                         self.span(index),
                     ));
                 };
-                match self.block.hll.expr(base) {
+                match self.block.hll().expr(base) {
                     HExpr::Var(n) => {
                         let name = self.name(*n);
                         let Some(v) = self.vars.find(name) else {

@@ -162,7 +162,7 @@ impl Control {
             _ => 0,
         };
         let block = env.block;
-        let hll: &HllLine = &block.hll;
+        let hll: &HllLine = block.hll();
         for (idx, (item, span)) in hll.items.iter().enumerate().skip(first) {
             let span = block.span_of(*span);
             if let Some(jump) = self.item(env, here, idx, item, span)? {

@@ -14,7 +14,7 @@ impl Parser<'_> {
             let start = self.span.start as usize;
             let item = self.item()?;
             let span = ColSpan::new(start, self.last_end.max(start));
-            self.out.hll.items.push((item, span));
+            self.out.hll_mut().items.push((item, span));
         }
         Ok(())
     }

@@ -38,8 +38,10 @@ mod lathe;
 mod mazatrol;
 mod mazatrol_arc;
 mod mazatrol_tlo;
+mod options;
 mod params;
 mod predefined;
+mod queries;
 mod rs274;
 mod state;
 mod subfiles;
@@ -50,119 +52,18 @@ pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use hll::value::HVal;
 pub use labs::{LabMachineParams, LabState};
+pub use options::InterpOptions;
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
 use ctx::Ctx;
 use flow::{Flow, FlowAction};
 use rs274::Outcome;
-use stanok_canon::setup::ControlData;
-use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, Spanned};
+use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Spanned};
 use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, SourcePos};
 use std::collections::VecDeque;
 use std::io::{BufRead, Seek};
 use words::Words;
-
-/// Settings of one interpreter run.
-#[derive(Debug, Clone)]
-pub struct InterpOptions {
-    /// Program language.
-    pub dialect: Dialect,
-    /// Which of X Y Z A B C U V W the machine has.
-    pub axes: [bool; 9],
-    /// Where the tool is at program start, machine coordinates, mm.
-    pub initial_position: Pose,
-    /// Units at power-on (RS274/NGC: the machine's units; AxiOMA: G71).
-    pub initial_units: LengthUnits,
-    /// AxiOMA arc tolerance for errors 621/622/623 and the centre correction, mm (machine data).
-    pub arc_tolerance_mm: f64,
-    /// RS274/NGC arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
-    pub rs274_arc_tolerance_mm: Option<f64>,
-    /// Deepest subroutine nesting (RS274/NGC).
-    pub max_call_depth: usize,
-    /// Most iterations of one loop (RS274/NGC while/do/repeat).
-    pub max_loop_iterations: u64,
-    /// Most blocks executed in one run (loops included).
-    pub max_blocks: u64,
-    /// Skip erroneous blocks and go on (for `stanok check`).
-    pub continue_after_error: bool,
-    /// RS274/NGC user M codes M100–M199: passed to the machine as auxiliary functions when true.
-    /// False (default) rejects them as "Unknown m code", as LinuxCNC does without an executable
-    /// of that name on its user M-code path (its standalone interpreter has none).
-    pub user_m_codes: bool,
-    /// RS274/NGC: directories searched, in order, for `name.ngc` when `o<name> call` names a
-    /// subroutine the program does not define (LinuxCNC's SUBROUTINE_PATH).
-    pub subroutine_path: Vec<std::path::PathBuf>,
-    /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
-    /// default, as in LinuxCNC (the operator turns it on).
-    pub block_delete: bool,
-    /// With `continue_after_error`: stop after this many errors.
-    pub max_errors: usize,
-    /// Stored control data: tool table, offset tables, home positions, preset parameters.
-    pub control: ControlData,
-    /// Axes that may be programmed as diameters (AxiOMA G10; the transverse axis of a lathe).
-    pub diameter_axes: [bool; 9],
-    /// Two sets of coordinates that a kinematic transformation makes interdependent (the AxiOMA
-    /// manual's "biped": X/Y produced by V/W): a block may program one set or the other, never
-    /// both (AxiOMA error 653, spec axioma-1 §7.1). None on the built-in machines.
-    pub coupled_coordinates: Option<([bool; 9], [bool; 9])>,
-    /// RS274/NGC: the machine's length unit (LinuxCNC `[TRAJ]LINEAR_UNITS`), in which numbered
-    /// parameters hold lengths (`#5161…`, `#5211…`, `#5221…`, `#5401…`). LinuxCNC's standalone
-    /// `rs274` works in inches.
-    pub rs274_machine_units: LengthUnits,
-    /// RS274/NGC: G92 offsets survive M2/M30 and the run (LinuxCNC's default); false is
-    /// LinuxCNC's `DISABLE_G92_PERSISTENCE`: program end cancels them as G92.1 does.
-    pub g92_persistence: bool,
-    /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
-    pub axioma: AxiomaMachineParams,
-    /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
-    pub optional_stop: bool,
-    /// Machine data of the lab controls (NC-31, 2P32, MC2101, GOST-20999): correctors, turret
-    /// codes, work offsets, gearbox table.
-    pub labs: LabMachineParams,
-    /// Lab dialects: blank out the lab corpus's fixture annotations (`;` lines, `//` to the end of
-    /// a line) before reading; they are not program text of these controls. Off by default.
-    pub strip_fixture_comments: bool,
-    /// The machine's 5-axis kinematics (without a tool) when it allows tool-centre-point control
-    /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
-    pub five_axis: Option<stanok_kin::FiveAxis>,
-    /// Mazatrol TTPC programs X Y Z in the workpiece frame (parameter 1, spec mazatrol §4.2)
-    /// instead of the table frame (0, the default).
-    pub ttpc_workpiece_frame: bool,
-}
-
-impl InterpOptions {
-    /// Defaults for a dialect: all nine axes, start at the origin, mm.
-    pub fn new(dialect: Dialect) -> Self {
-        InterpOptions {
-            dialect,
-            axes: [true; 9],
-            initial_position: Pose::ZERO,
-            initial_units: LengthUnits::Millimetres,
-            arc_tolerance_mm: 0.01,
-            rs274_arc_tolerance_mm: None,
-            max_call_depth: 64,
-            max_loop_iterations: 1_000_000,
-            max_blocks: 200_000_000,
-            continue_after_error: false,
-            block_delete: false,
-            subroutine_path: Vec::new(),
-            user_m_codes: false,
-            max_errors: 100,
-            control: ControlData::default(),
-            diameter_axes: [true, false, false, false, false, false, false, false, false],
-            coupled_coordinates: None,
-            rs274_machine_units: LengthUnits::Millimetres,
-            g92_persistence: true,
-            axioma: AxiomaMachineParams::default(),
-            optional_stop: true,
-            labs: LabMachineParams::default(),
-            strip_fixture_comments: false,
-            five_axis: None,
-            ttpc_workpiece_frame: false,
-        }
-    }
-}
 
 /// Counters of a run.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -325,65 +226,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
             lab,
             opts,
         }
-    }
-
-    /// Warnings so far (they never stop the run).
-    pub fn warnings(&self) -> &[Diagnostic] {
-        &self.warnings
-    }
-
-    /// Takes the warnings collected so far.
-    pub fn take_warnings(&mut self) -> Vec<Diagnostic> {
-        std::mem::take(&mut self.warnings)
-    }
-
-    /// The modal state after the commands produced so far.
-    pub fn state(&self) -> &ModalState {
-        &self.state
-    }
-
-    /// Parameter storage (RS274/NGC), e.g. to preset work offsets before a run.
-    pub fn parameters_mut(&mut self) -> &mut Parameters {
-        &mut self.params
-    }
-
-    /// Parameters and tool table as the blocks run so far left them (RS274/NGC).
-    pub fn parameters(&self) -> &Parameters {
-        &self.params
-    }
-
-    /// The stored control data as the run left it (RS274/NGC): what LinuxCNC writes back to its
-    /// `.var` file and tool table when it exits — the options' data with the offsets, G28/G30
-    /// positions, G92, active system, tool table and preset parameters updated.
-    pub fn control_data(&self) -> ControlData {
-        match self.opts.dialect {
-            // AxiOMA: `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote.
-            Dialect::Axioma => self.opts.control.clone(),
-            // RS274/NGC (and the lab dialects, as main has them): the numbered parameters.
-            _ => self.params.to_control(&self.opts.control),
-        }
-    }
-
-    /// AxiOMA: the value of a high-level-language variable (a scalar) visible now.
-    pub fn hll_variable(&self, name: &str) -> Option<HVal> {
-        self.hll.as_deref()?.vars.get(name).cloned()
-    }
-
-    /// AxiOMA: the M vector ("active functions" screen) after the blocks run so far: each modal
-    /// M group's name and the function it shows (spec axioma-2 §4.1, §5).
-    pub fn axioma_m_vector(&self) -> Vec<(String, u32)> {
-        self.axioma.m.display(&self.opts.axioma.m_table)
-    }
-
-    /// AxiOMA: the result of the last G75 (or batch-mode) probe move: the latched machine
-    /// position and whether the probe tripped (spec axioma-2 §2.5).
-    pub fn axioma_probe_latch(&self) -> Option<ProbeLatch> {
-        self.axioma.probe.latch
-    }
-
-    /// Counters.
-    pub fn stats(&self) -> Stats {
-        self.stats
     }
 
     fn init_command(&self) -> Canon {

@@ -1,0 +1,108 @@
+//! The settings of one interpreter run: the dialect, the machine's axes, tolerances and tables
+//! the front ends need, search paths, limits.
+
+use crate::{AxiomaMachineParams, LabMachineParams};
+use stanok_canon::setup::ControlData;
+use stanok_canon::{LengthUnits, Pose};
+use stanok_syntax::Dialect;
+
+/// Settings of one interpreter run.
+#[derive(Debug, Clone)]
+pub struct InterpOptions {
+    /// Program language.
+    pub dialect: Dialect,
+    /// Which of X Y Z A B C U V W the machine has.
+    pub axes: [bool; 9],
+    /// Where the tool is at program start, machine coordinates, mm.
+    pub initial_position: Pose,
+    /// Units at power-on (RS274/NGC: the machine's units; AxiOMA: G71).
+    pub initial_units: LengthUnits,
+    /// AxiOMA arc tolerance for errors 621/622/623 and the centre correction, mm (machine data).
+    pub arc_tolerance_mm: f64,
+    /// RS274/NGC arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
+    pub rs274_arc_tolerance_mm: Option<f64>,
+    /// Deepest subroutine nesting (RS274/NGC).
+    pub max_call_depth: usize,
+    /// Most iterations of one loop (RS274/NGC while/do/repeat).
+    pub max_loop_iterations: u64,
+    /// Most blocks executed in one run (loops included).
+    pub max_blocks: u64,
+    /// Skip erroneous blocks and go on (for `stanok check`).
+    pub continue_after_error: bool,
+    /// RS274/NGC user M codes M100–M199: passed to the machine as auxiliary functions when true.
+    /// False (default) rejects them as "Unknown m code", as LinuxCNC does without an executable
+    /// of that name on its user M-code path (its standalone interpreter has none).
+    pub user_m_codes: bool,
+    /// RS274/NGC: directories searched, in order, for `name.ngc` when `o<name> call` names a
+    /// subroutine the program does not define (LinuxCNC's SUBROUTINE_PATH).
+    pub subroutine_path: Vec<std::path::PathBuf>,
+    /// RS274/NGC block delete switch: when on, lines starting with `/` are skipped. Off by
+    /// default, as in LinuxCNC (the operator turns it on).
+    pub block_delete: bool,
+    /// With `continue_after_error`: stop after this many errors.
+    pub max_errors: usize,
+    /// Stored control data: tool table, offset tables, home positions, preset parameters.
+    pub control: ControlData,
+    /// Axes that may be programmed as diameters (AxiOMA G10; the transverse axis of a lathe).
+    pub diameter_axes: [bool; 9],
+    /// Two sets of coordinates that a kinematic transformation makes interdependent (the AxiOMA
+    /// manual's "biped": X/Y produced by V/W): a block may program one set or the other, never
+    /// both (AxiOMA error 653, spec axioma-1 §7.1). None on the built-in machines.
+    pub coupled_coordinates: Option<([bool; 9], [bool; 9])>,
+    /// RS274/NGC: the machine's length unit (LinuxCNC `[TRAJ]LINEAR_UNITS`), in which numbered
+    /// parameters hold lengths (`#5161…`, `#5211…`, `#5221…`, `#5401…`). LinuxCNC's standalone
+    /// `rs274` works in inches.
+    pub rs274_machine_units: LengthUnits,
+    /// RS274/NGC: G92 offsets survive M2/M30 and the run (LinuxCNC's default); false is
+    /// LinuxCNC's `DISABLE_G92_PERSISTENCE`: program end cancels them as G92.1 does.
+    pub g92_persistence: bool,
+    /// AxiOMA machine parameters of compensation, cycles and PLC outputs (spec axioma-3).
+    pub axioma: AxiomaMachineParams,
+    /// The operator's optional-stop switch: AxiOMA M01 stops only when it is on. Default on.
+    pub optional_stop: bool,
+    /// Machine data of the lab controls (NC-31, 2P32, MC2101, GOST-20999): correctors, turret
+    /// codes, work offsets, gearbox table.
+    pub labs: LabMachineParams,
+    /// Lab dialects: blank out the lab corpus's fixture annotations (`;` lines, `//` to the end of
+    /// a line) before reading; they are not program text of these controls. Off by default.
+    pub strip_fixture_comments: bool,
+    /// The machine's 5-axis kinematics (without a tool) when it allows tool-centre-point control
+    /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
+    pub five_axis: Option<stanok_kin::FiveAxis>,
+    /// Mazatrol TTPC programs X Y Z in the workpiece frame (parameter 1, spec mazatrol §4.2)
+    /// instead of the table frame (0, the default).
+    pub ttpc_workpiece_frame: bool,
+}
+
+impl InterpOptions {
+    /// Defaults for a dialect: all nine axes, start at the origin, mm.
+    pub fn new(dialect: Dialect) -> Self {
+        InterpOptions {
+            dialect,
+            axes: [true; 9],
+            initial_position: Pose::ZERO,
+            initial_units: LengthUnits::Millimetres,
+            arc_tolerance_mm: 0.01,
+            rs274_arc_tolerance_mm: None,
+            max_call_depth: 64,
+            max_loop_iterations: 1_000_000,
+            max_blocks: 200_000_000,
+            continue_after_error: false,
+            block_delete: false,
+            subroutine_path: Vec::new(),
+            user_m_codes: false,
+            max_errors: 100,
+            control: ControlData::default(),
+            diameter_axes: [true, false, false, false, false, false, false, false, false],
+            coupled_coordinates: None,
+            rs274_machine_units: LengthUnits::Millimetres,
+            g92_persistence: true,
+            axioma: AxiomaMachineParams::default(),
+            optional_stop: true,
+            labs: LabMachineParams::default(),
+            strip_fixture_comments: false,
+            five_axis: None,
+            ttpc_workpiece_frame: false,
+        }
+    }
+}

@@ -93,15 +93,15 @@ pub(crate) struct MotionRun {
     stage: MotionStage,
     checks: SetpointChecks,
     limits: [AxisLimit; 9],
-    observer: Option<SetpointSink>,
     feed_override: f64,
     cycle_time: Option<f64>,
 }
 
 /// What the machine does with every setpoint, wherever the stage releases it (a command, a drain,
-/// the end): one place, so no path of release can skip a check.
+/// the end): one place, so no path of release can skip a check or the caller's observer.
 struct SetpointChecks {
     monitor: TraceMonitor,
+    observer: Option<SetpointSink>,
     travel: [Option<(char, f64, f64)>; 9],
     travel_violations: Vec<LoggedEvent>,
     travel_violation_count: u64,
@@ -109,7 +109,7 @@ struct SetpointChecks {
 }
 
 impl SetpointChecks {
-    /// Measures the setpoint, checks the travel, widens the spindle ranges.
+    /// Measures the setpoint, checks the travel, widens the spindle ranges, hands it on.
     fn observe(&mut self, sp: &Setpoint) {
         execute(
             sp,
@@ -119,6 +119,9 @@ impl SetpointChecks {
             &mut self.travel_violation_count,
         );
         track_spindles(&mut self.spindle_rpm_range, &sp.spindle_rpm);
+        if let Some(o) = self.observer.as_mut() {
+            o(sp);
+        }
     }
 }
 
@@ -154,53 +157,33 @@ impl MotionRun {
             stage,
             checks: SetpointChecks {
                 monitor: TraceMonitor::new(limits, config.servo_period),
+                observer: None,
                 travel,
                 travel_violations: Vec::new(),
                 travel_violation_count: 0,
                 spindle_rpm_range: [None; 4],
             },
             limits,
-            observer: None,
             feed_override: config.feed_override,
             cycle_time: None,
         }
     }
 
     pub(crate) fn set_observer(&mut self, sink: SetpointSink) {
-        self.observer = Some(sink);
+        self.checks.observer = Some(sink);
     }
 
     /// Runs one accepted command.
     pub(crate) fn apply(&mut self, cmd: &Canon, line: u32) {
-        let Self {
-            stage,
-            checks,
-            observer,
-            ..
-        } = self;
-        let mut sink = |sp: &Setpoint| {
-            checks.observe(sp);
-            if let Some(o) = observer.as_mut() {
-                o(sp);
-            }
-        };
+        let Self { stage, checks, .. } = self;
+        let mut sink = |sp: &Setpoint| checks.observe(sp);
         stage.apply(cmd, line, &mut sink);
     }
 
     /// Runs everything pending; the path stops at its current end.
     pub(crate) fn drain(&mut self) {
-        let Self {
-            stage,
-            checks,
-            observer,
-            ..
-        } = self;
-        let mut sink = |sp: &Setpoint| {
-            checks.observe(sp);
-            if let Some(o) = observer.as_mut() {
-                o(sp);
-            }
-        };
+        let Self { stage, checks, .. } = self;
+        let mut sink = |sp: &Setpoint| checks.observe(sp);
         stage.drain(&mut sink);
     }
 
@@ -225,18 +208,8 @@ impl MotionRun {
         if self.cycle_time.is_some() {
             return;
         }
-        let Self {
-            stage,
-            checks,
-            observer,
-            ..
-        } = self;
-        let mut sink = |sp: &Setpoint| {
-            checks.observe(sp);
-            if let Some(o) = observer.as_mut() {
-                o(sp);
-            }
-        };
+        let Self { stage, checks, .. } = self;
+        let mut sink = |sp: &Setpoint| checks.observe(sp);
         self.cycle_time = Some(stage.finish(&mut sink));
     }
 

@@ -212,6 +212,18 @@ pub(crate) struct Program {
     pub file: Option<String>,
 }
 
+impl Program {
+    /// The span of its last non-blank line: where "the subprogram ends without M17" is reported.
+    pub(crate) fn last_line_span(&self) -> Span {
+        self.lines
+            .iter()
+            .rev()
+            .find(|l| !l.text.trim().is_empty())
+            .map(|l| l.at.span(&l.text, 0, l.text.len()))
+            .unwrap_or_default()
+    }
+}
+
 /// The commands of one execution unit, each stamped with the unit's span and frame number.
 pub(crate) struct Emit {
     pub cmds: Vec<Spanned<Canon>>,

@@ -104,13 +104,7 @@ impl Nc31Run {
                 if self.stack.len() > 1 {
                     // Reported at the subprogram's last line; the run goes back to the caller
                     // (so that `stanok check` goes on instead of reading past the end again).
-                    let span = self.programs[prog]
-                        .lines
-                        .iter()
-                        .rev()
-                        .find(|l| !l.text.trim().is_empty())
-                        .map(|l| l.at.span(&l.text, 0, l.text.len()))
-                        .unwrap_or_default();
+                    let span = self.programs[prog].last_line_span();
                     self.stack.pop();
                     return Err(at_file(Diagnostic::error(
                         "nc31::no-return",

@@ -161,7 +161,7 @@ impl Ctx<'_> {
             }
             let mut v = if is_linear(i) { self.mm(val.v) } else { val.v };
             // AxiOMA G10 diameter programming: positions and increments are diameters (§14).
-            if self.st.axioma_diameter[i] {
+            if self.st.axioma_modes.axioma_diameter[i] {
                 v /= 2.0;
             }
             p[i] = match self.st.distance {
@@ -279,8 +279,12 @@ impl Ctx<'_> {
     /// A tool length offset waiting for motion (AxiOMA) goes into the frame now: the end point of
     /// this move is computed with it, on every axis.
     pub fn apply_pending_tlo(&mut self) {
-        if let Some(t) = self.st.pending_tlo.take() {
-            self.st.frame.set_tlo(t);
+        // Tested before `take`: the `&mut` access journals the AxiOMA modes (`state::Journalled`),
+        // and almost every motion has nothing pending.
+        if self.st.axioma_modes.pending_tlo.is_some() {
+            if let Some(t) = self.st.axioma_modes.pending_tlo.take() {
+                self.st.frame.set_tlo(t);
+            }
         }
     }
 

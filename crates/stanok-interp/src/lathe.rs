@@ -105,7 +105,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         let before = cap.before.min(self.queue.len());
         let commands: Vec<_> = self.queue.drain(before..).map(|c| c.value).collect();
-        let frame = self.state.frame;
+        let frame = *self.state.frame;
         let profile = Profile::from_commands(&commands, |p| frame.to_program(p));
         self.state.rs274.in_profile = false;
         let backup = self.state;

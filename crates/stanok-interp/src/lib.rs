@@ -9,8 +9,9 @@
 //! ```text
 //!  BlockReader ──Block──▶ Words::fill (STEP 2: evaluate, sort)
 //!                              │
-//!                  rs274::execute / axioma::execute on a scratch copy of the state (STEP 3+4)
-//!                              │ Ok: commit state + commands        Err: yield the diagnostic, stop
+//!                  rs274::execute / axioma::execute on the live state (STEP 3+4), its undo
+//!                  taken first (state::ModalState::begin_block, state::Journalled)
+//!                              │ Ok: commit state + commands        Err: roll back, yield the diagnostic, stop
 //!                              ▼
 //!                        queue of Spanned<Canon> ──▶ Iterator::next
 //! ```
@@ -163,20 +164,13 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 Dialect::Rs274ngc | Dialect::Mazatrol | Dialect::Balt => 1,
                 _ => 0,
             },
-            frame: WorkFrame::default(),
+            frame: Default::default(),
             xy_rotation_deg: 0.0,
-            axioma: axioma_chain::AxiomaChain::default(),
-            axioma_diameter: [false; 9],
+            axioma: Default::default(),
+            axioma_modes: Default::default(),
             mazatrol: Default::default(),
             balt: Default::default(),
-            polar: state::Polar::default(),
-            length_comp: state::LengthComp::Off,
-            edge: 0,
-            pending_tlo: None,
-            home_return: state::HomeReturn::None,
-            spindle_tools: [0; 4],
-            spindle_edges: [0; 4],
-            rs274: rs274::Rs274State::default(),
+            rs274: Default::default(),
             position: opts.initial_position,
         };
         let mut state = state;
@@ -527,8 +521,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// Executes the block with `hll_values`, the values of its HLL expression words.
     fn execute_words(&mut self, hll_values: &[(u32, f64)]) -> Result<bool, Diagnostic> {
         let dialect = self.opts.dialect;
-        // The block runs on the live state; a failure restores this copy (one copy per block).
-        let backup = self.state;
+        // The block runs on the live state; a failure restores this copy and the journals of the
+        // large parts (see `state::Journalled`).
+        let backup = self.state.begin_block();
         // AxiOMA blocks write behind `axioma_held` (compensation may still insert motions among
         // them); committed blocks are released to `queue` below.
         let axioma_backup = (dialect == Dialect::Axioma).then(|| self.axioma.clone());
@@ -643,7 +638,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                         self.queue.extend(held_backup);
                     }
                 }
-                self.state = backup;
+                self.state.rollback(backup);
                 self.lathe_call = None;
                 self.params.rollback();
                 return Err(d);

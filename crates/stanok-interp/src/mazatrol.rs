@@ -477,7 +477,7 @@ fn cancel(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         tool_offset: [0.0; 3],
     });
     cx.st.position = Pose::from_array(joints);
-    cx.st.mazatrol = MazatrolState::default();
+    *cx.st.mazatrol = MazatrolState::default();
     let end = cx.st.frame.to_program(&Pose::from_array(holder_at_tip));
     move_to(cx, end, span)
 }

@@ -155,7 +155,7 @@ pub(crate) fn length_offset(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Resul
         cx.st.position = Pose::from_array(joints);
     }
     let was_on = cx.st.mazatrol.offset != LengthOffset::Off;
-    cx.st.mazatrol = MazatrolState {
+    *cx.st.mazatrol = MazatrolState {
         length,
         offset: if code == G44 {
             LengthOffset::Minus
@@ -181,7 +181,7 @@ pub(crate) fn length_offset(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Resul
 /// (F114 bit 1 = 0): the holder face goes to where the virtual tip was.
 pub(crate) fn cancel_length_offset(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     let before = cx.st.program_position();
-    cx.st.mazatrol = MazatrolState::default();
+    *cx.st.mazatrol = MazatrolState::default();
     set_tlo(cx, 0.0);
     crate::mazatrol::move_to(cx, before, span)
 }

@@ -218,3 +218,40 @@ proptest! {
         if major { prop_assert!(h.sweep() >= std::f64::consts::PI - 1e-9) } else { prop_assert!(h.sweep() <= std::f64::consts::PI + 1e-9) }
     }
 }
+
+#[test]
+fn a_failing_block_leaves_the_work_frame_and_the_dialect_state_as_they_were() {
+    // Line 4 selects G55 (offset X100, rotated 30°) and starts cutter compensation, then fails on
+    // its arc: both live in journalled parts of the modal state (the frame, the RS274/NGC state),
+    // which the block changed before failing. Line 5 must still move in G54, uncompensated.
+    let text = "G21 F100\nG10 L2 P2 X100 R30\nG1 X10\nG55 G2 X1\nG1 X30\nM2\n";
+    let mut opts = InterpOptions::new(Dialect::Rs274ngc);
+    opts.continue_after_error = true;
+    let mut errors = Vec::new();
+    let mut ends = Vec::new();
+    for item in Interpreter::from_text(text, opts) {
+        match item {
+            Ok(c) => {
+                if let Canon::StraightFeed(m) = c.value {
+                    ends.push((c.span.line, m.end.x, m.end.y));
+                }
+            }
+            Err(d) => errors.push(d.span.line),
+        }
+    }
+    assert_eq!(errors, [4]);
+    assert_eq!(ends, [(3, 10.0, 0.0), (5, 30.0, 0.0)]);
+
+    // The same through G55 committed: the frame does change (so the test above can fail).
+    let text = "G21 F100\nG10 L2 P2 X100 R30\nG55\nG1 X30\nM2\n";
+    let (cmds, err) = run(text, Dialect::Rs274ngc);
+    assert!(err.is_none());
+    let end = cmds
+        .iter()
+        .find_map(|c| match &c.value {
+            Canon::StraightFeed(m) => Some(m.end),
+            _ => None,
+        })
+        .unwrap();
+    assert!(end.x > 99.0 && end.y > 1.0, "{end:?}");
+}

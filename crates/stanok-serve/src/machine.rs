@@ -560,7 +560,7 @@ fn execute<R: std::io::BufRead + std::io::Seek>(
     state.apply(&cmd.value);
     let modal = interp.state();
     let (g, m) = (g_vector(modal, dialect), m_vector(interp, state, dialect));
-    let edge = modal.edge;
+    let edge = modal.axioma_modes.edge;
     shared.publish(|s| {
         if let Canon::Message { text } = &cmd.value {
             s.message = text.trim().to_string();

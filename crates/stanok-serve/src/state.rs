@@ -288,7 +288,7 @@ pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
     ));
     v.push(code(
         "tool length",
-        match s.length_comp {
+        match s.axioma_modes.length_comp {
             LengthComp::Off => "G49",
             LengthComp::Plus => "G43",
             LengthComp::Minus => "G44",

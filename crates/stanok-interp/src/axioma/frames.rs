@@ -238,7 +238,7 @@ pub(super) fn diameter_mode(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagn
                     "machine data marks the axes that may be diameters (`transverse = true`)",
                 ));
         }
-        cx.st.axioma_diameter[i] = on;
+        cx.st.axioma_modes.axioma_diameter[i] = on;
     }
     if !any {
         return Err(cx.err(

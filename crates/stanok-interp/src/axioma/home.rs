@@ -63,13 +63,13 @@ pub(super) fn g28(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     }
     let p = cx.st.frame.to_program(&Pose::from_array(target));
     cx.straight(true, p, 0.0);
-    cx.st.home_return = HomeReturn::From { via };
+    cx.st.axioma_modes.home_return = HomeReturn::From { via };
     Ok(())
 }
 
 /// G29.
 pub(super) fn g29(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
-    let HomeReturn::From { via } = cx.st.home_return else {
+    let HomeReturn::From { via } = cx.st.axioma_modes.home_return else {
         return Err(cx.err(
             "axioma::g29-without-g28",
             "G29 returns from a home position: program G28 first",
@@ -93,6 +93,6 @@ pub(super) fn g29(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         }
     }
     cx.straight(true, Pose::from_array(v), 0.0);
-    cx.st.home_return = HomeReturn::None;
+    cx.st.axioma_modes.home_return = HomeReturn::None;
     Ok(())
 }

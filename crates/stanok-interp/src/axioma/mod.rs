@@ -551,7 +551,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     polar::g16(cx)?;
                     parameter_block = true;
                 } else {
-                    cx.st.polar.on = false;
+                    cx.st.axioma_modes.polar.on = false;
                 }
                 continue;
             }
@@ -724,7 +724,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         }
         let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
         let monitored = cx.axioma.probe.g75
-            || (cx.axioma.m.batch_probe && cx.st.motion == MotionMode::Linear && !cx.st.polar.on);
+            || (cx.axioma.m.batch_probe
+                && cx.st.motion == MotionMode::Linear
+                && !cx.st.axioma_modes.polar.on);
         if orientation::check(cx, &ori_words)? {
             orientation::motion(cx, at, &ori_words)?;
         } else if cx.axioma.spline.kind.is_some() {

@@ -65,7 +65,7 @@ pub(super) fn dwell_block(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnos
 
 pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, cr: Option<Val>) -> Result<(), Diagnostic> {
     let mode = cx.st.motion;
-    if cx.st.polar.on {
+    if cx.st.axioma_modes.polar.on {
         return polar_motion(cx, span, cr);
     }
     let centre_letters = [b'I', b'J', b'K'];

@@ -137,7 +137,7 @@ pub(super) fn keyword(cx: &mut Ctx<'_>, kw: Keyword, span: ColSpan) -> Result<()
                 .forward(&joints)
                 .map_err(|e| kin_error(cx, e, span))?;
             cx.st.frame.set_tlo(Pose::ZERO);
-            cx.st.pending_tlo = None;
+            cx.st.axioma_modes.pending_tlo = None;
             cx.st.position = tip;
             cx.axioma.ori.traori = true;
             cx.axioma.ori.c0 = c0;
@@ -157,8 +157,9 @@ pub(super) fn keyword(cx: &mut Ctx<'_>, kw: Keyword, span: ColSpan) -> Result<()
                 .inverse(&cx.st.position)
                 .map_err(|e| kin_error(cx, e, span))?;
             cx.st.position = Pose::from_array(joints);
-            cx.st.frame.set_tlo(super::tools::length_offset(cx));
-            cx.st.pending_tlo = None;
+            let tlo = super::tools::length_offset(cx);
+            cx.st.frame.set_tlo(tlo);
+            cx.st.axioma_modes.pending_tlo = None;
             cx.axioma.ori.traori = false;
             cx.out.push(Canon::SetToolCentrePoint {
                 active: false,
@@ -194,7 +195,7 @@ pub(super) fn update_tool(cx: &mut Ctx<'_>) -> bool {
     if !cx.axioma.ori.traori {
         return false;
     }
-    cx.st.pending_tlo = None;
+    cx.st.axioma_modes.pending_tlo = None;
     let c0 = tool_offset(cx);
     if c0 != cx.axioma.ori.c0 {
         cx.axioma.ori.c0 = c0;
@@ -285,7 +286,7 @@ pub(super) fn check(cx: &Ctx<'_>, words: &OriWords) -> Result<bool, Diagnostic> 
             )
             .with_note("choose a 5-axis machine, e.g. --machine 5axis-bc-head"));
     }
-    let base_is_z = match cx.st.length_comp {
+    let base_is_z = match cx.st.axioma_modes.length_comp {
         LengthComp::Off => true,
         LengthComp::Plus => cx.st.plane == Plane::XY,
         LengthComp::Minus => false,

@@ -37,10 +37,10 @@ fn plane_coords(cx: &Ctx<'_>) -> (usize, usize, [f64; 2]) {
 /// ρ and θ of the current position about the pole.
 fn from_position(cx: &mut Ctx<'_>) {
     let (_, _, cur) = plane_coords(cx);
-    let pole = cx.st.polar.pole;
+    let pole = cx.st.axioma_modes.polar.pole;
     let (dx, dy) = (cur[0] - pole[0], cur[1] - pole[1]);
-    cx.st.polar.rho = dx.hypot(dy);
-    cx.st.polar.theta = if cx.st.polar.rho < 1e-9 {
+    cx.st.axioma_modes.polar.rho = dx.hypot(dy);
+    cx.st.axioma_modes.polar.theta = if cx.st.axioma_modes.polar.rho < 1e-9 {
         0.0
     } else {
         dy.atan2(dx).to_degrees()
@@ -49,9 +49,9 @@ fn from_position(cx: &mut Ctx<'_>) {
 
 /// A plane change moves the pole to the workpiece zero (spec §17.2).
 pub(super) fn on_plane_change(cx: &mut Ctx<'_>) {
-    cx.st.polar.pole = [0.0; 2];
-    cx.st.polar.plane = cx.st.plane;
-    if cx.st.polar.on {
+    cx.st.axioma_modes.polar.pole = [0.0; 2];
+    cx.st.axioma_modes.polar.plane = cx.st.plane;
+    if cx.st.axioma_modes.polar.on {
         from_position(cx);
     }
 }
@@ -69,11 +69,11 @@ pub(super) fn g16(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
             };
         }
     }
-    cx.st.polar = Polar {
+    cx.st.axioma_modes.polar = Polar {
         on: true,
         pole,
         plane: cx.st.plane,
-        ..cx.st.polar
+        ..cx.st.axioma_modes.polar
     };
     from_position(cx);
     for (i, &l) in AXIS_WORDS.iter().enumerate() {
@@ -120,7 +120,7 @@ pub(super) fn end_point(
     if let Some(r) = r {
         let mm = cx.mm(r.v);
         let rho = if incremental {
-            cx.st.polar.rho + mm
+            cx.st.axioma_modes.polar.rho + mm
         } else {
             mm
         };
@@ -131,21 +131,24 @@ pub(super) fn end_point(
                 r.span,
             ));
         }
-        cx.st.polar.rho = rho;
+        cx.st.axioma_modes.polar.rho = rho;
     }
     if let Some(q) = q {
         let v = reduce(q.v);
         full_turn = incremental && v.abs() == 360.0;
-        cx.st.polar.theta = if incremental {
-            cx.st.polar.theta + v
+        cx.st.axioma_modes.polar.theta = if incremental {
+            cx.st.axioma_modes.polar.theta + v
         } else {
             v
         };
     }
     // The other axes: as in a Cartesian block (the plane axes are not there).
     let (mut end, _) = cx.end_point()?;
-    let (rho, theta) = (cx.st.polar.rho, cx.st.polar.theta.to_radians());
-    let pole = cx.st.polar.pole;
+    let (rho, theta) = (
+        cx.st.axioma_modes.polar.rho,
+        cx.st.axioma_modes.polar.theta.to_radians(),
+    );
+    let pole = cx.st.axioma_modes.polar.pole;
     let mut v = end.to_array();
     v[a] = pole[0] + rho * theta.cos();
     v[b] = pole[1] + rho * theta.sin();
@@ -165,7 +168,7 @@ pub(super) fn arc_geometry(
     let ia: Option<Val> = cx.words.take(letters[a]);
     let ib: Option<Val> = cx.words.take(letters[b]);
     let centre = if ia.is_none() && ib.is_none() {
-        cx.st.polar.pole
+        cx.st.axioma_modes.polar.pole
     } else {
         let relative = cx.st.arc_distance == DistanceMode::Incremental;
         let c = |w: Option<Val>, s: f64, cx: &Ctx<'_>| match w {

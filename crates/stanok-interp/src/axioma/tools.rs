@@ -31,7 +31,7 @@ fn axes_of(kind: ToolKind, plane: Plane) -> [usize; 3] {
 
 /// G43 / G44 / G45 L… / G49.
 pub(super) fn length_comp(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
-    cx.st.length_comp = match code {
+    cx.st.axioma_modes.length_comp = match code {
         430 => LengthComp::Plus,
         440 => LengthComp::Minus,
         450 => {
@@ -61,7 +61,7 @@ pub(super) fn tool_change(
     if let Some(t) = tool {
         cx.st.current_tool = t;
         // T without D is D1 (rule 1); T0 has no edge.
-        cx.st.edge = if t == 0 { 0 } else { 1 };
+        cx.st.axioma_modes.edge = if t == 0 { 0 } else { 1 };
     }
     if let Some(d) = d {
         let edge = d.v;
@@ -72,9 +72,9 @@ pub(super) fn tool_change(
                 d.span,
             ));
         }
-        cx.st.edge = edge as u8;
+        cx.st.axioma_modes.edge = edge as u8;
     }
-    let (t, e) = (cx.st.current_tool, cx.st.edge);
+    let (t, e) = (cx.st.current_tool, cx.st.axioma_modes.edge);
     if t != 0 && e != 0 {
         match cx.opts.control.tools.get(t) {
             None => cx.warnings.push(Diagnostic::warning(
@@ -109,8 +109,8 @@ pub(super) fn stray_d(cx: &Ctx<'_>, d: Val) -> Diagnostic {
 
 /// σ·V for the current state.
 pub(super) fn length_offset(cx: &Ctx<'_>) -> Pose {
-    let (t, e) = (cx.st.current_tool, cx.st.edge);
-    let (plane, sign) = match cx.st.length_comp {
+    let (t, e) = (cx.st.current_tool, cx.st.axioma_modes.edge);
+    let (plane, sign) = match cx.st.axioma_modes.length_comp {
         LengthComp::Off => return Pose::ZERO,
         LengthComp::Plus => (cx.st.plane, 1.0),
         LengthComp::Minus => (cx.st.plane, -1.0),
@@ -139,11 +139,12 @@ pub(super) fn update(cx: &mut Ctx<'_>) {
         return;
     }
     let want = length_offset(cx);
-    cx.st.pending_tlo = if want != *cx.st.frame.tlo() {
-        Some(want)
-    } else {
-        None
-    };
+    let pending = (want != *cx.st.frame.tlo()).then_some(want);
+    // Written only when it changes: the AxiOMA modes are journalled on their first `&mut`
+    // access (`state::Journalled`), and almost every block leaves this as it was.
+    if cx.st.axioma_modes.pending_tlo != pending {
+        cx.st.axioma_modes.pending_tlo = pending;
+    }
 }
 
 /// `T2=…`, `D2=…` (spindles 2…4) in an M06/M66 block: the tool and edge of those spindles.
@@ -155,12 +156,12 @@ pub(super) fn other_spindles(
     for &(spindle, t) in tools {
         let tool = cx.non_negative_integer(t, "tool number T")?;
         let i = spindle as usize;
-        if cx.st.spindle_tools[i] != tool {
+        if cx.st.axioma_modes.spindle_tools[i] != tool {
             cx.out
                 .push(stanok_canon::Canon::ChangeSpindleTool { spindle, tool });
         }
-        cx.st.spindle_tools[i] = tool;
-        cx.st.spindle_edges[i] = if tool == 0 { 0 } else { 1 };
+        cx.st.axioma_modes.spindle_tools[i] = tool;
+        cx.st.axioma_modes.spindle_edges[i] = if tool == 0 { 0 } else { 1 };
     }
     for &(spindle, d) in edges {
         if d.v.fract() != 0.0 || !(0.0..=4.0).contains(&d.v) {
@@ -170,7 +171,7 @@ pub(super) fn other_spindles(
                 d.span,
             ));
         }
-        cx.st.spindle_edges[spindle as usize] = d.v as u8;
+        cx.st.axioma_modes.spindle_edges[spindle as usize] = d.v as u8;
     }
     Ok(())
 }

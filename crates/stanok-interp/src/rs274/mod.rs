@@ -729,11 +729,17 @@ fn css_mm_per_min(cx: &Ctx<'_>, s: f64) -> f64 {
 /// changes: at G96/G97, a new S or D, and when the offsets move the work zero of X, which LinuxCNC
 /// takes as the spindle centre line (radius = work X). Checked at the end of every block, but only
 /// while G96 is (or was just) in force, so that ordinary blocks pay one comparison.
+#[inline(always)]
 fn publish_css_law(cx: &mut Ctx<'_>) {
     let st = &cx.st.rs274;
-    if !st.css && st.css_law.is_none() {
-        return;
+    if st.css || st.css_law.is_some() {
+        publish_css_law_in_force(cx);
     }
+}
+
+#[cold]
+fn publish_css_law_in_force(cx: &mut Ctx<'_>) {
+    let st = &cx.st.rs274;
     let law = if st.css {
         let mut zero = cx.st.program_position();
         zero.x = 0.0;

@@ -39,10 +39,13 @@ fn motion_block_inner(
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
     if !(730..=890).contains(&code) || code == 760 || code == 800 {
-        // Leaving the canned cycles ends a series (its initial level is forgotten).
-        cx.st.rs274.cycle_il_set = false;
+        // Leaving the canned cycles ends a series (its initial level is forgotten). Written
+        // only when it changes: `rs274` is journalled on its first write (`state::Journalled`).
+        if cx.st.rs274.cycle_il_set {
+            cx.st.rs274.cycle_il_set = false;
+        }
     }
-    if matches!(code, 0 | 10 | 20 | 30 | 800) {
+    if matches!(code, 0 | 10 | 20 | 30 | 800) && cx.st.rs274.motion_code.is_some() {
         cx.st.rs274.motion_code = None;
     }
     // Moves whose path compensation cannot offset (LinuxCNC refuses them the same way).
@@ -142,7 +145,9 @@ fn motion_block_inner(
             } else {
                 cx.straight(rapid, end, feed);
                 // The exit move after G40 has used the programmed point.
-                cx.st.rs274.comp.program = None;
+                if cx.st.rs274.comp.program.is_some() {
+                    cx.st.rs274.comp.program = None;
+                }
                 Ok(())
             }
         }
@@ -364,7 +369,9 @@ fn arc_block(
         return super::cutter_comp::arc(cx, ccw, end, planar, feed, span);
     }
     cx.arc(plane, ccw, end, planar, feed);
-    cx.st.rs274.comp.program = None;
+    if cx.st.rs274.comp.program.is_some() {
+        cx.st.rs274.comp.program = None;
+    }
     Ok(())
 }
 

@@ -220,7 +220,7 @@ impl Comp {
 
     /// Cutter radius for the current tool and edge, in program units of the plane.
     fn radius(cx: &Ctx<'_>, at: ColSpan) -> Result<(f64, P2), Diagnostic> {
-        let (t, e) = (cx.st.current_tool, cx.st.edge);
+        let (t, e) = (cx.st.current_tool, cx.st.axioma_modes.edge);
         if t == 0 || e == 0 {
             return Ok((0.0, [0.0, 0.0]));
         }
@@ -268,7 +268,7 @@ impl Comp {
             span: cx.out.span,
             number: cx.out.number,
             slot: cx.axioma.held_base + cx.out.queue.len() as u64,
-            frame: cx.st.frame,
+            frame: *cx.st.frame,
             plane: cx.st.plane,
         }
     }

@@ -297,7 +297,7 @@ pub(super) fn call(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
             )
             .with_note("program G40 before the cycle call (spec axioma-3 §4.9)"));
     }
-    if cx.st.polar.on {
+    if cx.st.axioma_modes.polar.on {
         return Err(cx.err(
             "axioma::cycle-polar",
             "a canned cycle call point cannot be programmed in polar coordinates (G16)",

@@ -52,7 +52,7 @@ fn common(c: &mut Call<'_, '_>) -> Result<Milling, Diagnostic> {
             c.span,
         ));
     }
-    let (tool, edge) = (c.cx.st.current_tool, c.cx.st.edge);
+    let (tool, edge) = (c.cx.st.current_tool, c.cx.st.axioma_modes.edge);
     if tool == 0 || edge == 0 {
         return Err(c
             .cx

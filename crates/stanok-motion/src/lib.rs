@@ -23,6 +23,7 @@
 #![deny(missing_docs)]
 
 pub mod adapter;
+pub mod clothoid;
 pub mod css;
 pub mod hold;
 pub mod interpolator;

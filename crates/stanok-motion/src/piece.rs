@@ -1,8 +1,11 @@
 //! Path pieces: what the planner times. A programmed segment becomes one or more pieces; every
-//! piece is a straight line or a circular arc in the 9-D axis space, joined to its neighbours with a
-//! continuous tangent (or at a stop), so that a profile with continuous path speed gives continuous
-//! axis velocities.
+//! piece is a straight line, a circular arc (BRISK blends) or a symmetric clothoid pair (SOFT
+//! blends, [`crate::clothoid`]) in the 9-D axis space, joined to its neighbours with a continuous
+//! tangent (or at a stop), so that a profile with continuous path speed gives continuous axis
+//! velocities — and in SOFT also with continuous curvature, so that the axis accelerations are
+//! continuous too.
 
+use crate::clothoid::Clothoid;
 use crate::limits::AxisLimit;
 use crate::segment::{Point9, Spindles};
 
@@ -27,6 +30,8 @@ pub enum Shape {
         /// Radius, > 0.
         radius: f64,
     },
+    /// A SOFT corner blend: two clothoid halves, curvature 0 → 2φ/ℓ → 0 (see [`crate::clothoid`]).
+    Clothoid(Clothoid),
     /// All axes stand still at `at` for `seconds` (a G4 dwell), length 0.
     Dwell {
         /// Where the machine stands.
@@ -36,7 +41,8 @@ pub enum Shape {
     },
 }
 
-/// Position, unit tangent and curvature vector (d²p/ds²) at one arc length.
+/// Position, unit tangent, curvature vector (d²p/ds²) and its derivative (d³p/ds³) at one arc
+/// length.
 #[derive(Debug, Clone, Copy)]
 pub struct PathPoint {
     /// Position.
@@ -45,6 +51,9 @@ pub struct PathPoint {
     pub tangent: Point9,
     /// d²p/ds² (zero on lines; centripetal, magnitude 1/radius, on arcs).
     pub curvature: Point9,
+    /// d³p/ds³ = −κ²·T + κ'·N (zero on lines, −T/r² on arcs): with path speed v, acceleration a
+    /// and jerk j the axis jerk is j·T + 3·v·a·p'' + v³·p'''.
+    pub third: Point9,
 }
 
 impl Shape {
@@ -55,6 +64,7 @@ impl Shape {
             position: [0.0; 9],
             tangent: [0.0; 9],
             curvature: [0.0; 9],
+            third: [0.0; 9],
         };
         match self {
             Shape::Line { start, dir } => {
@@ -75,7 +85,15 @@ impl Shape {
                     p.position[i] = centre[i] + radius * radial;
                     p.tangent[i] = -sn * e1[i] + cs * e2[i];
                     p.curvature[i] = -radial / radius;
+                    p.third[i] = -p.tangent[i] / (radius * radius);
                 }
+            }
+            Shape::Clothoid(c) => {
+                let q = c.at(s);
+                p.position = q.position;
+                p.tangent = q.tangent;
+                p.curvature = q.curvature;
+                p.third = q.third;
             }
             Shape::Dwell { at, .. } => p.position = *at,
         }
@@ -186,4 +204,56 @@ pub fn arc_limits(
         j = 0.5 * rest;
     }
     (v, guard(a), guard(j))
+}
+
+/// Limits of a SOFT clothoid blend (see [`crate::clothoid`]) in the plane (t1, n1), with largest
+/// curvature `kappa_max` = 2φ/ℓ and curvature rate `kappa_rate` = |dκ/ds| = 2φ/ℓ².
+///
+/// ## Budget
+/// With ρ_i = √(t1_i² + n1_i²) ≥ |T_i|, |N_i| anywhere on the blend (T, N unit vectors in that
+/// plane), and A = min_i A_i/ρ_i, J = min_i J_i/ρ_i:
+/// * acceleration a·T + v²κ·N: v²κ_max ≤ c·A (c ≤ [`CENTRIPETAL_SHARE`]), |a| ≤ (1 − c)·A — as on
+///   an arc of radius 1/κ_max;
+/// * jerk (j − v³κ²)·T + (3·v·a·κ + v³κ')·N, per axis at most
+///   (|j| + v³κ_max² + 3·v·|a|·κ_max + v³|κ'|)·ρ_i: the turn at constant speed,
+///   v³(κ_max² + |κ'|) ≤ ½J ([`SOFT_TURN_JERK_SHARE`], a speed cap v ≤ (½J / (κ_max² + |κ'|))^⅓),
+///   then 3·v·|a|·κ_max ≤ ¼J and |j| ≤ ¼J.
+///
+/// Both κ_max and |κ'| are taken at once, though κ' is largest where κ is not: conservative, and
+/// the sum of the shares is 1, so no axis can exceed its limit anywhere on the blend.
+pub fn clothoid_limits(
+    t1: &Point9,
+    n1: &Point9,
+    kappa_max: f64,
+    kappa_rate: f64,
+    speed: f64,
+    axes: &[AxisLimit; 9],
+) -> (f64, f64, f64) {
+    let (mut vb, mut ab, mut jb) = (f64::INFINITY, f64::INFINITY, f64::INFINITY);
+    for i in 0..9 {
+        let rho = (t1[i] * t1[i] + n1[i] * n1[i]).sqrt();
+        if rho > 0.0 {
+            vb = vb.min(axes[i].velocity / rho);
+            ab = ab.min(axes[i].acceleration / rho);
+            jb = jb.min(axes[i].jerk / rho);
+        }
+    }
+    let (ab, jb) = (guard(ab), guard(jb));
+    let turn = kappa_max * kappa_max + kappa_rate;
+    let v = speed
+        .min(vb)
+        .min((CENTRIPETAL_SHARE * ab / kappa_max).sqrt())
+        .min((SOFT_TURN_JERK_SHARE * jb / turn).cbrt());
+    let v = guard(v);
+    let c = if ab > 0.0 {
+        (v * v * kappa_max / ab).min(CENTRIPETAL_SHARE)
+    } else {
+        1.0
+    };
+    let rest = (1.0 - SOFT_TURN_JERK_SHARE) * jb;
+    let mut a = (1.0 - c) * ab;
+    if v > 0.0 {
+        a = a.min(0.5 * rest / (3.0 * v * kappa_max));
+    }
+    (v, guard(a), guard(0.5 * rest))
 }

@@ -25,11 +25,16 @@
 //!
 //! The whole shape scales with ℓ for a given θ. With the corner C, P1 = C − d·t1, P2 = C + d·t2:
 //! * the mid point (x = 1) lies on the bisector: d = ℓ·(Fc(φ) + Fs(φ)·tan φ) = ℓ·D(φ);
-//! * it is the point nearest to C, at distance e_d = ℓ·Fs(φ)/cos φ = ℓ·E(φ), and every point of
-//!   a half is within Y(ℓ) = ℓ·Fs(φ) ≤ e_d of its chord.
+//! * every point of the first half is within Y(s) ≤ Y(ℓ) = ℓ·Fs(φ) of the incoming chord, and its
+//!   foot on the chord's line, at X(s) ≤ ℓ·Fc(φ) ≤ d from P1, lies on the chord (between P1 and
+//!   C); the second half likewise for the outgoing chord. So the blend's distance from the
+//!   programmed path is at most ℓ·Fs(φ), reached at the mid point;
+//! * the mid point is also the point nearest to C, at ℓ·Fs(φ)/cos φ (the circular blend's rule
+//!   measures that distance; the clothoid's bound is the distance from the path itself, which is
+//!   what G64's tolerance limits, and for a right angle lets the blend be √2 times longer).
 //!
-//! So the path builder computes D and E once per corner and takes ℓ = min(e/E, L_in/(2D),
-//! L_out/(2D)): within the tolerance e, and at most half of each chord.
+//! So the path builder computes the [`UnitShape`] once per corner and takes
+//! ℓ = min(e/Fs(φ), L_in/(2D), L_out/(2D)): within the tolerance e, and at most half of each chord.
 //!
 //! ## Evaluation
 //! The first half is evaluated from P1 in the frame (t1, n1) with n1 = (t2 − cos θ·t1)/sin θ, the
@@ -98,12 +103,26 @@ pub fn fresnel_unit(w: f64) -> (f64, f64) {
     (c, w * s)
 }
 
-/// The unit shape of a corner blend for half-turning angle φ (module doc): (D, E) with
-/// d = ℓ·D the length cut from each chord and e_d = ℓ·E the distance from the corner.
-pub fn unit_shape(phi: f64) -> (f64, f64) {
+/// A corner blend of half length ℓ = 1 (module doc): everything else scales with ℓ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnitShape {
+    /// D(φ): the length cut from each chord is d = ℓ·D.
+    pub cut: f64,
+    /// Fs(φ): the largest distance of the blend from the two chords is ℓ·Fs.
+    pub from_chords: f64,
+    /// Fs(φ)/cos φ: the distance of the blend from the corner is ℓ·Fs/cos φ.
+    pub from_corner: f64,
+}
+
+/// The unit shape of a corner blend for half-turning angle φ ∈ (0, π/2) (module doc).
+pub fn unit_shape(phi: f64) -> UnitShape {
     let (fc, fs) = fresnel_unit(phi);
     let (sn, cs) = phi.sin_cos();
-    (fc + fs * sn / cs, fs / cs)
+    UnitShape {
+        cut: fc + fs * sn / cs,
+        from_chords: fs,
+        from_corner: fs / cs,
+    }
 }
 
 /// One symmetric clothoid blend (module doc), arc-length parameterised over [0, 2·half].
@@ -236,9 +255,11 @@ mod tests {
     }
 
     /// The blend of the corner at (`corner`, 0) from direction (1, 0) turning left by θ, ℓ = 1.
-    fn blend(theta: f64, corner: f64) -> (Clothoid, f64, f64) {
+    /// Returns the blend, the cut d, the distance from the corner and from the chords.
+    fn blend(theta: f64, corner: f64) -> (Clothoid, f64, f64, f64) {
         let phi = 0.5 * theta;
-        let (d, e) = unit_shape(phi);
+        let shape = unit_shape(phi);
+        let (d, e, from_chords) = (shape.cut, shape.from_corner, shape.from_chords);
         let c = Clothoid {
             corner: v2(corner, 0.0),
             t1: v2(1.0, 0.0),
@@ -249,7 +270,7 @@ mod tests {
             cos_turn: theta.cos(),
             sin_turn: theta.sin(),
         };
-        (c, d, e)
+        (c, d, e, from_chords)
     }
 
     /// Simpson's rule of ∫₀¹ f with 20 000 intervals (error ~1e-16 for these smooth integrands),
@@ -294,7 +315,7 @@ mod tests {
     #[test]
     fn end_points_tangents_curvature_and_turning_angle() {
         for theta in [1e-4, 0.1, 0.7, PI / 2.0, 2.5, PI - 1e-6] {
-            let (c, d, e) = blend(theta, 3.0);
+            let (c, d, e, from_chords) = blend(theta, 3.0);
             let l = c.length();
             let (a, b) = (c.at(0.0), c.at(l));
             let corner = v2(3.0, 0.0);
@@ -347,16 +368,24 @@ mod tests {
                     rx * -c.t2[1] + ry * c.t2[0]
                 };
                 assert!(
-                    to_chord >= -1e-15 && to_chord <= e * (1.0 + 1e-12),
+                    to_chord >= -1e-15 && to_chord <= from_chords * (1.0 + 1e-12) + 1e-15,
                     "θ {theta}"
                 );
+                // The foot on the chord's line lies on the chord: between its start and C.
+                let along = if s <= 1.0 {
+                    p[0] - c.start()[0]
+                } else {
+                    let (rx, ry) = (c.end()[0] - p[0], c.end()[1] - p[1]);
+                    rx * c.t2[0] + ry * c.t2[1]
+                };
+                assert!(along >= -1e-15 && along <= d * (1.0 + 1e-12), "θ {theta}");
             }
         }
     }
 
     #[test]
     fn finite_differences_agree_with_the_analytic_derivatives() {
-        let (c, _, _) = blend(1.2, 0.0);
+        let (c, _, _, _) = blend(1.2, 0.0);
         let h = 1e-4;
         for k in 1..40 {
             let s = c.length() * k as f64 / 40.0;

@@ -16,8 +16,8 @@
 //!      d = min(e / tan(θ/4), L_in/2, L_out/2); radius r = d / tan(θ/2). Half of each chord at most
 //!      goes to each of its two corners, so blends never overlap. Collinear chords pass unblended.
 //!      **SOFT** (either chord SOFT) replaces the circle by a symmetric pair of clothoids, whose
-//!      curvature runs 0 → 2φ/ℓ → 0 ([`crate::clothoid`], same plane, same e and half-chord
-//!      rules): a line meets a blend with equal (zero) curvature, so the axis accelerations stay
+//!      curvature runs 0 → 2φ/ℓ → 0 ([`crate::clothoid`], same plane, same half-chord rule, and
+//!      every point within e of the chords — measured from the chords rather than the corner): a line meets a blend with equal (zero) curvature, so the axis accelerations stay
 //!      continuous and the servo trace's finite-difference jerk stays within the axis limits. A
 //!      SOFT path has no curvature step at any join (lines and clothoid ends have κ = 0; the two
 //!      halves meet at equal κ; a corner that cannot be blended is a stop), so no join needs a
@@ -396,10 +396,10 @@ impl PathBuilder {
     }
 
     /// SOFT: the clothoid blend of the corner (see [`crate::clothoid`]). The unit shape for the
-    /// half-turning angle φ = θ/2 gives the cut d = ℓ·D(φ) and the distance from the corner
-    /// e_d = ℓ·E(φ); the half length is ℓ = min(e/E, L_in/(2D), L_out/(2D)), so the blend is within
-    /// `e` and takes at most half of each chord. Emits `prev` less the cut and the blend; returns
-    /// d, or None (nothing emitted) if the blend would be degenerate.
+    /// half-turning angle φ = θ/2 gives the cut d = ℓ·D(φ) and the largest distance from the two
+    /// chords ℓ·Fs(φ); the half length is ℓ = min(e/Fs, L_in/(2D), L_out/(2D)), so the blend is
+    /// within `e` of the chords and takes at most half of each. Emits `prev` less the cut and the
+    /// blend; returns d, or None (nothing emitted) if the blend would be degenerate.
     #[allow(clippy::too_many_arguments)]
     fn emit_clothoid(
         &self,
@@ -413,11 +413,11 @@ impl PathBuilder {
         out: &mut impl FnMut(Piece),
     ) -> Option<f64> {
         let phi = 0.5 * theta;
-        let (cut_per_half, distance_per_half) = unit_shape(phi);
-        let half = (e / distance_per_half)
-            .min(0.5 * prev.length / cut_per_half)
-            .min(0.5 * next.length / cut_per_half);
-        let d = half * cut_per_half;
+        let unit = unit_shape(phi);
+        let half = (e / unit.from_chords)
+            .min(0.5 * prev.length / unit.cut)
+            .min(0.5 * next.length / unit.cut);
+        let d = half * unit.cut;
         if !(d > 1e-12 && half > 1e-12 && half.is_finite()) {
             return None;
         }
@@ -454,7 +454,7 @@ impl PathBuilder {
             entry_stop: false,
             line: next.line,
             spindles: prev.spindles,
-            deviation: half * distance_per_half + prev.chord_tolerance.max(next.chord_tolerance),
+            deviation: half * unit.from_chords + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
         });
         Some(d)

@@ -135,6 +135,11 @@ pub struct Piece {
 pub const CENTRIPETAL_SHARE: f64 = 0.95;
 /// In SOFT, v³/r² (the jerk of turning at constant speed) may use this share of the jerk budget.
 pub const SOFT_TURN_JERK_SHARE: f64 = 0.5;
+/// On a SOFT clothoid blend, v³·√(κ_max⁴ + κ'²) (the jerk of turning at constant speed) may use
+/// this share of the jerk budget. A blend is short and the planner nearly always runs it at
+/// constant speed (the S-curve's boundary accelerations are zero and the blend's own speed limit
+/// is the lower one at both its ends), so most of the budget goes to the turn.
+pub const CLOTHOID_TURN_JERK_SHARE: f64 = 0.8;
 
 fn guard(x: f64) -> f64 {
     if x.is_finite() && x > 0.0 {
@@ -214,13 +219,14 @@ pub fn arc_limits(
 /// plane), and A = min_i A_i/ρ_i, J = min_i J_i/ρ_i:
 /// * acceleration a·T + v²κ·N: v²κ_max ≤ c·A (c ≤ [`CENTRIPETAL_SHARE`]), |a| ≤ (1 − c)·A — as on
 ///   an arc of radius 1/κ_max;
-/// * jerk (j − v³κ²)·T + (3·v·a·κ + v³κ')·N, per axis at most
-///   (|j| + v³κ_max² + 3·v·|a|·κ_max + v³|κ'|)·ρ_i: the turn at constant speed,
-///   v³(κ_max² + |κ'|) ≤ ½J ([`SOFT_TURN_JERK_SHARE`], a speed cap v ≤ (½J / (κ_max² + |κ'|))^⅓),
-///   then 3·v·|a|·κ_max ≤ ¼J and |j| ≤ ¼J.
+/// * jerk j·T + 3·v·a·κ·N + v³·(−κ²·T + κ'·N), per axis at most
+///   (|j| + 3·v·|a|·κ_max + v³·√(κ_max⁴ + κ'²))·ρ_i (the component of a vector α·T + β·N of the
+///   plane is at most √(α² + β²)·ρ_i): the turn at constant speed, v³·√(κ_max⁴ + κ'²) ≤ c_j·J
+///   ([`CLOTHOID_TURN_JERK_SHARE`] c_j; a speed cap v ≤ (c_j·J / √(κ_max⁴ + κ'²))^⅓), then half
+///   the rest each: 3·v·|a|·κ_max ≤ ½(1 − c_j)·J and |j| ≤ ½(1 − c_j)·J.
 ///
-/// Both κ_max and |κ'| are taken at once, though κ' is largest where κ is not: conservative, and
-/// the sum of the shares is 1, so no axis can exceed its limit anywhere on the blend.
+/// κ_max and |κ'| are taken together, though κ is largest only at the mid point: conservative, and
+/// the shares add up to 1, so no axis can exceed its limit anywhere on the blend.
 pub fn clothoid_limits(
     t1: &Point9,
     n1: &Point9,
@@ -239,18 +245,18 @@ pub fn clothoid_limits(
         }
     }
     let (ab, jb) = (guard(ab), guard(jb));
-    let turn = kappa_max * kappa_max + kappa_rate;
+    let turn = (kappa_max.powi(4) + kappa_rate * kappa_rate).sqrt();
     let v = speed
         .min(vb)
         .min((CENTRIPETAL_SHARE * ab / kappa_max).sqrt())
-        .min((SOFT_TURN_JERK_SHARE * jb / turn).cbrt());
+        .min((CLOTHOID_TURN_JERK_SHARE * jb / turn).cbrt());
     let v = guard(v);
     let c = if ab > 0.0 {
         (v * v * kappa_max / ab).min(CENTRIPETAL_SHARE)
     } else {
         1.0
     };
-    let rest = (1.0 - SOFT_TURN_JERK_SHARE) * jb;
+    let rest = (1.0 - CLOTHOID_TURN_JERK_SHARE) * jb;
     let mut a = (1.0 - c) * ab;
     if v > 0.0 {
         a = a.min(0.5 * rest / (3.0 * v * kappa_max));

@@ -291,3 +291,103 @@ fn soft_arcs_cost_a_stated_factor() {
         );
     }
 }
+
+/// The invariant behind the finite-difference jerk: a SOFT path has no curvature step at any join.
+/// Over a CAM-style path and a helix (as pieces, before planning): every piece starts where the
+/// previous one ended (to 1e-12 mm; in SOFT bit for bit where a line meets a clothoid), with the same tangent (1e-12) and the same
+/// curvature vector (1e-9 /mm, both zero: lines and clothoid ends); SOFT corners are clothoids
+/// and BRISK corners still circular arcs.
+#[test]
+fn soft_pieces_join_with_continuous_curvature() {
+    use stanok_motion::path::PathBuilder;
+    use stanok_motion::piece::{Piece, Shape};
+    let cfg = mill();
+    let mode = PathMode::Continuous { tolerance: 0.02 };
+    let mut inputs = Vec::new();
+    let mut p = p3(0.0, 0.0, 0.0);
+    let mut heading: f64 = 0.0;
+    for k in 0..300 {
+        heading += ((k * 7919 % 200) as f64 / 100.0 - 1.0) * 0.6;
+        let step = 0.05 + (k * 104_729 % 100) as f64 / 100.0;
+        let q = p3(
+            p[0] + step * heading.cos(),
+            p[1] + step * heading.sin(),
+            p[2] + 0.01 * step,
+        );
+        inputs.push(line(p, q, 4000.0, mode, SOFT));
+        p = q;
+    }
+    let helix = Helix {
+        start: [p[0], p[1], p[2]],
+        end: [p[0] + 10.0, p[1], p[2] + 1.0],
+        centre: [p[0] + 5.0, p[1], p[2]],
+        axis: [0.0, 0.0, 1.0],
+        turns: 1,
+    };
+    let e = p3(p[0] + 10.0, p[1], p[2] + 1.0);
+    for profile in [SOFT, AccelerationProfile::Brisk] {
+        let mut all = inputs.clone();
+        all.push(PlannerInput::Segment(PathSegment {
+            acceleration_cap: f64::INFINITY,
+            start: p,
+            end: e,
+            geometry: SegmentGeometry::Arc(helix),
+            path_speed: 50.0,
+            rapid: false,
+            path_mode: mode,
+            profile: SOFT,
+            line: 2,
+            spindles: Default::default(),
+        }));
+        all.push(line(
+            e,
+            p3(e[0] + 5.0, e[1] - 5.0, e[2]),
+            4000.0,
+            mode,
+            SOFT,
+        ));
+        for i in all.iter_mut() {
+            if let PlannerInput::Segment(s) = i {
+                s.profile = profile;
+            }
+        }
+        let mut pieces: Vec<Piece> = Vec::new();
+        let mut builder = PathBuilder::new(&cfg);
+        builder.set_position(p3(0.0, 0.0, 0.0), &mut |x| pieces.push(x));
+        for i in all {
+            builder.push(i, &mut |x| pieces.push(x));
+        }
+        builder.flush(&mut |x| pieces.push(x));
+        let blends = pieces
+            .iter()
+            .filter(|x| !matches!(x.shape, Shape::Line { .. }))
+            .count();
+        assert!(blends > 200, "{blends} blends");
+        for w in pieces.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            match (profile, &b.shape) {
+                (SOFT, Shape::Arc { .. }) => panic!("a circular blend in SOFT"),
+                (AccelerationProfile::Brisk, Shape::Clothoid(_)) => panic!("a clothoid in BRISK"),
+                _ => {}
+            }
+            let (end, start) = (a.shape.at(a.length), b.shape.at(0.0));
+            for i in 0..9 {
+                // Exact where a line meets a blend; two blends that share a whole chord meet to
+                // rounding (each computes the chord's mid point from its own corner).
+                assert!((start.position[i] - a.end[i]).abs() < 1e-12, "{a:?} {b:?}");
+                let line_involved =
+                    matches!(a.shape, Shape::Line { .. }) || matches!(b.shape, Shape::Line { .. });
+                if profile == SOFT && line_involved {
+                    assert_eq!(start.position[i], a.end[i]);
+                }
+                assert!((end.position[i] - a.end[i]).abs() < 1e-12);
+                if !b.entry_stop {
+                    assert!((end.tangent[i] - start.tangent[i]).abs() < 1e-12);
+                    if profile == SOFT {
+                        assert!(end.curvature[i].abs() < 1e-9 && start.curvature[i].abs() < 1e-9);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -16,11 +16,13 @@
 //!      d = min(e / tan(θ/4), L_in/2, L_out/2); radius r = d / tan(θ/2). Half of each chord at most
 //!      goes to each of its two corners, so blends never overlap. Collinear chords pass unblended.
 //!      **SOFT** (either chord SOFT) replaces the circle by a symmetric pair of clothoids, whose
-//!      curvature runs 0 → 2φ/ℓ → 0 ([`crate::clothoid`], same plane, same half-chord rule, and
-//!      every point within e of the chords — measured from the chords rather than the corner): a line meets a blend with equal (zero) curvature, so the axis accelerations stay
+//!      curvature runs 0 → 2φ/ℓ → 0 ([`crate::clothoid`]; same plane, same half-chord rule, and
+//!      every point within e of the chords — measured from the chords rather than the corner). A
+//!      line meets such a blend with equal (zero) curvature, so the axis accelerations stay
 //!      continuous and the servo trace's finite-difference jerk stays within the axis limits. A
 //!      SOFT path has no curvature step at any join (lines and clothoid ends have κ = 0; the two
-//!      halves meet at equal κ; a corner that cannot be blended is a stop), so no join needs a
+//!      halves meet at equal κ; a corner that cannot be blended is a stop; dwells and the
+//!      tool-centre-point segments, which end in exact stops, join at rest), so no join needs a
 //!      speed cap of its own.
 //! 3. **Tolerances.** Under G64 with tolerance P (or the default when P is absent): arcs get
 //!    t_c = P/2 and their inner corners e = P/2; a block-end corner gets e = P − max(t_c of both

@@ -271,11 +271,7 @@ mod tests {
 
     fn unit(v: [f64; 3]) -> Point9 {
         let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        let mut p = [0.0; 9];
-        for i in 0..3 {
-            p[i] = v[i] / n;
-        }
-        p
+        std::array::from_fn(|i| if i < 3 { v[i] / n } else { 0.0 })
     }
 
     /// At the speed, path acceleration and jerk `clothoid_limits` allows — every sign — no axis
@@ -318,18 +314,18 @@ mod tests {
                 for k in 0..=1000 {
                     let p = c.at(c.length() * k as f64 / 1000.0);
                     for (a, j) in [(a_max, j_max), (a_max, -j_max), (-a_max, j_max)] {
-                        for i in 0..3 {
+                        for (i, axis) in axes.iter().enumerate().take(3) {
                             let acc = a * p.tangent[i] + v * v * p.curvature[i];
                             let jerk = j * p.tangent[i]
                                 + 3.0 * v * a * p.curvature[i]
                                 + v * v * v * p.third[i];
-                            assert!(v * p.tangent[i].abs() <= axes[i].velocity * (1.0 + 1e-12));
+                            assert!(v * p.tangent[i].abs() <= axis.velocity * (1.0 + 1e-12));
                             assert!(
-                                acc.abs() <= axes[i].acceleration * (1.0 + 1e-12),
+                                acc.abs() <= axis.acceleration * (1.0 + 1e-12),
                                 "θ {theta} ℓ {half} axis {i}: a {acc}"
                             );
                             assert!(
-                                jerk.abs() <= axes[i].jerk * (1.0 + 1e-12),
+                                jerk.abs() <= axis.jerk * (1.0 + 1e-12),
                                 "θ {theta} ℓ {half} axis {i}: j {jerk}"
                             );
                         }

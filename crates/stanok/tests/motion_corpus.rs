@@ -5,7 +5,7 @@
 //! velocity, acceleration, jerk, travel or path-tolerance violation in the report (analytic and
 //! finite differences, the latter's jerk on SOFT setpoints, see `stanok_motion::monitor`); the trace's last line is at the
 //! report's final position (to the trace's six decimals) and at t = the report's cycle time; the
-//! cycle time is not below 99 % of the nominal time (blends shorten the path a little); every
+//! cycle time is not below 99 % of the nominal time (98 % in SOFT; blends shorten the path a little); every
 //! setpoint is within the path tolerance in force of the programmed path (from `stanok canon`). The servo period is 4 ms to keep the debug-build test
 //! short (the guarantees do not depend on the period; the motion crate's tests run at 1 ms).
 
@@ -193,7 +193,7 @@ fn corpus_programs() -> Vec<PathBuf> {
 
 #[test]
 fn every_corpus_program_that_moves_keeps_the_guarantees() {
-    check_every_program("as-programmed", &[]);
+    check_every_program("as-programmed", &[], 0.99);
 }
 
 /// The same with every move forced to SOFT (`--profile soft`): besides the analytic jerk, the
@@ -201,10 +201,13 @@ fn every_corpus_program_that_moves_keeps_the_guarantees() {
 /// fails if any SOFT join steps the axis accelerations (a curvature jump at speed).
 #[test]
 fn every_corpus_program_that_moves_keeps_the_guarantees_in_soft() {
-    check_every_program("soft", &["--profile", "soft"]);
+    // A clothoid blend cuts about 1.5× as much of each chord as a circular one within the same
+    // tolerance, so SOFT shortens a corner-dense path more (g01-linear-example-1.ngc: 0.989).
+    check_every_program("soft", &["--profile", "soft"], 0.98);
 }
 
-fn check_every_program(name: &str, extra: &[&str]) {
+/// `min_ratio`: the least planned / nominal time accepted.
+fn check_every_program(name: &str, extra: &[&str], min_ratio: f64) {
     let programs = corpus_programs();
     assert!(programs.len() > 100, "corpus not found: {}", programs.len());
     let dir = std::env::temp_dir().join(format!(
@@ -244,7 +247,7 @@ fn check_every_program(name: &str, extra: &[&str]) {
         // Blends and chords shorten the path a little under G64, so the planned time can dip
         // below the nominal one, but only by a hair.
         assert!(
-            cycle >= 0.99 * nominal,
+            cycle >= min_ratio * nominal,
             "{file}: planned {cycle} ≪ nominal {nominal}"
         );
         let text = std::fs::read_to_string(&trace).unwrap();

@@ -37,6 +37,9 @@ pub struct SimOptions {
     /// A feed hold: (machine time at which the operator presses it, s; seconds the machine then
     /// stands before cycle start resumes it).
     pub feed_hold: Option<(f64, f64)>,
+    /// Every move with this acceleration profile, whatever the program selects (None = as
+    /// programmed); see `MotionConfig::forced_profile`.
+    pub profile: Option<stanok_canon::AccelerationProfile>,
 }
 
 impl Default for SimOptions {
@@ -47,6 +50,7 @@ impl Default for SimOptions {
             rapid_override: 1.0,
             lookahead: stanok_motion::limits::DEFAULT_LOOKAHEAD,
             feed_hold: None,
+            profile: None,
         }
     }
 }
@@ -148,6 +152,7 @@ impl MotionRun {
         config.rapid_override = options.rapid_override;
         config.lookahead = options.lookahead;
         config.kinematics = machine.five_axis();
+        config.forced_profile = options.profile;
         let config = config.sanitised();
         let mut stage = MotionStage::new(&config);
         if let Some((at, standstill)) = options.feed_hold {

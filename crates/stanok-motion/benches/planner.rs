@@ -1,14 +1,17 @@
 //! Criterion benchmarks of the motion stage:
-//! * `plan/lines_100k`: 100 000 short feed lines (a zig-zag of 0.2…1 mm chords with 5…40° corners,
-//!   G64 P0.01) through the path builder and the look-ahead planner, no interpolation: the
-//!   planning throughput (target ≥ 1 M segments/s);
+//! * `plan/lines_100k` (BRISK, circular blends) and `plan/lines_100k_soft` (SOFT, clothoid
+//!   blends): 100 000 short feed lines (a zig-zag of 0.2…1 mm chords with 5…40° corners, G64
+//!   P0.01) through the path builder and the look-ahead planner, no interpolation: the planning
+//!   throughput (target ≥ 1 M segments/s);
 //! * `interpolate/sample_*`: one servo cycle's work — profile evaluation plus geometry for a line
-//!   (BRISK) and for a blend arc (SOFT, the costliest case) — (target < 20 µs worst case).
+//!   (BRISK) and for a clothoid blend (SOFT, the costliest case: two 14-term series and a
+//!   sin_cos) — (target < 20 µs worst case).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use stanok_canon::{AccelerationProfile, PathMode};
 use stanok_motion::interpolator::{sample, Profile};
 use stanok_motion::path::PathBuilder;
+use stanok_motion::piece::Shape;
 use stanok_motion::planner::{PlannedPiece, Planner};
 use stanok_motion::segment::{PathSegment, PlannerInput, Point9, SegmentGeometry};
 use stanok_motion::{AxisLimit, MotionConfig};
@@ -21,7 +24,7 @@ fn config() -> MotionConfig {
     MotionConfig::new(axes, 10_000.0, 5_000.0)
 }
 
-fn zigzag(n: usize) -> Vec<PlannerInput> {
+fn zigzag(n: usize, profile: AccelerationProfile) -> Vec<PlannerInput> {
     let mut p: Point9 = [0.0; 9];
     let mut heading: f64 = 0.0;
     let mut out = Vec::with_capacity(n);
@@ -40,7 +43,7 @@ fn zigzag(n: usize) -> Vec<PlannerInput> {
             path_speed: 5000.0 / 60.0,
             rapid: false,
             path_mode: PathMode::Continuous { tolerance: 0.01 },
-            profile: AccelerationProfile::Brisk,
+            profile,
             line: k as u32,
             spindles: Default::default(),
         }));
@@ -51,24 +54,29 @@ fn zigzag(n: usize) -> Vec<PlannerInput> {
 
 fn plan(c: &mut Criterion) {
     let cfg = config();
-    let inputs = zigzag(100_000);
     let mut g = c.benchmark_group("plan");
-    g.throughput(Throughput::Elements(inputs.len() as u64));
+    g.throughput(Throughput::Elements(100_000));
     g.sample_size(10);
-    g.bench_function("lines_100k", |b| {
-        b.iter(|| {
-            let mut builder = PathBuilder::new(&cfg);
-            let mut planner = Planner::new(cfg.lookahead);
-            let mut time = 0.0;
-            let mut sink = |pp: PlannedPiece| time += pp.v_exit;
-            for i in &inputs {
-                builder.push(i.clone(), &mut |piece| planner.push(piece, &mut sink));
-            }
-            builder.flush(&mut |piece| planner.push(piece, &mut sink));
-            planner.flush(&mut sink);
-            black_box(time)
-        })
-    });
+    for (name, profile) in [
+        ("lines_100k", AccelerationProfile::Brisk),
+        ("lines_100k_soft", AccelerationProfile::Soft),
+    ] {
+        let inputs = zigzag(100_000, profile);
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut builder = PathBuilder::new(&cfg);
+                let mut planner = Planner::new(cfg.lookahead);
+                let mut time = 0.0;
+                let mut sink = |pp: PlannedPiece| time += pp.v_exit;
+                for i in &inputs {
+                    builder.push(i.clone(), &mut |piece| planner.push(piece, &mut sink));
+                }
+                builder.flush(&mut |piece| planner.push(piece, &mut sink));
+                planner.flush(&mut sink);
+                black_box(time)
+            })
+        });
+    }
     g.finish();
 }
 
@@ -77,10 +85,7 @@ fn pieces(profile: AccelerationProfile) -> Vec<PlannedPiece> {
     let mut builder = PathBuilder::new(&cfg);
     let mut planner = Planner::new(cfg.lookahead);
     let mut out = Vec::new();
-    for mut i in zigzag(50) {
-        if let PlannerInput::Segment(s) = &mut i {
-            s.profile = profile;
-        }
+    for i in zigzag(50, profile) {
         builder.push(i, &mut |piece| planner.push(piece, &mut |pp| out.push(pp)));
     }
     builder.flush(&mut |piece| planner.push(piece, &mut |pp| out.push(pp)));
@@ -90,16 +95,15 @@ fn pieces(profile: AccelerationProfile) -> Vec<PlannedPiece> {
 
 fn interpolate(c: &mut Criterion) {
     let mut g = c.benchmark_group("interpolate");
-    for (name, profile, want_arc) in [
+    for (name, profile, want_blend) in [
         ("sample_line_brisk", AccelerationProfile::Brisk, false),
-        ("sample_arc_soft", AccelerationProfile::Soft, true),
+        ("sample_clothoid_soft", AccelerationProfile::Soft, true),
     ] {
         let all = pieces(profile);
         let piece = *all
             .iter()
             .find(|p| {
-                matches!(p.piece.shape, stanok_motion::piece::Shape::Arc { .. }) == want_arc
-                    && p.piece.length > 0.0
+                matches!(p.piece.shape, Shape::Clothoid(_)) == want_blend && p.piece.length > 0.0
             })
             .expect("piece");
         let prof = Profile::of(&piece);

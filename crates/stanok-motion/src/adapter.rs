@@ -4,7 +4,8 @@
 //! Canon carries motion and modal changes as separate commands; the planner wants every segment to
 //! be self-contained. `CanonAdapter` keeps the modal state and stamps it on each segment:
 //! * path mode (`SetPathMode`: G60/G61 exact stop, G61.1 exact path, G64 P tolerance),
-//! * acceleration profile (`SetAccelerationProfile`: BRISK/SOFT),
+//! * acceleration profile (`SetAccelerationProfile`: BRISK/SOFT; `MotionConfig::forced_profile`
+//!   overrides it),
 //! * feed mode and spindle synchronisation (`SetFeedMode`, `StartSpindleSync` → feed = pitch ×
 //!   spindle rpm; `SetSpindleSpeed` of spindle 0),
 //! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync),
@@ -195,7 +196,7 @@ impl CanonAdapter {
             path_speed: speed,
             rapid,
             path_mode: self.path_mode,
-            profile: self.profile,
+            profile: self.config.forced_profile.unwrap_or(self.profile),
             line,
             spindles: self.spindles(),
         }

@@ -8,7 +8,8 @@
 //! point, tangent and curvature of the piece's shape at s. Axis quantities follow by the chain rule:
 //! * velocity_i = v·t_i
 //! * acceleration_i = a·t_i + v²·κ_i
-//! * jerk_i = (j − v³/r²)·t_i + 3·v·a·κ_i (κ = d²p/ds², |κ| = 1/r on arcs, 0 on lines).
+//! * jerk_i = j·t_i + 3·v·a·κ_i + v³·q_i (κ = d²p/ds², |κ| = 1/r on arcs, 0 on lines;
+//!   q = d³p/ds³ = −|κ|²·t + κ'·n, −t/r² on arcs, with κ' the clothoid's curvature rate).
 //!
 //! A piece that ends at rest (an exact stop, a dwell, the end) is stretched to the next grid
 //! instant: the machine waits there, so the trace contains the stop point exactly, at rest, and
@@ -120,10 +121,6 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         line: pc.line,
         spindle_rpm: [0.0; 4],
     };
-    let inv_r2 = match pc.shape {
-        Shape::Arc { radius, .. } => 1.0 / (radius * radius),
-        _ => 0.0,
-    };
     let pt = pt.unwrap_or_else(|| {
         let mut end = pc.shape.at(pc.length);
         end.position = pc.end;
@@ -133,10 +130,10 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
     sp.spindle_rpm = pc.spindles.rpm_at(&sp.position);
     let (v, a, j) = (k.v, k.a, k.j);
     for i in 0..9 {
-        let (ti, ki) = (pt.tangent[i], pt.curvature[i]);
+        let (ti, ki, qi) = (pt.tangent[i], pt.curvature[i], pt.third[i]);
         sp.velocity[i] = v * ti;
         sp.acceleration[i] = a * ti + v * v * ki;
-        sp.jerk[i] = (j - v * v * v * inv_r2) * ti + 3.0 * v * a * ki;
+        sp.jerk[i] = j * ti + 3.0 * v * a * ki + v * v * v * qi;
     }
     sp
 }

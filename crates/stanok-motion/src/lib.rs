@@ -6,15 +6,17 @@
 //! * [`adapter`]: modal motion state (G60/G61/G64 P, BRISK/SOFT, feed mode, spindle sync,
 //!   overrides) stamped on every [`segment::PathSegment`]; forced exact stops.
 //! * [`css`]: G96 along the path (the spindle speed per setpoint; G95 feeds cut to follow it).
-//! * [`path`]: segments → tangent-continuous [`piece::Piece`]s: chords of arcs and splines, circular
-//!   blends within the G64 tolerance, per-piece speed/acceleration/jerk limits from the axis limits.
+//! * [`path`]: segments → tangent-continuous [`piece::Piece`]s: chords of arcs and splines, blends
+//!   within the G64 tolerance (circular in BRISK, [`clothoid`] pairs in SOFT), per-piece
+//!   speed/acceleration/jerk limits from the axis limits.
 //! * [`planner`]: grbl-style reverse/forward passes over a bounded window.
 //! * [`profile_trapezoid`] (BRISK), [`profile_scurve`] (SOFT): one piece's time law.
 //! * [`interpolator`]: the servo-period grid, with [`hold`] (feed hold and resume); [`stage::MotionStage`] wires everything.
 //! * [`nominal`]: length / feed, the lower bound the run report keeps beside the planned time.
 //!
 //! Guarantees (property-tested in `tests/` and over the corpus in the `stanok` crate): no setpoint
-//! exceeds an axis' velocity or acceleration limit (and jerk in SOFT, analytically); under G64 P
+//! exceeds an axis' velocity or acceleration limit (and jerk in SOFT), analytically and by finite
+//! differences on the trace; under G64 P
 //! the path stays within P; under G60/G61 every block end is met exactly at rest; the trace ends
 //! exactly at the last programmed position and lasts the reported cycle time.
 //!
@@ -23,6 +25,7 @@
 #![deny(missing_docs)]
 
 pub mod adapter;
+pub mod clothoid;
 pub mod css;
 pub mod hold;
 pub mod interpolator;

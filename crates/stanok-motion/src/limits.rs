@@ -64,6 +64,10 @@ pub struct MotionConfig {
     /// The machine's 5-axis kinematics (without a tool), for tool-centre-point control; None on
     /// a Cartesian machine.
     pub kinematics: Option<stanok_kin::FiveAxis>,
+    /// Run every move with this acceleration profile, whatever the program selects (BRISK/SOFT
+    /// commands are then ignored); None = as programmed (power-on BRISK). For checking a program
+    /// under SOFT (`stanok run --profile soft`) and for tests.
+    pub forced_profile: Option<stanok_canon::AccelerationProfile>,
 }
 
 impl MotionConfig {
@@ -86,6 +90,7 @@ impl MotionConfig {
             feed_override: 1.0,
             rapid_override: 1.0,
             kinematics: None,
+            forced_profile: None,
         }
     }
 

@@ -1,4 +1,5 @@
-//! The path builder: programmed segments → tangent-continuous pieces (lines and blend arcs).
+//! The path builder: programmed segments → tangent-continuous pieces (lines and blends: circular
+//! arcs in BRISK, clothoid pairs in SOFT).
 //!
 //! ## Algorithm
 //! 1. **Chords.** A line is one chord. An arc (helix, spiral) is cut into n equal-angle chords with
@@ -14,14 +15,24 @@
 //!      e_d = d·tan(θ/4) ≤ e, where θ is the turning angle and d the length cut from each chord:
 //!      d = min(e / tan(θ/4), L_in/2, L_out/2); radius r = d / tan(θ/2). Half of each chord at most
 //!      goes to each of its two corners, so blends never overlap. Collinear chords pass unblended.
+//!      **SOFT** (either chord SOFT) replaces the circle by a symmetric pair of clothoids, whose
+//!      curvature runs 0 → 2φ/ℓ → 0 ([`crate::clothoid`]; same plane, same half-chord rule, and
+//!      every point within e of the chords — measured from the chords rather than the corner). A
+//!      line meets such a blend with equal (zero) curvature, so the axis accelerations stay
+//!      continuous and the servo trace's finite-difference jerk stays within the axis limits. A
+//!      SOFT path has no curvature step at any join (lines and clothoid ends have κ = 0; the two
+//!      halves meet at equal κ; a corner that cannot be blended is a stop; dwells and the
+//!      tool-centre-point segments, which end in exact stops, join at rest), so no join needs a
+//!      speed cap of its own.
 //! 3. **Tolerances.** Under G64 with tolerance P (or the default when P is absent): arcs get
 //!    t_c = P/2 and their inner corners e = P/2; a block-end corner gets e = P − max(t_c of both
 //!    chords). So every point of a blend is within e of a chord and every chord within t_c of the
 //!    programmed curve: the path stays within P. Under G60/G61/G61.1, arcs and splines use 1 µm chords
 //!    and 1 µm inner blends ([`INTERNAL_TOLERANCE`]); block ends are met exactly.
 //! 4. **Limits per piece** (see [`crate::piece`]): lines by projecting the axis limits on the
-//!    direction, arcs by the conservative bound over the arc plane plus the centripetal share; a
-//!    blend runs at most at the lower of the two programmed feeds.
+//!    direction, arcs and clothoids by the conservative bound over their plane plus the
+//!    centripetal (and in SOFT the turning-jerk) share; a blend runs at most at the lower of the
+//!    two programmed feeds.
 //!
 //! ## Invariants
 //! * Consecutive pieces share their end point and, unless the second starts from rest, their
@@ -29,8 +40,9 @@
 //! * Memory: one pending chord plus the chords of the current segment (≤ 100 000 for one arc).
 //! * Zero-length chords are dropped; segments with non-finite coordinates are dropped whole.
 
+use crate::clothoid::{unit_shape, Clothoid};
 use crate::limits::MotionConfig;
-use crate::piece::{arc_limits, line_limits, Piece, Shape};
+use crate::piece::{arc_limits, clothoid_limits, line_limits, Piece, Shape};
 use crate::segment::{
     PathSegment, PlannerInput, Point9, SegmentGeometry, Spindles, SPLINE_CHORD_TOLERANCE,
 };
@@ -317,25 +329,50 @@ impl PathBuilder {
             next.entry_stop = true;
             return;
         };
+        let soft = prev.soft || next.soft;
+        let d = if soft {
+            self.emit_clothoid(&prev, next, e, theta, cos, sin, &perp, out)
+        } else {
+            self.emit_arc(&prev, next, e, theta, sin, &perp, out)
+        };
+        let Some(d) = d else {
+            self.emit_line(&prev, 0.0, out);
+            next.entry_stop = true;
+            return;
+        };
+        next.start_trim = d;
+    }
+
+    /// BRISK: the circular blend of the corner between `prev` and `next` within `e` (module doc,
+    /// step 2). Emits `prev` less the cut and the arc; returns the length cut from each chord, or
+    /// None (nothing emitted) if the blend would be degenerate.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_arc(
+        &self,
+        prev: &Chord,
+        next: &Chord,
+        e: f64,
+        theta: f64,
+        sin: f64,
+        perp: &Point9,
+        out: &mut impl FnMut(Piece),
+    ) -> Option<f64> {
         let d = (e / (0.25 * theta).tan())
             .min(0.5 * prev.length)
             .min(0.5 * next.length);
         let radius = d / (0.5 * theta).tan();
         if !(d > 1e-12 && radius.is_finite() && radius > 1e-12) {
-            self.emit_line(&prev, 0.0, out);
-            next.entry_stop = true;
-            return;
+            return None;
         }
-        self.emit_line(&prev, d, out);
+        self.emit_line(prev, d, out);
         let n1: Point9 = perp.map(|x| x / sin);
         let corner = prev.end;
         let p1: Point9 = std::array::from_fn(|i| corner[i] - d * prev.dir[i]);
         let centre: Point9 = std::array::from_fn(|i| p1[i] + radius * n1[i]);
         let e1 = n1.map(|x| -x);
         let e2 = prev.dir;
-        let soft = prev.soft || next.soft;
         let speed = prev.speed.min(next.speed);
-        let (v_max, a_max, j_max) = arc_limits(&e1, &e2, radius, speed, soft, &self.config.axes);
+        let (v_max, a_max, j_max) = arc_limits(&e1, &e2, radius, speed, false, &self.config.axes);
         let (a_max, j_max) = cap_acceleration(a_max, j_max, prev.accel_cap.min(next.accel_cap));
         let exit: Point9 = std::array::from_fn(|i| corner[i] + d * next.dir[i]);
         out(Piece {
@@ -350,14 +387,79 @@ impl PathBuilder {
             v_max,
             a_max,
             j_max,
-            soft,
+            soft: false,
             entry_stop: false,
             line: next.line,
             spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
         });
-        next.start_trim = d;
+        Some(d)
+    }
+
+    /// SOFT: the clothoid blend of the corner (see [`crate::clothoid`]). The unit shape for the
+    /// half-turning angle φ = θ/2 gives the cut d = ℓ·D(φ) and the largest distance from the two
+    /// chords ℓ·Fs(φ); the half length is ℓ = min(e/Fs, L_in/(2D), L_out/(2D)), so the blend is
+    /// within `e` of the chords and takes at most half of each. Emits `prev` less the cut and the
+    /// blend; returns d, or None (nothing emitted) if the blend would be degenerate.
+    #[allow(clippy::too_many_arguments)]
+    fn emit_clothoid(
+        &self,
+        prev: &Chord,
+        next: &Chord,
+        e: f64,
+        theta: f64,
+        cos: f64,
+        sin: f64,
+        perp: &Point9,
+        out: &mut impl FnMut(Piece),
+    ) -> Option<f64> {
+        let phi = 0.5 * theta;
+        let unit = unit_shape(phi);
+        let half = (e / unit.from_chords)
+            .min(0.5 * prev.length / unit.cut)
+            .min(0.5 * next.length / unit.cut);
+        let d = half * unit.cut;
+        if !(d > 1e-12 && half > 1e-12 && half.is_finite()) {
+            return None;
+        }
+        self.emit_line(prev, d, out);
+        let clothoid = Clothoid {
+            corner: prev.end,
+            t1: prev.dir,
+            t2: next.dir,
+            cut: d,
+            half,
+            phi,
+            cos_turn: cos,
+            sin_turn: sin,
+        };
+        let n1: Point9 = perp.map(|x| x / sin);
+        let speed = prev.speed.min(next.speed);
+        let (v_max, a_max, j_max) = clothoid_limits(
+            &clothoid.t1,
+            &n1,
+            clothoid.max_curvature(),
+            clothoid.curvature_rate(),
+            speed,
+            &self.config.axes,
+        );
+        let (a_max, j_max) = cap_acceleration(a_max, j_max, prev.accel_cap.min(next.accel_cap));
+        out(Piece {
+            end: clothoid.end(),
+            shape: Shape::Clothoid(clothoid),
+            length: clothoid.length(),
+            v_max,
+            a_max,
+            j_max,
+            soft: true,
+            entry_stop: false,
+            line: next.line,
+            spindles: prev.spindles,
+            deviation: half * unit.from_chords + prev.chord_tolerance.max(next.chord_tolerance),
+            tolerance: prev.tolerance.max(next.tolerance),
+        });
+        Some(d)
     }
 
     /// Emits a chord less its start trim and `end_trim`.

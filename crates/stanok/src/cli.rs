@@ -231,6 +231,19 @@ pub struct MotionArgs {
     /// Planner look-ahead window, path pieces (at least 2).
     #[arg(long, value_name = "PIECES", default_value_t = 1024)]
     pub lookahead: usize,
+    /// Acceleration profile of every move, whatever the program selects: `soft` (jerk-limited,
+    /// curvature-continuous corners) or `brisk`. Without it, as programmed (power-on BRISK).
+    #[arg(long, value_enum, value_name = "PROFILE")]
+    pub profile: Option<ProfileArg>,
+}
+
+/// `stanok run --profile`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum ProfileArg {
+    /// Jerk-limited S-curves (SOFT).
+    Soft,
+    /// Acceleration-limited trapezoids (BRISK).
+    Brisk,
 }
 
 /// Output format of `stanok canon`.

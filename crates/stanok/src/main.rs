@@ -485,6 +485,10 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
         rapid_override: m.rapid_override / 100.0,
         lookahead: m.lookahead,
         feed_hold,
+        profile: m.profile.map(|p| match p {
+            cli::ProfileArg::Soft => stanok_canon::AccelerationProfile::Soft,
+            cli::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
+        }),
     })
 }
 

@@ -23,8 +23,16 @@ use std::io::{BufRead, Seek};
 #[derive(Debug, Clone)]
 pub(crate) struct LatheCapture {
     call: LatheCall,
-    /// Queue entries ahead of the profile's commands.
+    /// Queue entries ahead of the profile's commands (and of `kept`).
     pub(crate) before: usize,
+    /// Commands cutter compensation holds back at the G7x block (G70 under G41/G42): they stay
+    /// in the queue, between `before` and the profile's commands, for the cycle to edit.
+    kept: usize,
+    /// Compensation's state at the G7x block: off while the profile runs (its moves are the
+    /// programmed profile), back for the cycle.
+    comp: crate::rs274::cutter_comp::CutterComp,
+    /// The tool position at the G7x block (under compensation not S itself).
+    position: stanok_canon::Pose,
     /// Call depth at the G7x block; the profile is over when the depth is back to it.
     depth: usize,
     /// The G7x block: the cycle's commands carry its span and number.
@@ -52,6 +60,11 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 self.block.span(),
             ));
         }
+        let kept = if self.state.rs274.comp.on() {
+            self.held_when_compensating()
+        } else {
+            0
+        };
         let next: SourcePos = self.read_position();
         let action = {
             let eval = params::Evaluator {
@@ -70,7 +83,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         self.lathe = Some(LatheCapture {
             call,
-            before: self.queue.len(),
+            before: self.queue.len() - kept,
+            kept,
+            comp: self.state.rs274.comp,
+            position: self.state.position,
             depth: self.flow.depth().saturating_sub(usize::from(matches!(
                 action,
                 crate::FlowAction::Seek(_) | crate::FlowAction::CallFile { .. }
@@ -83,6 +99,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             css_law: self.state.rs274.css_law,
         });
         self.state.rs274.in_profile = true;
+        self.state.rs274.comp = Default::default();
         match action {
             crate::FlowAction::Seek(pos) => self.seek_to(pos)?,
             crate::FlowAction::CallFile { path, label } => {
@@ -104,16 +121,19 @@ impl<R: BufRead + Seek> Interpreter<R> {
             return Ok(());
         };
         let before = cap.before.min(self.queue.len());
-        let commands: Vec<_> = self.queue.drain(before..).map(|c| c.value).collect();
+        let from = (before + cap.kept).min(self.queue.len());
+        let commands: Vec<_> = self.queue.drain(from..).map(|c| c.value).collect();
+        let kept: Vec<_> = self.queue.range(before..).cloned().collect();
         let frame = *self.state.frame;
         let profile = Profile::from_commands(&commands, |p| frame.to_program(p));
         self.state.rs274.in_profile = false;
+        self.state.rs274.comp = cap.comp;
         let backup = self.state;
         self.state.feed = cap.feed;
         self.state.spindle_speed = cap.spindle_speed;
         self.state.rs274.css_mm_per_min = cap.css_mm_per_min;
         self.state.rs274.css_law = cap.css_law;
-        self.state.position = self.state.frame.to_machine(&cap.call.start);
+        self.state.position = cap.position;
         let out = ctx::Emitter {
             queue: &mut self.queue,
             span: cap.span,
@@ -143,6 +163,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         if let Err(d) = result {
             self.queue.truncate(before);
+            self.queue.extend(kept);
             self.state = backup;
             return Err(d);
         }

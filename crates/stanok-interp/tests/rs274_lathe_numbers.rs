@@ -184,3 +184,35 @@ fn a_profile_s_word_leaves_the_g96_law_alone() {
         .collect();
     assert_eq!(laws, vec![100_000.0, 100_000.0]);
 }
+
+/// G70 under G42.1 (r = 0.2) over a step profile ending at (z −12, x 9), from S = (2, 10) after
+/// a compensated entry from (−30, 20). LinuxCNC reads the profile by moving its current point
+/// to the profile's end c, so the first pass's rapid to S (no motion in the plane) goes to c,
+/// and the corner before the rapid to the pass start P = (1, 2) is worked out from p = S and c
+/// (`cutter_comp/stale.rs`): θ = angle(c − p), α = angle(P − p), β = α − θ − π/2 (G42, α
+/// wrapped above θ) < 0: concave, so the held entry and the zero move end at
+/// c + r/tan((β + π)/2) · u(θ − π/2) — (−12.0014, 9.0196) in rs274's trace.
+#[test]
+fn g70_under_compensation_starts_from_the_profile_end() {
+    let prog = "G18 G21 G40 F400\no100 sub\nG0 X2 Z1\nG1 Z-5\nG1 X6 Z-8\nG1 Z-12\nG0 X9\n\
+                o100 endsub\nG0 X20 Z-30\nG42.1 D0.4\nG70 Q100 X10 Z2 D0 E0 P1\nG40\nG0 X20\nM2\n";
+    let m = moves(prog);
+    let (p, c, e) = ([2.0f64, 10.0f64], [-12.0f64, 9.0f64], [1.0f64, 2.0f64]);
+    let theta = (c[1] - p[1]).atan2(c[0] - p[0]);
+    let mut alpha = (e[1] - p[1]).atan2(e[0] - p[0]);
+    if alpha < theta {
+        alpha += std::f64::consts::TAU;
+    }
+    let beta = alpha - theta - std::f64::consts::FRAC_PI_2;
+    assert!(beta < -0.05, "concave: {beta}");
+    let back = 0.2 / ((beta + std::f64::consts::PI) / 2.0).tan();
+    let g = theta - std::f64::consts::FRAC_PI_2;
+    let (z, x) = (c[0] + back * g.cos(), c[1] + back * g.sin());
+    assert!(
+        (z + 12.0014).abs() < 1e-4 && (x - 9.0196).abs() < 1e-4,
+        "({z}, {x})"
+    );
+    // m[0]: G0 X20 Z-30; m[1]: the entry; m[2]: the first pass's rapid to S.
+    at(&m[1], true, z, x);
+    at(&m[2], true, z, x);
+}

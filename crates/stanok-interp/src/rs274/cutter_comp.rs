@@ -44,6 +44,8 @@ use crate::params::Parameters;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
 use stanok_syntax::ColSpan;
 
+mod stale;
+
 /// A corner turning the "convex" way by less than this many radians is joined like a concave one.
 pub const CONCAVE_TOLERANCE: f64 = 0.05;
 
@@ -85,6 +87,12 @@ pub struct CutterComp {
     pub last: Option<Element>,
     /// Moves without plane motion emitted after the last element's motion (held with it).
     pub moves_since: u32,
+    /// Where the tool's controlled point lies from its nose centre (plane coordinates): a lathe
+    /// tool of orientation 1–8 in G18 (`nose_shift`); every compensated move is emitted shifted.
+    pub nose: [f64; 2],
+    /// LinuxCNC's tool position when it is not the real one (nose centre, plane): reading a G70
+    /// profile under compensation leaves it at the profile's end (`stale.rs`).
+    pub stale: Option<[f64; 2]>,
 }
 
 impl CutterComp {
@@ -170,6 +178,46 @@ fn with_plane(p: Pose, plane: Plane, q: [f64; 2]) -> Pose {
     Pose::from_array(v)
 }
 
+/// LinuxCNC's lathe tool origin: a tool of orientation 1–8 (G18 only) is controlled at the
+/// point of its nose that the orientation names, r from the nose centre along Z and/or X
+/// (orientation 2: −X −Z; 1: −X +Z; 3: +X −Z; 4: +X +Z; 5/6/7/8: +Z/−X/−Z/+X only). The
+/// compensated path is that of the nose centre; every compensated move is emitted shifted by
+/// this (plane coordinates (z, x)), the moves after G40 are not.
+pub fn nose_shift(plane: Plane, orientation: u8, r: f64) -> [f64; 2] {
+    if plane != Plane::ZX {
+        return [0.0; 2];
+    }
+    let dx = match orientation {
+        1 | 2 | 6 => -r,
+        3 | 4 | 8 => r,
+        _ => 0.0,
+    };
+    let dz = match orientation {
+        2 | 3 | 7 => -r,
+        1 | 4 | 5 => r,
+        _ => 0.0,
+    };
+    [dz, dx]
+}
+
+/// The nose centre (plane, program frame): the tool position less the nose shift once a
+/// compensated move has put the tool there (before the entry move LinuxCNC takes the position
+/// as it is).
+fn tool_at(cx: &Ctx<'_>) -> [f64; 2] {
+    let comp = &cx.st.rs274.comp;
+    let here = plane_of(&cx.st.program_position(), cx.st.plane);
+    if comp.program.is_some() {
+        sub(here, comp.nose)
+    } else {
+        here
+    }
+}
+
+/// `end` with its plane coordinates set to the nose-centre point `q` shifted to the tool origin.
+fn emit_at(cx: &Ctx<'_>, end: Pose, q: [f64; 2]) -> Pose {
+    with_plane(end, cx.st.plane, add(q, cx.st.rs274.comp.nose))
+}
+
 fn err(cx: &Ctx<'_>, code: &'static str, msg: &str, span: ColSpan) -> Diagnostic {
     cx.err(code, msg, span)
 }
@@ -200,7 +248,8 @@ pub(super) fn comp_on(
     }
     let dynamic = code % 10 == 1;
     let d = cx.words.take(b'D');
-    let _orientation = if dynamic { cx.words.take(b'L') } else { None };
+    let orientation = if dynamic { cx.words.take(b'L') } else { None };
+    let mut tool_orientation = 0;
     let radius = if dynamic {
         match d {
             Some(d) => cx.mm(d.v) / 2.0,
@@ -236,12 +285,11 @@ pub(super) fn comp_on(
             }
             None => cx.st.current_tool,
         };
-        params
-            .tools()
-            .get(tool)
-            .and_then(|t| t.edges.first())
-            .map_or(0.0, |e| e.radius)
+        let edge = params.tools().get(tool).and_then(|t| t.edges.first());
+        tool_orientation = edge.map_or(0, |e| e.orientation);
+        edge.map_or(0.0, |e| e.radius)
     };
+    let orientation = orientation.map_or(tool_orientation, |l| l.v.round().clamp(0.0, 9.0) as u8);
     // A negative diameter swaps the side, as in LinuxCNC.
     let mut side = if code / 10 == 41 { 1 } else { 2 };
     if radius < 0.0 {
@@ -253,6 +301,8 @@ pub(super) fn comp_on(
         program: None,
         last: None,
         moves_since: 0,
+        nose: nose_shift(cx.st.plane, orientation, radius.abs()),
+        stale: None,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -292,10 +342,9 @@ pub(super) fn straight(
     let comp = cx.st.rs274.comp;
     let r = comp.radius;
     let e = plane_of(&end, plane);
-    let here = cx.st.program_position();
     let Some(s) = comp.program else {
         // Entry move.
-        let t = plane_of(&here, plane);
+        let t = tool_at(cx);
         let d = len(sub(e, t));
         // LinuxCNC accepts an entry exactly as long as the radius.
         if d < r {
@@ -307,26 +356,32 @@ pub(super) fn straight(
             ));
         }
         let n = scale(left(unit(sub(e, t))), r * comp.sign());
-        cx.straight(rapid, with_plane(end, plane, add(e, n)), feed);
+        cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
         let c = &mut cx.st.rs274.comp;
         c.program = Some(e);
         c.last = Some(Element::Line { from: t, to: e });
         c.moves_since = 0;
         return Ok(());
     };
-    if len(sub(e, s)) == 0.0 {
-        // No motion in the plane: the tool keeps its plane position.
-        let t = plane_of(&here, plane);
-        cx.straight(rapid, with_plane(end, plane, t), feed);
+    // (Within 1e-9 mm: a G70 pass's first rapid to S comes back through the cycle's frame.)
+    if len(sub(e, s)) <= 1e-9 {
+        // No motion in the plane: the tool keeps its plane position (LinuxCNC's, if stale).
+        let t = comp.stale.unwrap_or_else(|| tool_at(cx));
+        cx.straight(rapid, emit_at(cx, end, t), feed);
         cx.st.rs274.comp.moves_since += 1;
         return Ok(());
     }
     let dir = unit(sub(e, s));
     let n = scale(left(dir), r * comp.sign());
     let new = Element::Line { from: s, to: e };
-    corner(cx, s, dir, add(s, n), new, feed, span)?;
-    cx.straight(rapid, with_plane(end, plane, add(e, n)), feed);
+    if let Some(c) = comp.stale {
+        stale::corner(cx, s, c, e, feed, span)?;
+    } else {
+        corner(cx, s, dir, add(s, n), new, feed, span)?;
+    }
+    cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
     let c = &mut cx.st.rs274.comp;
+    c.stale = None;
     c.program = Some(e);
     c.last = Some(new);
     c.moves_since = 0;
@@ -345,8 +400,7 @@ pub(super) fn arc(
     let plane = cx.st.plane;
     let comp = cx.st.rs274.comp;
     let r = comp.radius;
-    let here = cx.st.program_position();
-    let s = comp.program.unwrap_or_else(|| plane_of(&here, plane));
+    let s = comp.program.unwrap_or_else(|| tool_at(cx));
     let e = plane_of(&end, plane);
     let c = planar.centre;
     let radius = len(sub(s, c));
@@ -372,7 +426,7 @@ pub(super) fn arc(
     };
     if comp.program.is_none() {
         // Entry arc: through the current point, centre on the line C–E.
-        let t = plane_of(&here, plane);
+        let t = tool_at(cx);
         let u = unit(sub(e, c));
         let chord = sub(tool_end, t);
         let k = dot(u, chord);
@@ -392,9 +446,9 @@ pub(super) fn arc(
         cx.arc(
             plane,
             ccw,
-            with_plane(end, plane, tool_end),
+            emit_at(cx, end, tool_end),
             PlanarArc {
-                centre,
+                centre: add(centre, cx.st.rs274.comp.nose),
                 turns: planar.turns,
             },
             feed,
@@ -403,20 +457,21 @@ pub(super) fn arc(
         let start_tool = add(c, scale(unit(sub(s, c)), tool_radius));
         corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
         if let Element::Arc { tool_from, .. } = &mut new {
-            *tool_from = plane_of(&cx.st.program_position(), plane);
+            *tool_from = tool_at(cx);
         }
         cx.arc(
             plane,
             ccw,
-            with_plane(end, plane, tool_end),
+            emit_at(cx, end, tool_end),
             PlanarArc {
-                centre: c,
+                centre: add(c, cx.st.rs274.comp.nose),
                 turns: planar.turns,
             },
             feed,
         );
     }
     let cc = &mut cx.st.rs274.comp;
+    cc.stale = None;
     cc.program = Some(e);
     cc.last = Some(new);
     cc.moves_since = 0;
@@ -443,13 +498,14 @@ fn corner(
     let plane = cx.st.plane;
     if comp.sign() * turn < -CONCAVE_TOLERANCE {
         // Convex: an arc about the corner.
+        reachable(cx, tool_at(cx), span)?;
         let here = cx.st.program_position();
         cx.arc(
             plane,
             comp.side == 2,
-            with_plane(here, plane, start_tool),
+            emit_at(cx, here, start_tool),
             PlanarArc {
-                centre: s,
+                centre: add(s, comp.nose),
                 turns: 1,
             },
             feed,
@@ -458,7 +514,7 @@ fn corner(
     }
     // Concave: where the two offset paths meet.
     let r = comp.radius;
-    let prev_end = plane_of(&cx.st.program_position(), plane);
+    let prev_end = tool_at(cx);
     let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
         cx.err(
             "rs274::comp-gouge",
@@ -470,8 +526,43 @@ fn corner(
             "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
         ))
     })?;
+    reachable(cx, p, span)?;
     move_held_end(cx, p);
     Ok(())
+}
+
+/// LinuxCNC's check whenever a corner sets the held move's end (moved to a concave corner, or
+/// kept before a convex arc) at `to` (nose centre): a held straight move must still run its
+/// programmed direction from where it starts, else the tool would gouge (its error texts).
+fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
+    let comp = cx.st.rs274.comp;
+    let Some(Element::Line { from, to: end }) = comp.last else {
+        return Ok(());
+    };
+    let (frame, plane) = (cx.st.frame, cx.st.plane);
+    let mut start = None;
+    cx.out
+        .edit_last_motions(comp.moves_since as usize + 1, |cmd, first| {
+            match (first, &*cmd) {
+                (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
+                (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
+                _ => {}
+            }
+        });
+    let Some((s, rapid)) = start else {
+        return Ok(());
+    };
+    let s = sub(plane_of(&frame.to_program(&s), plane), comp.nose);
+    if dot(sub(end, from), sub(to, s)) >= 0.0 {
+        return Ok(());
+    }
+    let what = if rapid { "traverse" } else { "feed" };
+    Err(err(
+        cx,
+        "rs274::comp-concave-gouge",
+        &format!("Straight {what} in concave corner cannot be reached by the tool without gouging"),
+        span,
+    ))
 }
 
 /// Offset line of a programmed line: a point and the direction.
@@ -608,6 +699,7 @@ fn meet(
 /// after it) to `p` (plane coordinates, program frame).
 fn move_held_end(cx: &mut Ctx<'_>, p: [f64; 2]) {
     let plane = cx.st.plane;
+    let p = add(p, cx.st.rs274.comp.nose);
     let frame = cx.st.frame;
     let remap = |m: &Pose| -> Pose {
         let prog = frame.to_program(m);

@@ -113,14 +113,6 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
             span,
         ));
     }
-    if code == 700 && cx.st.rs274.comp.on() {
-        return Err(unsupported(
-            cx,
-            "G70 with cutter radius compensation",
-            "RS274/NGC lathe cycles (G70 under G41/G42)",
-            span,
-        ));
-    }
     if cx.st.diameter_mode {
         return Err(unsupported(
             cx,
@@ -147,7 +139,12 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
         i = word(cx, b'I', 1.0);
         r = word(cx, b'R', 0.5);
     }
-    cx.straight(true, start, 0.0);
+    // Under compensation (G70 only) the rapid is compensated like any move (LinuxCNC 2.9).
+    if cx.st.rs274.comp.on() {
+        super::cutter_comp::straight(cx, true, start, 0.0, span)?;
+    } else {
+        cx.straight(true, start, 0.0);
+    }
     *cx.lathe_call = Some(LatheCall {
         code,
         q: q.v.round() as i64,
@@ -491,8 +488,7 @@ pub fn finish(
                 b: prof[0].start(),
             };
             pass(&mut moves, call, [&onto].into_iter().chain(prof.iter()));
-            emit(cx, call, &f, &moves);
-            return Ok(());
+            return emit(cx, call, &f, &moves, at);
         }
         let prof = offset(call.d)?;
         rough(&mut moves, call, entry, s_c, &prof).ok_or_else(|| {
@@ -503,8 +499,11 @@ pub fn finish(
             )
         })?;
     }
-    emit(cx, call, &f, &moves);
-    Ok(())
+    if cx.st.rs274.comp.on() {
+        // LinuxCNC read the profile by walking its idea of the tool along it (`stale.rs`).
+        cx.st.rs274.comp.stale = Some(pend);
+    }
+    emit(cx, call, &f, &moves, at)
 }
 
 /// Whether l never increases along the canonical chain (the profile runs away from S).
@@ -612,29 +611,49 @@ fn pass<'a>(moves: &mut Vec<Move>, call: &LatheCall, elements: impl Iterator<Ite
 }
 
 /// Emits the moves (canonical frame) as Canon, program coordinates; other axes stay at S.
-fn emit(cx: &mut Ctx<'_>, call: &LatheCall, f: &Frame, moves: &[Move]) {
+/// Under cutter compensation (G70) every move is compensated as if programmed.
+fn emit(
+    cx: &mut Ctx<'_>,
+    call: &LatheCall,
+    f: &Frame,
+    moves: &[Move],
+    at: ColSpan,
+) -> Result<(), Diagnostic> {
     let pose = |p: P2| Pose {
         z: p[0],
         x: p[1],
         ..call.start
     };
+    let comp = cx.st.rs274.comp.on();
     for m in moves {
         match m {
+            Move::Rapid(q) if comp => {
+                super::cutter_comp::straight(cx, true, pose(f.to_real(*q)), 0.0, at)?
+            }
             Move::Rapid(q) => cx.straight(true, pose(f.to_real(*q)), 0.0),
             Move::Feed(seg) => {
                 let real = f.seg(seg, |p| f.to_real(p));
                 let feed = cx.path_feed(real.length());
                 match real {
+                    Seg2::Line { b, .. } if comp => {
+                        super::cutter_comp::straight(cx, false, pose(b), feed, at)?
+                    }
                     Seg2::Line { b, .. } => cx.straight(false, pose(b), feed),
                     Seg2::Arc { c, sweep, .. } => {
                         let arc = PlanarArc {
                             centre: c,
                             turns: 1,
                         };
-                        cx.arc(Plane::ZX, sweep > 0.0, pose(real.end()), arc, feed);
+                        let end = pose(real.end());
+                        if comp {
+                            super::cutter_comp::arc(cx, sweep > 0.0, end, arc, feed, at)?;
+                        } else {
+                            cx.arc(Plane::ZX, sweep > 0.0, end, arc, feed);
+                        }
                     }
                 }
             }
         }
     }
+    Ok(())
 }

@@ -21,9 +21,9 @@ fn a_failing_block_commits_nothing() {
     assert!(!cmds.iter().any(|c| matches!(c.value, Canon::SelectPlane { .. } | Canon::UseLengthUnits { .. } if c.span.line == 3)));
 }
 
-#[test]
-fn check_mode_reports_every_error_and_keeps_state() {
-    let text = "G21 F100\nG1 X10 X11\nG1 X20\nG2 X1\nG1 Y5\nM2\n";
+/// Runs RS274/NGC text in check mode (every error reported, the bad block skipped): the lines of
+/// the errors, and every straight feed as (line, end X, end Y).
+fn run_checking_every_block(text: &str) -> (Vec<u32>, Vec<(u32, f64, f64)>) {
     let mut opts = InterpOptions::new(Dialect::Rs274ngc);
     opts.continue_after_error = true;
     let mut errors = Vec::new();
@@ -38,6 +38,13 @@ fn check_mode_reports_every_error_and_keeps_state() {
             Err(d) => errors.push(d.span.line),
         }
     }
+    (errors, ends)
+}
+
+#[test]
+fn check_mode_reports_every_error_and_keeps_state() {
+    let text = "G21 F100\nG1 X10 X11\nG1 X20\nG2 X1\nG1 Y5\nM2\n";
+    let (errors, ends) = run_checking_every_block(text);
     assert_eq!(errors, [2, 4]);
     assert_eq!(ends, [(3, 20.0, 0.0), (5, 20.0, 5.0)]);
 }
@@ -225,20 +232,7 @@ fn a_failing_block_leaves_the_work_frame_and_the_dialect_state_as_they_were() {
     // its arc: both live in journalled parts of the modal state (the frame, the RS274/NGC state),
     // which the block changed before failing. Line 5 must still move in G54, uncompensated.
     let text = "G21 F100\nG10 L2 P2 X100 R30\nG1 X10\nG55 G2 X1\nG1 X30\nM2\n";
-    let mut opts = InterpOptions::new(Dialect::Rs274ngc);
-    opts.continue_after_error = true;
-    let mut errors = Vec::new();
-    let mut ends = Vec::new();
-    for item in Interpreter::from_text(text, opts) {
-        match item {
-            Ok(c) => {
-                if let Canon::StraightFeed(m) = c.value {
-                    ends.push((c.span.line, m.end.x, m.end.y));
-                }
-            }
-            Err(d) => errors.push(d.span.line),
-        }
-    }
+    let (errors, ends) = run_checking_every_block(text);
     assert_eq!(errors, [4]);
     assert_eq!(ends, [(3, 10.0, 0.0), (5, 30.0, 0.0)]);
 

@@ -188,10 +188,13 @@ const GROUPS: usize = 14;
 /// "No code of this group in the block".
 const NO_CODE: u32 = u32::MAX;
 
-/// The G codes of one block, one per group (plain arrays: this runs for every block).
+/// The G codes of one block, one per group (plain arrays: this runs for every block). A code's
+/// span stays in the block's words (`at` indexes `Words::g`): copying fourteen spans in and out
+/// of every block cost more than the whole lookup.
 struct GCodes {
     code: [u32; GROUPS],
-    span: [ColSpan; GROUPS],
+    /// Index of the group's code in `Words::g` (valid where `code` is not `NO_CODE`).
+    at: [u32; GROUPS],
     /// G53 travels with the motion group in LinuxCNC ("G53 may share a line with G0/G1").
     g53: Option<ColSpan>,
 }
@@ -200,14 +203,14 @@ impl GCodes {
     fn new() -> Self {
         GCodes {
             code: [NO_CODE; GROUPS],
-            span: [ColSpan::default(); GROUPS],
+            at: [0; GROUPS],
             g53: None,
         }
     }
 
-    fn get(&self, g: Group) -> Option<(u32, ColSpan)> {
+    fn get(&self, g: Group, cx: &Ctx<'_>) -> Option<(u32, ColSpan)> {
         let c = self.code[g as usize];
-        (c != NO_CODE).then(|| (c, self.span[g as usize]))
+        (c != NO_CODE).then(|| (c, cx.words.g[self.at[g as usize] as usize].1))
     }
 }
 
@@ -225,12 +228,11 @@ pub(crate) fn unsupported_at(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan)
     unsupported(cx, what, issue, at)
 }
 
-/// Sorts the block's G codes into groups. Inlined: the result is built in place instead of being
-/// copied out (it is ~180 bytes).
+/// Sorts the block's G codes into groups, into `g` (fresh from `GCodes::new`). An out-parameter:
+/// returned inside a `Result` the table was copied twice per block.
 #[inline(always)]
-fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
-    let mut g = GCodes::new();
-    for &(code, span) in &cx.words.g {
+fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
+    for (i, &(code, span)) in cx.words.g.iter().enumerate() {
         let Some(group) = group_of(code) else {
             return Err(cx.err(
                 "rs274::unknown-g-code",
@@ -260,9 +262,9 @@ fn classify(cx: &Ctx<'_>) -> Result<GCodes, Diagnostic> {
                 .with_note(format!("{} and {}", g_name(prev), g_name(code))));
         }
         g.code[group as usize] = code;
-        g.span[group as usize] = span;
+        g.at[group as usize] = i as u32;
     }
-    Ok(g)
+    Ok(())
 }
 
 /// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
@@ -340,33 +342,27 @@ pub(crate) fn announce_distance(
 
 /// Executes one RS274/NGC block (comments already emitted by the driver).
 pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Diagnostic> {
-    let g = classify(cx)?;
-    let m = mcodes::classify_m(cx)?;
+    let mut g = GCodes::new();
+    classify(cx, &mut g)?;
+    // Most blocks have no M word: they skip the classification and steps 5a–7 and 21 entirely.
+    let m = if cx.words.m.is_empty() {
+        None
+    } else {
+        Some(mcodes::classify_m(cx)?)
+    };
 
-    // Codes recognised but belonging to later capabilities. (Straight off the code array: building
-    // seven `Option`s and flattening them cost ~50 instructions per block.)
-    for group in [
-        Group::Motion,
-        Group::CutterComp,
-        Group::SpindleMode,
-        Group::Plane,
-    ] {
-        let code = g.code[group as usize];
-        if code == NO_CODE {
-            continue;
-        }
-        let span = g.span[group as usize];
-        let issue = match code {
-            171 | 181 | 191 => Some("RS274/NGC completeness (UVW planes)"),
-            _ => None,
-        };
-        if let Some(issue) = issue {
-            return Err(unsupported(cx, &g_name(code), issue, span));
-        }
+    // Codes recognised but not supported: the UVW planes.
+    if let Some((code @ (171 | 181 | 191), span)) = g.get(Group::Plane, cx) {
+        return Err(unsupported(
+            cx,
+            &g_name(code),
+            "RS274/NGC completeness (UVW planes)",
+            span,
+        ));
     }
 
     // 2. Feed mode.
-    if let Some((code, _)) = g.get(Group::FeedMode) {
+    if let Some((code, _)) = g.get(Group::FeedMode, cx) {
         set_feed_mode(
             cx,
             match code {
@@ -393,7 +389,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         }
     }
     // 4. Spindle mode (G96/G97), then S.
-    if let Some((code, _)) = g.get(Group::SpindleMode) {
+    if let Some((code, _)) = g.get(Group::SpindleMode, cx) {
         let css = code == 960;
         let max_rpm = if css {
             match cx.words.take(b'D') {
@@ -433,6 +429,242 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     if let Some(t) = cx.words.take(b'T') {
         tools::select_tool(cx, params, t)?;
     }
+    // 5a–7. The M codes before the dwell (out of line: rare).
+    if let Some(m) = &m {
+        m_codes_before_dwell(cx, params, m)?;
+    }
+    // 8. Dwell.
+    if let Some((40, span)) = g.get(Group::NonModal, cx) {
+        let Some(p) = cx.words.take(b'P') else {
+            return Err(cx.err(
+                "rs274::dwell-p-missing",
+                "Dwell time P word missing with G4",
+                span,
+            ));
+        };
+        if p.v < 0.0 {
+            return Err(cx.err(
+                "rs274::negative-dwell",
+                "Negative P word used with G4",
+                p.span,
+            ));
+        }
+        cx.out.push(Canon::Dwell { seconds: p.v });
+    }
+    // 9. Plane.
+    if let Some((code, span)) = g.get(Group::Plane, cx) {
+        if cx.st.rs274.comp.on() && cx.st.plane != plane_of_code(code) {
+            return Err(cx.err(
+                "rs274::comp-plane-change",
+                "Cannot change planes with cutter radius compensation on",
+                span,
+            ));
+        }
+        let plane = match code {
+            180 => Plane::ZX,
+            190 => Plane::YZ,
+            _ => Plane::XY,
+        };
+        cx.st.plane = plane;
+        cx.out.push(Canon::SelectPlane { plane });
+    }
+    // 10. Units.
+    if let Some((code, _)) = g.get(Group::Units, cx) {
+        let units = if code == 200 {
+            LengthUnits::Inches
+        } else {
+            LengthUnits::Millimetres
+        };
+        cx.st.units = units;
+        cx.out.push(Canon::UseLengthUnits { units });
+    }
+    // 10a. Lathe diameter mode: from here on every X word of the block is a diameter (LinuxCNC
+    // halves X words as it reads them — positions, G92, G10 and G43.1 values alike; arc centres
+    // I/K and radii stay radii).
+    if let Some((code, _)) = g.get(Group::LatheDiameter, cx) {
+        let diameter = code == 70;
+        if diameter != cx.st.diameter_mode {
+            cx.out.push(Canon::Comment {
+                text: format!(
+                    "interpreter: Lathe diameter mode changed to {}",
+                    if diameter { "diameter" } else { "radius" }
+                ),
+            });
+            cx.st.diameter_mode = diameter;
+        }
+    }
+    if cx.st.diameter_mode {
+        cx.words.scale(b'X', 0.5);
+    }
+    // 11. Cutter compensation.
+    if let Some((code, span)) = g.get(Group::CutterComp, cx) {
+        if code == 400 {
+            cutter_comp::comp_off(cx);
+        } else {
+            cutter_comp::comp_on(cx, params, code, span)?;
+        }
+    }
+    // 12. Tool length.
+    let mut axis_words_used_by_g43 = false;
+    if let Some((code, span)) = g.get(Group::ToolLength, cx) {
+        axis_words_used_by_g43 = tools::tool_length_offset(cx, params, code, span)?;
+        if axis_words_used_by_g43 {
+            if let Some((_, motion_span)) = g.get(Group::Motion, cx) {
+                // The document: G43.1 (and G43.2 with axes) and a motion on one line are an error.
+                // LinuxCNC 2.9 applies the words to both.
+                return Err(cx
+                    .err(
+                        "rs274::two-axis-g-codes",
+                        "Cannot use two g codes that both use axis values",
+                        motion_span,
+                    )
+                    .with_note(format!(
+                        "{} takes the axis words as tool offsets: put the motion on its own line",
+                        g_name(code)
+                    )));
+            }
+        }
+    }
+    // 13. Coordinate system.
+    if let Some((code, _)) = g.get(Group::CoordSystem, cx) {
+        let index = match code {
+            591 => 7,
+            592 => 8,
+            593 => 9,
+            c => (c / 10 - 53) as u8,
+        };
+        if index == cx.st.g5x_index {
+            cx.out.push(Canon::Comment {
+                text: "interpreter: continuing to use same coordinate system".into(),
+            });
+        } else {
+            select_coordinate_system(cx, params, index, true);
+        }
+    }
+    // 14. Path control.
+    if let Some((code, _)) = g.get(Group::PathControl, cx) {
+        cx.st.path_mode = match code {
+            610 => PathMode::ExactPath,
+            611 => PathMode::ExactStop,
+            _ => {
+                let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
+                let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
+                cx.st.rs274.naive_cam_tolerance = q;
+                PathMode::Continuous { blend_tolerance: p }
+            }
+        };
+        cx.out.push(path_mode_canon(
+            cx.st.path_mode,
+            cx.st.rs274.naive_cam_tolerance,
+        ));
+    }
+    // 15. Distance mode; 17. arc (IJK) distance mode. LinuxCNC comments only a real change.
+    if let Some((code, _)) = g.get(Group::Distance, cx) {
+        let new = distance_mode(code == 900);
+        let old = std::mem::replace(&mut cx.st.distance, new);
+        announce_distance(cx, "distance", old, new);
+    }
+    if let Some((code, _)) = g.get(Group::ArcDistance, cx) {
+        let new = distance_mode(code == 901);
+        let old = std::mem::replace(&mut cx.st.arc_distance, new);
+        announce_distance(cx, "IJK distance", old, new);
+    }
+    // 18. Retract mode.
+    if let Some((code, _)) = g.get(Group::Retract, cx) {
+        cx.st.retract_to_initial = code == 980;
+        cx.out.push(Canon::Comment {
+            text: format!(
+                "interpreter: retract mode set to {}",
+                if code == 980 { "old_z" } else { "r_plane" }
+            ),
+        });
+    }
+    // 19. Group 0 (G4 ran at 8). G10, G28, G30, G52 and G92 take the axis words for themselves:
+    // with them an explicit motion code is an error and the modal motion is suspended.
+    let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
+    if let Some((code, span)) = g.get(Group::NonModal, cx) {
+        if matches!(code, 100 | 280 | 300 | 520 | 920) {
+            if g.get(Group::Motion, cx).is_some() {
+                return Err(cx.err(
+                    "rs274::two-axis-g-codes",
+                    "Cannot use two g codes that both use axis values",
+                    span,
+                ));
+            }
+            axis_words_used_by_modal_0 = true;
+        }
+        match code {
+            100 => g10(cx, params, span)?,
+            280 | 300 => home::go_home(cx, params, code == 280)?,
+            281 | 301 => home::store_home(cx, params, code == 281),
+            520 | 920..=923 => g92_family(cx, params, code, span)?,
+            53 => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
+            _ => {}
+        }
+    }
+    // The G96 law with this block's speed and offsets, before its motion.
+    publish_css_law(cx);
+    // 20. Motion.
+    let motion = match g.get(Group::Motion, cx) {
+        Some((code, span)) => Some((code, span, true)),
+        None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
+            let code = match cx.st.motion {
+                _ if cx.st.rs274.motion_code.is_some() => cx.st.rs274.motion_code.unwrap_or(800),
+                MotionMode::Rapid => 0,
+                MotionMode::Linear => 10,
+                MotionMode::ArcCw => 20,
+                MotionMode::ArcCcw => 30,
+                MotionMode::None => 800,
+            };
+            Some((code, cx.whole(), false))
+        }
+        None => None,
+    };
+    if let Some((code, span, explicit)) = motion {
+        motion_block(cx, params, code, span, explicit, g.g53, f_word.is_some())?;
+    } else if let Some(span) = g.g53 {
+        return Err(cx.err(
+            "rs274::g53-without-motion",
+            "Must use g0 or g1 with g53",
+            span,
+        ));
+    }
+    // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
+    if cx.words.has(b'H') && !cx.words.is_used(b'H') {
+        let at = cx.words.take(b'H').map(|v| v.span).unwrap_or_default();
+        return Err(cx.err(
+            "interp::unused-word",
+            "H word with no G43 or G76 to use it",
+            at,
+        ));
+    }
+    cx.check_all_used()?;
+    // 21. Stops.
+    if let Some(m) = m.as_ref().filter(|m| m.stop != NO_CODE) {
+        let (code, span) = (m.stop, m.stop_span);
+        match code {
+            0 => cx.out.push(Canon::ProgramStop { optional: false }),
+            1 => cx.out.push(Canon::ProgramStop { optional: true }),
+            60 => return Err(unsupported(cx, "M60", "RS274/NGC completeness", span)),
+            _ => {
+                program_end(cx, params, code == 30);
+                publish_css_law(cx);
+                return Ok(Outcome::End);
+            }
+        }
+    }
+    publish_css_law(cx);
+    Ok(Outcome::Continue)
+}
+
+/// Steps 5a–7 of LinuxCNC's order of execution: M62–M66, M6, M61, the spindle, M70–M73, coolant,
+/// M19, M48–M53 and the user M codes.
+#[inline(never)]
+fn m_codes_before_dwell(
+    cx: &mut Ctx<'_>,
+    params: &mut Parameters,
+    m: &mcodes::MCodes,
+) -> Result<(), Diagnostic> {
     // 5a. HAL I/O: M62–M66.
     for &(code, span) in &m.io[..m.n_io] {
         mcodes::io(cx, code, span)?;
@@ -493,228 +725,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             timing: stanok_canon::AuxTiming::Prefix,
         });
     }
-    // 8. Dwell.
-    if let Some((40, span)) = g.get(Group::NonModal) {
-        let Some(p) = cx.words.take(b'P') else {
-            return Err(cx.err(
-                "rs274::dwell-p-missing",
-                "Dwell time P word missing with G4",
-                span,
-            ));
-        };
-        if p.v < 0.0 {
-            return Err(cx.err(
-                "rs274::negative-dwell",
-                "Negative P word used with G4",
-                p.span,
-            ));
-        }
-        cx.out.push(Canon::Dwell { seconds: p.v });
-    }
-    // 9. Plane.
-    if let Some((code, span)) = g.get(Group::Plane) {
-        if cx.st.rs274.comp.on() && cx.st.plane != plane_of_code(code) {
-            return Err(cx.err(
-                "rs274::comp-plane-change",
-                "Cannot change planes with cutter radius compensation on",
-                span,
-            ));
-        }
-        let plane = match code {
-            180 => Plane::ZX,
-            190 => Plane::YZ,
-            _ => Plane::XY,
-        };
-        cx.st.plane = plane;
-        cx.out.push(Canon::SelectPlane { plane });
-    }
-    // 10. Units.
-    if let Some((code, _)) = g.get(Group::Units) {
-        let units = if code == 200 {
-            LengthUnits::Inches
-        } else {
-            LengthUnits::Millimetres
-        };
-        cx.st.units = units;
-        cx.out.push(Canon::UseLengthUnits { units });
-    }
-    // 10a. Lathe diameter mode: from here on every X word of the block is a diameter (LinuxCNC
-    // halves X words as it reads them — positions, G92, G10 and G43.1 values alike; arc centres
-    // I/K and radii stay radii).
-    if let Some((code, _)) = g.get(Group::LatheDiameter) {
-        let diameter = code == 70;
-        if diameter != cx.st.diameter_mode {
-            cx.out.push(Canon::Comment {
-                text: format!(
-                    "interpreter: Lathe diameter mode changed to {}",
-                    if diameter { "diameter" } else { "radius" }
-                ),
-            });
-            cx.st.diameter_mode = diameter;
-        }
-    }
-    if cx.st.diameter_mode {
-        cx.words.scale(b'X', 0.5);
-    }
-    // 11. Cutter compensation.
-    if let Some((code, span)) = g.get(Group::CutterComp) {
-        if code == 400 {
-            cutter_comp::comp_off(cx);
-        } else {
-            cutter_comp::comp_on(cx, params, code, span)?;
-        }
-    }
-    // 12. Tool length.
-    let mut axis_words_used_by_g43 = false;
-    if let Some((code, span)) = g.get(Group::ToolLength) {
-        axis_words_used_by_g43 = tools::tool_length_offset(cx, params, code, span)?;
-        if axis_words_used_by_g43 {
-            if let Some((_, motion_span)) = g.get(Group::Motion) {
-                // The document: G43.1 (and G43.2 with axes) and a motion on one line are an error.
-                // LinuxCNC 2.9 applies the words to both.
-                return Err(cx
-                    .err(
-                        "rs274::two-axis-g-codes",
-                        "Cannot use two g codes that both use axis values",
-                        motion_span,
-                    )
-                    .with_note(format!(
-                        "{} takes the axis words as tool offsets: put the motion on its own line",
-                        g_name(code)
-                    )));
-            }
-        }
-    }
-    // 13. Coordinate system.
-    if let Some((code, _)) = g.get(Group::CoordSystem) {
-        let index = match code {
-            591 => 7,
-            592 => 8,
-            593 => 9,
-            c => (c / 10 - 53) as u8,
-        };
-        if index == cx.st.g5x_index {
-            cx.out.push(Canon::Comment {
-                text: "interpreter: continuing to use same coordinate system".into(),
-            });
-        } else {
-            select_coordinate_system(cx, params, index, true);
-        }
-    }
-    // 14. Path control.
-    if let Some((code, _)) = g.get(Group::PathControl) {
-        cx.st.path_mode = match code {
-            610 => PathMode::ExactPath,
-            611 => PathMode::ExactStop,
-            _ => {
-                let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
-                let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
-                cx.st.rs274.naive_cam_tolerance = q;
-                PathMode::Continuous { blend_tolerance: p }
-            }
-        };
-        cx.out.push(path_mode_canon(
-            cx.st.path_mode,
-            cx.st.rs274.naive_cam_tolerance,
-        ));
-    }
-    // 15. Distance mode; 17. arc (IJK) distance mode. LinuxCNC comments only a real change.
-    if let Some((code, _)) = g.get(Group::Distance) {
-        let new = distance_mode(code == 900);
-        let old = std::mem::replace(&mut cx.st.distance, new);
-        announce_distance(cx, "distance", old, new);
-    }
-    if let Some((code, _)) = g.get(Group::ArcDistance) {
-        let new = distance_mode(code == 901);
-        let old = std::mem::replace(&mut cx.st.arc_distance, new);
-        announce_distance(cx, "IJK distance", old, new);
-    }
-    // 18. Retract mode.
-    if let Some((code, _)) = g.get(Group::Retract) {
-        cx.st.retract_to_initial = code == 980;
-        cx.out.push(Canon::Comment {
-            text: format!(
-                "interpreter: retract mode set to {}",
-                if code == 980 { "old_z" } else { "r_plane" }
-            ),
-        });
-    }
-    // 19. Group 0 (G4 ran at 8). G10, G28, G30, G52 and G92 take the axis words for themselves:
-    // with them an explicit motion code is an error and the modal motion is suspended.
-    let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
-    if let Some((code, span)) = g.get(Group::NonModal) {
-        if matches!(code, 100 | 280 | 300 | 520 | 920) {
-            if g.get(Group::Motion).is_some() {
-                return Err(cx.err(
-                    "rs274::two-axis-g-codes",
-                    "Cannot use two g codes that both use axis values",
-                    span,
-                ));
-            }
-            axis_words_used_by_modal_0 = true;
-        }
-        match code {
-            100 => g10(cx, params, span)?,
-            280 | 300 => home::go_home(cx, params, code == 280)?,
-            281 | 301 => home::store_home(cx, params, code == 281),
-            520 | 920..=923 => g92_family(cx, params, code, span)?,
-            53 => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
-            _ => {}
-        }
-    }
-    // The G96 law with this block's speed and offsets, before its motion.
-    publish_css_law(cx);
-    // 20. Motion.
-    let motion = match g.get(Group::Motion) {
-        Some((code, span)) => Some((code, span, true)),
-        None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
-            let code = match cx.st.motion {
-                _ if cx.st.rs274.motion_code.is_some() => cx.st.rs274.motion_code.unwrap_or(800),
-                MotionMode::Rapid => 0,
-                MotionMode::Linear => 10,
-                MotionMode::ArcCw => 20,
-                MotionMode::ArcCcw => 30,
-                MotionMode::None => 800,
-            };
-            Some((code, cx.whole(), false))
-        }
-        None => None,
-    };
-    if let Some((code, span, explicit)) = motion {
-        motion_block(cx, params, code, span, explicit, g.g53, f_word.is_some())?;
-    } else if let Some(span) = g.g53 {
-        return Err(cx.err(
-            "rs274::g53-without-motion",
-            "Must use g0 or g1 with g53",
-            span,
-        ));
-    }
-    // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
-    if cx.words.has(b'H') && !cx.words.is_used(b'H') {
-        let at = cx.words.take(b'H').map(|v| v.span).unwrap_or_default();
-        return Err(cx.err(
-            "interp::unused-word",
-            "H word with no G43 or G76 to use it",
-            at,
-        ));
-    }
-    cx.check_all_used()?;
-    // 21. Stops.
-    if m.stop != NO_CODE {
-        let (code, span) = (m.stop, m.stop_span);
-        match code {
-            0 => cx.out.push(Canon::ProgramStop { optional: false }),
-            1 => cx.out.push(Canon::ProgramStop { optional: true }),
-            60 => return Err(unsupported(cx, "M60", "RS274/NGC completeness", span)),
-            _ => {
-                program_end(cx, params, code == 30);
-                publish_css_law(cx);
-                return Ok(Outcome::End);
-            }
-        }
-    }
-    publish_css_law(cx);
-    Ok(Outcome::Continue)
+    Ok(())
 }
 
 /// S as a cutting speed, mm/min: S is m/min under G21 and ft/min under G20.

@@ -8,6 +8,9 @@ use crate::state::{DistanceMode, MotionMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, Plane, Pose};
 use stanok_syntax::ColSpan;
 
+/// A motion block. Inlined into `execute`, so that an ordinary block makes one call
+/// (`motion_block_inner`); the G7x profile's corner words take the cold path.
+#[inline(always)]
 pub(super) fn motion_block(
     cx: &mut Ctx<'_>,
     params: &mut crate::params::Parameters,
@@ -17,16 +20,30 @@ pub(super) fn motion_block(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
-    // In a G7x profile, A and C on a move are its end corner's fillet and chamfer, not axes.
     if cx.st.rs274.in_profile && matches!(code, 0 | 10 | 20 | 30) {
-        let corner = super::lathe_cycles::take_corner(cx)?;
-        motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)?;
-        if let Some(mark) = corner {
-            cx.out.push(mark);
-        }
-        return Ok(());
+        return motion_in_profile(cx, params, code, span, explicit, g53, f_in_block);
     }
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
+}
+
+/// In a G7x profile, A and C on a move are its end corner's fillet and chamfer, not axes.
+#[cold]
+#[inline(never)]
+fn motion_in_profile(
+    cx: &mut Ctx<'_>,
+    params: &mut crate::params::Parameters,
+    code: u32,
+    span: ColSpan,
+    explicit: bool,
+    g53: Option<ColSpan>,
+    f_in_block: bool,
+) -> Result<(), Diagnostic> {
+    let corner = super::lathe_cycles::take_corner(cx)?;
+    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)?;
+    if let Some(mark) = corner {
+        cx.out.push(mark);
+    }
+    Ok(())
 }
 
 fn motion_block_inner(

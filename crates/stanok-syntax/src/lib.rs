@@ -164,15 +164,16 @@ impl BlockParser {
             Dialect::Axioma => {
                 axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
             }
-            Dialect::Rs274ngc | Dialect::Mazatrol => {
-                rs274::parse_line(text, block, &mut self.pending)
-            }
             Dialect::Balt => balt::parse_line(text, block, &mut self.pending),
             // The lab dialects are read by their own front ends (`labs`); a block parser made
-            // for one reads ISO words as RS274/NGC does.
-            Dialect::Nc31 | Dialect::P2p32 | Dialect::Mc2101 | Dialect::Gost20999 => {
-                rs274::parse_line(text, block, &mut self.pending)
-            }
+            // for one reads ISO words as RS274/NGC does. One call site: `rs274::parse_line` is
+            // inlined here.
+            Dialect::Rs274ngc
+            | Dialect::Mazatrol
+            | Dialect::Nc31
+            | Dialect::P2p32
+            | Dialect::Mc2101
+            | Dialect::Gost20999 => rs274::parse_line(text, block, &mut self.pending),
         }
     }
 

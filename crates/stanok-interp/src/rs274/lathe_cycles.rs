@@ -52,7 +52,6 @@
 //! is connected (stanok_geom::chain2d), and an allowance that would swallow an element is refused
 //! rather than cut.
 
-use super::unsupported;
 use crate::arc::PlanarArc;
 use crate::ctx::Ctx;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
@@ -110,14 +109,6 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
                 code / 10,
                 code % 10
             ),
-            span,
-        ));
-    }
-    if cx.st.diameter_mode {
-        return Err(unsupported(
-            cx,
-            "G70-G72 in diameter mode (G7)",
-            "RS274/NGC lathe cycles",
             span,
         ));
     }

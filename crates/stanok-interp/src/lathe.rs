@@ -153,12 +153,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let whole = ColSpan::new(0, self.block.text.len());
         let result = match profile {
             Ok(p) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
-            Err(msg) if !msg.starts_with("G7X") => Err(crate::rs274::unsupported_at(
-                &cx,
-                &format!("{msg} in a G7x profile"),
-                "RS274/NGC lathe cycles (profile corners)",
-                whole,
-            )),
             Err(msg) => Err(cx.err("rs274::g7x-profile", msg, whole)),
         };
         if let Err(d) = result {

@@ -42,7 +42,8 @@
 //!   profile is monotonic in Z, else G72's.
 //!
 //! Corners: `A` on a profile move rounds its end corner with a tangent arc of that radius, `C`
-//! cuts it with the chord between the same tangent points (lines on both sides only, so far).
+//! cuts it with the chord between the same tangent points, next to lines and arcs alike
+//! (`corners.rs`).
 //!
 //! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, feed to
 //! P0' and along profile', staying at its end (LinuxCNC 2.9).
@@ -59,6 +60,7 @@ use stanok_geom::chain2d::{level_crossings, offset_chain};
 use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 
+mod corners;
 mod pockets;
 
 /// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
@@ -264,52 +266,10 @@ impl Profile {
             }
         }
         for corner in corners.iter().rev() {
-            round_corner(&mut profile.chain, *corner)?;
+            corners::round_corner(&mut profile.chain, *corner)?;
         }
         Ok(profile)
     }
-}
-
-/// Replaces the corner between elements `after` and `after + 1` (both lines) by a tangent arc of
-/// radius `size` (fillet) or by the chord between the same tangent points (chamfer):
-/// tangent distance t = size·tan(|θ|/2) for the turn θ; the arc turns the way the corner does.
-fn round_corner(chain: &mut Vec<Seg2>, c: Corner) -> Result<(), String> {
-    let i = c.after;
-    let (Some(&Seg2::Line { a, b: p }), Some(&Seg2::Line { b: e, .. })) =
-        (chain.get(i), chain.get(i + 1))
-    else {
-        // The last element has no corner; arcs next to it are not rounded yet.
-        return if i + 1 >= chain.len() {
-            Ok(())
-        } else {
-            Err("fillets and chamfers next to arcs".into())
-        };
-    };
-    let (u, v) = (chain[i].tangent(1.0), chain[i + 1].tangent(0.0));
-    let theta = stanok_geom::offset2d::turn_angle(u, v);
-    if theta.abs() < 1e-9 || c.size <= 0.0 {
-        return Ok(());
-    }
-    let t = c.size * (theta.abs() / 2.0).tan();
-    let (l0, l1) = (chain[i].length(), chain[i + 1].length());
-    if t > l0 + LEN_EPS || t > l1 + LEN_EPS {
-        return Err("G7X error: fillet or chamfer larger than its elements".into());
-    }
-    let p1 = [p[0] - u[0] * t, p[1] - u[1] * t];
-    let p2 = [p[0] + v[0] * t, p[1] + v[1] * t];
-    let corner = if c.chamfer {
-        Seg2::Line { a: p1, b: p2 }
-    } else {
-        let n = stanok_geom::offset2d::left_normal(u);
-        let side = theta.signum();
-        let centre = [p1[0] + side * n[0] * c.size, p1[1] + side * n[1] * c.size];
-        Seg2::arc_through(centre, p1, p2, theta > 0.0, false)
-    };
-    chain[i] = Seg2::Line { a, b: p1 };
-    chain[i + 1] = Seg2::Line { a: p2, b: e };
-    chain.insert(i + 1, corner);
-    chain.retain(|s| s.length() > LEN_EPS);
-    Ok(())
 }
 
 /// The canonical frame of a cycle (module comment): flips (and for G72 a swap) of (z, x).

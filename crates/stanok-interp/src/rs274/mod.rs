@@ -223,11 +223,6 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
     .with_note(format!("planned in the issue on {issue}"))
 }
 
-/// `unsupported` for the driver's parts of RS274/NGC (the lathe cycles' profile).
-pub(crate) fn unsupported_at(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
-    unsupported(cx, what, issue, at)
-}
-
 /// Sorts the block's G codes into groups, into `g` (fresh from `GCodes::new`). An out-parameter:
 /// returned inside a `Result` the table was copied twice per block.
 #[inline(always)]

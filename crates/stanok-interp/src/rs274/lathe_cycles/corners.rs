@@ -205,4 +205,82 @@ mod tests {
             Err(TOO_LARGE.to_string())
         );
     }
+
+    /// A random element leaving `p` in direction `angle`: a line of length `len`, or an arc of
+    /// that length turning left or right on radius `r`.
+    fn element(p: [f64; 2], angle: f64, len: f64, kind: u8, r: f64) -> Seg2 {
+        let (s, c) = angle.sin_cos();
+        match kind {
+            0 => Seg2::Line {
+                a: p,
+                b: [p[0] + len * c, p[1] + len * s],
+            },
+            k => {
+                let side = if k == 1 { 1.0 } else { -1.0 };
+                let centre = [p[0] - side * r * s, p[1] + side * r * c];
+                let a0 = (p[1] - centre[1]).atan2(p[0] - centre[0]);
+                let sweep = side * (len / r).min(3.0);
+                Seg2::Arc {
+                    c: centre,
+                    r,
+                    start: a0,
+                    sweep,
+                }
+            }
+        }
+    }
+
+    /// Distance of `q` from the whole curve (line or circle) of `e`.
+    fn off_curve(e: &Seg2, q: [f64; 2]) -> f64 {
+        match *e {
+            Seg2::Line { a, b } => {
+                let d = [b[0] - a[0], b[1] - a[1]];
+                let l = d[0].hypot(d[1]);
+                ((q[0] - a[0]) * d[1] - (q[1] - a[1]) * d[0]).abs() / l
+            }
+            Seg2::Arc { c, r, .. } => (dist2(c, q) - r).abs(),
+        }
+    }
+
+    proptest::proptest! {
+        /// Any pair of lines and arcs meeting at a corner, any finish size: either an error, or a
+        /// connected chain whose joints are tangent (fillet), whose fillet has the given radius,
+        /// and whose trimmed elements stay on their own curves.
+        #[test]
+        fn every_finish_is_tangent_and_keeps_the_curves(
+            a1 in -3.1f64..3.1, turn in -2.8f64..2.8,
+            l1 in 0.5f64..20.0, l2 in 0.5f64..20.0,
+            k1 in 0u8..3, k2 in 0u8..3, r1 in 1.0f64..30.0, r2 in 1.0f64..30.0,
+            size in 0.05f64..5.0, chamfer in proptest::bool::ANY,
+        ) {
+            // e1 is built backwards from the corner so that it ends there heading `a1`.
+            let p = [3.0, 7.0];
+            let back = element(p, a1 + std::f64::consts::PI, l1, k1, r1);
+            let e1 = back.piece(1.0, 0.0);
+            let e2 = element(p, a1 + turn, l2, k2, r2);
+            let mut chain = vec![e1, e2];
+            if round_corner(&mut chain, corner(0, chamfer, size)).is_err() {
+                return Ok(());
+            }
+            for k in 0..chain.len() - 1 {
+                proptest::prop_assert!(dist2(chain[k].end(), chain[k + 1].start()) < 1e-7);
+            }
+            let theta = turn_angle(e1.tangent(1.0), e2.tangent(0.0));
+            if chain.len() == 3 {
+                proptest::prop_assert!(off_curve(&e1, chain[0].end()) < 1e-7);
+                proptest::prop_assert!(off_curve(&e2, chain[2].start()) < 1e-7);
+                if !chamfer {
+                    let Seg2::Arc { r, sweep, .. } = chain[1] else {
+                        return Err(proptest::test_runner::TestCaseError::fail("fillet not an arc"));
+                    };
+                    proptest::prop_assert!((r - size).abs() < 1e-7);
+                    proptest::prop_assert!(sweep * theta > 0.0);
+                    for k in 0..2 {
+                        let t = turn_angle(chain[k].tangent(1.0), chain[k + 1].tangent(0.0));
+                        proptest::prop_assert!(t.abs() < 1e-5, "joint {} turns by {}", k, t);
+                    }
+                }
+            }
+        }
+    }
 }

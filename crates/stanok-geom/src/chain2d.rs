@@ -7,7 +7,8 @@
 //!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
 //!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
 //!     |θ| < NEAR_TANGENT, an arc, crossing → cut both at the first crossing near the corner;
-//!       (no crossing, gap < 0.001 mm)      → join them: the line moves to the arc's end;
+//!       (no crossing, gap < 0.001 mm)      → join them at the foot of the perpendicular from
+//!                                             the arc's centre to the line;
 //!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
 //!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
 //!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
@@ -30,19 +31,98 @@ use std::f64::consts::FRAC_PI_2;
 /// Turns below this (radians) are nearly tangential: see `offset_chain`.
 const NEAR_TANGENT: f64 = 1e-2;
 
+/// A line's offset end this close to the next arc's offset start is a tangent joint: the arc
+/// keeps its start circle (`offset_chain_sourced`), mm.
+const TANGENT_JOINT: f64 = 1e-6;
+
 /// The equidistant of the connected chain `chain` at signed distance `d` to the left of its
 /// direction of travel (d < 0: right), with corners resolved (see the module comment).
 pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
+    offset_chain_sourced(chain, None, d).map(|v| v.into_iter().map(|(s, _)| s).collect())
+}
+
+/// [`offset_chain`] of a chain whose arcs may end off the circle through their start (a lathe
+/// profile as LinuxCNC's G7x offsets it, `stanok-interp`'s `lathe_cycles/arcs.rs`): each arc of
+/// `chain` lies on the circle through its *end*, and `start_radius[i]` is the radius of the
+/// circle through its start (ignored for lines; `None`: every arc's own radius, which is
+/// [`offset_chain`]). Each element comes with the index of the element of `chain` it is the
+/// offset of (None: an arc inserted at a corner).
+///
+/// ```text
+///   joint of an arc with a line          on the arc's offset end circle
+///   an arc's resulting circle:
+///     after a line that does not end     its offset end circle (its start was moved there)
+///       at its offset start (10⁻⁶ mm)
+///     first, after an arc, or d = 0      its offset start circle (its start was only scaled)
+///   joint of two arcs                    on those resulting circles
+/// ```
+///
+/// An arc's resulting end point (on its resulting circle) may then be up to the difference of
+/// its two radii from the next element's start: the caller takes the latter as the arc's end.
+pub fn offset_chain_sourced(
+    chain: &[Seg2],
+    start_radius: Option<&[f64]>,
+    d: f64,
+) -> Option<Vec<(Seg2, Option<usize>)>> {
+    // The arc of element i on its offset start circle (None: a line, or no start radii).
+    let on_start_circle = |i: usize, o: &Seg2, d: f64| match (*o, start_radius) {
+        (Seg2::Arc { c, start, sweep, .. }, Some(radii)) => {
+            let r = *radii.get(i)? - d * sweep.signum();
+            Some((r > LEN_EPS && r.is_finite()).then_some(Seg2::Arc { c, r, start, sweep }))
+        }
+        _ => None,
+    };
     if d.abs() < LEN_EPS {
-        return Some(chain.to_vec());
+        return chain
+            .iter()
+            .enumerate()
+            .map(|(i, s)| match on_start_circle(i, s, 0.0) {
+                Some(arc) => arc.map(|a| (a, Some(i))),
+                None => Some((*s, Some(i))),
+            })
+            .collect();
     }
     let mut out: Vec<Seg2> = Vec::with_capacity(chain.len() * 2);
+    let mut source: Vec<Option<usize>> = Vec::with_capacity(chain.len() * 2);
+    // The offset end circle of each arc of `out` that lies on another circle.
+    let mut end_radius: Vec<Option<f64>> = Vec::with_capacity(chain.len() * 2);
     for (i, s) in chain.iter().enumerate() {
         let mut o = s.offset_left(d)?;
+        let mut o_end_radius = None;
+        if let Some(start_arc) = on_start_circle(i, &o, d) {
+            let start_arc = start_arc?;
+            // A corner turning away from the offset side gets an arc first (below): the arc
+            // then follows that one, not the line.
+            let turns_away = i.checked_sub(1).is_some_and(|j| {
+                let theta = turn_angle(chain[j].tangent(1.0), s.tangent(0.0));
+                theta.abs() >= NEAR_TANGENT && (theta < 0.0) == (d > 0.0)
+            });
+            let moved = !turns_away
+                && matches!(out.last(), Some(l @ Seg2::Line { .. })
+                    if dist2(l.end(), start_arc.start()) >= TANGENT_JOINT);
+            if !moved {
+                // Its end scales with its start, by (r_s ± d)/r_s.
+                if let (Seg2::Arc { r: r_end, .. }, Seg2::Arc { r, .. }, Some(radii)) =
+                    (*s, start_arc, start_radius)
+                {
+                    o_end_radius = Some(r_end * r / radii[i]);
+                }
+                o = start_arc;
+            }
+        }
         if let Some(prev_prog) = i.checked_sub(1).map(|j| chain[j]) {
-            let corner = s.start();
+            // The programmed corner (an arc's start may be off the circle it is given on).
+            let corner = prev_prog.end();
             let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
+            let last_index = out.len().checked_sub(1)?;
             let last = out.last_mut()?;
+            // An arc meets the line after it on its end circle.
+            let last_radius = match (&mut *last, end_radius.last().copied().flatten(), &o) {
+                (Seg2::Arc { r, .. }, Some(end_r), Seg2::Line { .. }) => {
+                    Some(std::mem::replace(r, end_r))
+                }
+                _ => None,
+            };
             // Nearly tangential joints with an arc (a programmed arc whose end is a few µm off the
             // tangent) meet where the offset pieces cross, if they do, near the corner — of two
             // such crossings the first along the path (LinuxCNC does).
@@ -64,12 +144,22 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 o = b;
             } else if with_arc && theta.abs() < NEAR_TANGENT && dist2(last.end(), o.start()) < 1e-3
             {
-                // Tangential within the programmed arc's tolerance: join the pieces where the
-                // line meets the arc's end (lines move, arcs keep their circle).
-                let end = last.end();
-                match (&mut *last, &mut o) {
-                    (_, Seg2::Line { a, .. }) => *a = end,
-                    (Seg2::Line { b, .. }, arc) => *b = arc.start(),
+                // Tangential within the programmed arc's tolerance, the offset line passing just
+                // outside the arc's circle: both end at the foot of the perpendicular from the
+                // arc's centre to the line, the point of the line nearest the circle (LinuxCNC
+                // does). The line keeps its direction; the arc ends at the foot's angle, its
+                // point on the circle within 0.001 mm of the foot.
+                match (*last, o) {
+                    (arc @ Seg2::Arc { c, .. }, Seg2::Line { a, b }) => {
+                        let foot = foot_on_line(c, a, b);
+                        *last = trim_end(&arc, foot);
+                        o = Seg2::Line { a: foot, b };
+                    }
+                    (Seg2::Line { a, b }, arc @ Seg2::Arc { c, .. }) => {
+                        let foot = foot_on_line(c, a, b);
+                        *last = Seg2::Line { a, b: foot };
+                        o = trim_start(&arc, foot);
+                    }
                     _ => {}
                 }
             } else if (theta < 0.0) == (d > 0.0) {
@@ -77,6 +167,8 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 let ccw = d < 0.0;
                 let arc = Seg2::arc_through(corner, last.end(), o.start(), ccw, false);
                 out.push(arc);
+                source.push(None);
+                end_radius.push(None);
             } else {
                 // Turn towards it: the pieces overlap; meet at the crossing nearest the corner.
                 let p = curve_intersections(last, &o)
@@ -91,10 +183,27 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 *last = a;
                 o = b;
             }
+            // Back on the circle the arc ends up on, ending at the joint's angle.
+            if let (Some(r0), Some(Seg2::Arc { r, .. })) = (last_radius, out.get_mut(last_index)) {
+                *r = r0;
+            }
         }
         out.push(o);
+        source.push(Some(i));
+        end_radius.push(o_end_radius);
     }
-    Some(out)
+    Some(out.into_iter().zip(source).collect())
+}
+
+/// The foot of the perpendicular from `p` to the line through `a` and `b` (`a` if they coincide).
+fn foot_on_line(p: P2, a: P2, b: P2) -> P2 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    if l2 < 1e-300 || !l2.is_finite() {
+        return a;
+    }
+    let t = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2;
+    [a[0] + t * d[0], a[1] + t * d[1]]
 }
 
 /// Whether `trimmed`, a piece of `s`'s curve, still runs the way `s` does (and is no longer).

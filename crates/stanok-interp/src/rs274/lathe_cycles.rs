@@ -56,10 +56,11 @@ use super::unsupported;
 use crate::arc::PlanarArc;
 use crate::ctx::Ctx;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
-use stanok_geom::chain2d::{level_crossings, offset_chain};
+use stanok_geom::chain2d::level_crossings;
 use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 
+mod arcs;
 mod pockets;
 
 /// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
@@ -264,7 +265,7 @@ impl Profile {
                     });
                     let (s, e) = (zx(&a.start), zx(&a.end));
                     let full = stanok_geom::offset2d::dist2(s, e) < LEN_EPS;
-                    Seg2::arc_through([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
+                    arcs::end_circle_arc([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
                 }
                 _ => return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into()),
             };
@@ -460,7 +461,12 @@ pub fn finish(
         [p0_c[0], s_c[1]]
     };
     let offset = |d: f64| {
-        offset_chain(&canon, d).ok_or_else(|| {
+        let offset = if call.code == 700 {
+            arcs::offset_on_start_circles(&canon, p0_c, d)
+        } else {
+            arcs::offset_profile(&canon, p0_c, d)
+        };
+        offset.ok_or_else(|| {
             cx.err(
                 "rs274::g7x-offset",
                 "G7X error: the profile cannot be offset by this distance",
@@ -625,7 +631,7 @@ fn emit(
         ..call.start
     };
     let comp = cx.st.rs274.comp.on();
-    for m in moves {
+    for (k, m) in moves.iter().enumerate() {
         match m {
             Move::Rapid(q) if comp => {
                 super::cutter_comp::straight(cx, true, pose(f.to_real(*q)), 0.0, at)?
@@ -644,7 +650,14 @@ fn emit(
                             centre: c,
                             turns: 1,
                         };
-                        let end = pose(real.end());
+                        // An arc ends where the next feed starts: its end point may be off
+                        // the circle it crosses levels on (`arcs.rs`).
+                        let end = match moves.get(k + 1) {
+                            Some(Move::Feed(next)) if !comp && arcs::joins(seg, next) => {
+                                pose(f.to_real(next.start()))
+                            }
+                            _ => pose(real.end()),
+                        };
                         if comp {
                             super::cutter_comp::arc(cx, sweep > 0.0, end, arc, feed, at)?;
                         } else {

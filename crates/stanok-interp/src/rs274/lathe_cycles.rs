@@ -461,12 +461,7 @@ pub fn finish(
         [p0_c[0], s_c[1]]
     };
     let offset = |d: f64| {
-        let offset = if call.code == 700 {
-            arcs::offset_on_start_circles(&canon, p0_c, d)
-        } else {
-            arcs::offset_profile(&canon, p0_c, d)
-        };
-        offset.ok_or_else(|| {
+        arcs::offset_profile(&canon, p0_c, d).ok_or_else(|| {
             cx.err(
                 "rs274::g7x-offset",
                 "G7X error: the profile cannot be offset by this distance",
@@ -653,7 +648,7 @@ fn emit(
                         // An arc ends where the next feed starts: its end point may be off
                         // the circle it crosses levels on (`arcs.rs`).
                         let end = match moves.get(k + 1) {
-                            Some(Move::Feed(next)) if !comp && arcs::joins(seg, next) => {
+                            Some(Move::Feed(next)) if arcs::joins(seg, next) => {
                                 pose(f.to_real(next.start()))
                             }
                             _ => pose(real.end()),

@@ -78,21 +78,3 @@ const END_GAP: f64 = 1e-3;
 pub(super) fn joins(arc: &Seg2, next: &Seg2) -> bool {
     dist2(arc.end(), next.start()) < END_GAP
 }
-
-/// The profile offset by `d` with every arc on the circle through its programmed start, as
-/// Stanok offset all G7x profiles before `offset_profile`: G70 keeps this until the G70 pass
-/// under cutter compensation has been checked against `rs274` with the end-circle joints.
-pub(super) fn offset_on_start_circles(chain: &[Seg2], p0: P2, d: f64) -> Option<Vec<Seg2>> {
-    let on_start: Vec<Seg2> = chain
-        .iter()
-        .enumerate()
-        .map(|(i, s)| match *s {
-            Seg2::Arc { c, start, sweep, .. } => {
-                let from = i.checked_sub(1).map_or(p0, |j| chain[j].end());
-                Seg2::Arc { c, r: dist2(c, from), start, sweep }
-            }
-            line => line,
-        })
-        .collect();
-    stanok_geom::chain2d::offset_chain(&on_start, d)
-}

@@ -66,7 +66,12 @@ pub fn offset_chain_sourced(
 ) -> Option<Vec<(Seg2, Option<usize>)>> {
     // The arc of element i on its offset start circle (None: a line, or no start radii).
     let on_start_circle = |i: usize, o: &Seg2, d: f64| match (*o, start_radius) {
-        (Seg2::Arc { c, start, sweep, .. }, Some(radii)) => {
+        (
+            Seg2::Arc {
+                c, start, sweep, ..
+            },
+            Some(radii),
+        ) => {
             let r = *radii.get(i)? - d * sweep.signum();
             Some((r > LEN_EPS && r.is_finite()).then_some(Seg2::Arc { c, r, start, sweep }))
         }

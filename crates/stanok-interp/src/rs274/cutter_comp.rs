@@ -467,7 +467,11 @@ pub(super) fn arc(
             c,
             scale(
                 unit(sub(s, c)),
-                if inside { start_radius - r } else { start_radius + r },
+                if inside {
+                    start_radius - r
+                } else {
+                    start_radius + r
+                },
             ),
         );
         corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;

@@ -61,6 +61,7 @@ use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 
 mod arcs;
+mod climb;
 mod pockets;
 
 /// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
@@ -594,6 +595,10 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         a: pend,
         b: [pend[0], s[1]],
     };
+    if call.code % 10 == 1 {
+        climb::climb_pass(moves, prof, p0, close);
+        return Some(());
+    }
     pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
 }
 

@@ -41,38 +41,51 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
     offset_chain_sourced(chain, None, d).map(|v| v.into_iter().map(|(s, _)| s).collect())
 }
 
+/// The arcs of a chain that may end off the circle through their start (see
+/// [`offset_chain_sourced`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ArcStarts<'a> {
+    /// For each element of the chain, the radius of the circle about its centre through its
+    /// start (lines: ignored).
+    pub radius: &'a [f64],
+    /// The first of the steps the offset is made in, signed like the offset, |d₁| ≤ |d|.
+    pub first_step: f64,
+}
+
 /// [`offset_chain`] of a chain whose arcs may end off the circle through their start (a lathe
 /// profile as LinuxCNC's G7x offsets it, `stanok-interp`'s `lathe_cycles/arcs.rs`): each arc of
-/// `chain` lies on the circle through its *end*, and `start_radius[i]` is the radius of the
-/// circle through its start (ignored for lines; `None`: every arc's own radius, which is
-/// [`offset_chain`]). Each element comes with the index of the element of `chain` it is the
-/// offset of (None: an arc inserted at a corner).
+/// `chain` lies on the circle through its *end* (radius r_e), `arcs.radius[i]` is r_s, the radius
+/// through its start (`None`: every arc's own radius, which is [`offset_chain`]). Each element
+/// comes with the index of the element of `chain` it is the offset of (None: an arc inserted at
+/// a corner). With σ = +1 for a clockwise arc (−1 counter-clockwise), d₁ = `first_step`:
 ///
 /// ```text
-///   joint of an arc with a line          on the arc's offset end circle
-///   an arc's resulting circle:
-///     after a line that does not end     its offset end circle (its start was moved there)
-///       at its offset start (10⁻⁶ mm)
-///     first, after an arc, or d = 0      its offset start circle (its start was only scaled)
-///   joint of two arcs                    on those resulting circles
+///   an arc after a line that does not end    resulting circle = end circle
+///     at its offset start (10⁻⁶ mm)            R_e = r_e·(r_s + σd₁)/r_s + σ(d − d₁)
+///   first, after an arc, or d = 0            resulting circle = start circle r_s + σd,
+///                                              end circle R_e = r_e·(r_s + σd)/r_s
+///   either, followed by a nearly tangent     R_e = the distance of that line's offset from the
+///     line its end circle would not reach      centre (they meet at the foot, below)
+///   joints with lines                        on the end circle R_e
+///   joints of two arcs                       on their resulting circles
 /// ```
 ///
-/// An arc's resulting end point (on its resulting circle) may then be up to the difference of
-/// its two radii from the next element's start: the caller takes the latter as the arc's end.
+/// An arc's resulting end point (on its resulting circle) may then be up to |R_e − R| from the
+/// next element's start: the caller takes the latter as the arc's end.
 pub fn offset_chain_sourced(
     chain: &[Seg2],
-    start_radius: Option<&[f64]>,
+    arcs: Option<&ArcStarts>,
     d: f64,
 ) -> Option<Vec<(Seg2, Option<usize>)>> {
     // The arc of element i on its offset start circle (None: a line, or no start radii).
-    let on_start_circle = |i: usize, o: &Seg2, d: f64| match (*o, start_radius) {
+    let on_start_circle = |i: usize, o: &Seg2, d: f64| match (*o, arcs) {
         (
             Seg2::Arc {
                 c, start, sweep, ..
             },
-            Some(radii),
+            Some(arcs),
         ) => {
-            let r = *radii.get(i)? - d * sweep.signum();
+            let r = *arcs.radius.get(i)? - d * sweep.signum();
             Some((r > LEN_EPS && r.is_finite()).then_some(Seg2::Arc { c, r, start, sweep }))
         }
         _ => None,
@@ -94,7 +107,14 @@ pub fn offset_chain_sourced(
     for (i, s) in chain.iter().enumerate() {
         let mut o = s.offset_left(d)?;
         let mut o_end_radius = None;
-        if let Some(start_arc) = on_start_circle(i, &o, d) {
+        if let (
+            Some(start_arc),
+            Some(arcs),
+            Seg2::Arc {
+                c, r: r_e, sweep, ..
+            },
+        ) = (on_start_circle(i, &o, d), arcs, *s)
+        {
             let start_arc = start_arc?;
             // A corner turning away from the offset side gets an arc first (below): the arc
             // then follows that one, not the line.
@@ -105,13 +125,28 @@ pub fn offset_chain_sourced(
             let moved = !turns_away
                 && matches!(out.last(), Some(l @ Seg2::Line { .. })
                     if dist2(l.end(), start_arc.start()) >= TANGENT_JOINT);
-            if !moved {
-                // Its end scales with its start, by (r_s ± d)/r_s.
-                if let (Seg2::Arc { r: r_end, .. }, Seg2::Arc { r, .. }, Some(radii)) =
-                    (*s, start_arc, start_radius)
-                {
-                    o_end_radius = Some(r_end * r / radii[i]);
+            let (r_s, sigma) = (arcs.radius[i], -sweep.signum());
+            let d1 = if moved { arcs.first_step } else { d };
+            let mut r_end = r_e * (r_s + sigma * d1) / r_s + sigma * (d - d1);
+            // A nearly tangent line after it that the end circle would not reach.
+            if let Some(next @ Seg2::Line { .. }) = chain.get(i + 1) {
+                let theta = turn_angle(s.tangent(1.0), next.tangent(0.0));
+                if let Some(Seg2::Line { a, b }) = next.offset_left(d) {
+                    let h = dist2(c, foot_on_line(c, a, b));
+                    if theta.abs() < NEAR_TANGENT && h > r_end {
+                        r_end = h;
+                    }
                 }
+            }
+            if !(r_end > LEN_EPS && r_end.is_finite()) {
+                return None;
+            }
+            if moved {
+                if let Seg2::Arc { r, .. } = &mut o {
+                    *r = r_end;
+                }
+            } else {
+                o_end_radius = Some(r_end);
                 o = start_arc;
             }
         }

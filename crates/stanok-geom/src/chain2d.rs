@@ -387,6 +387,104 @@ mod tests {
         assert!(offset_chain(&chain, 1.0).is_none());
     }
 
+    /// A rising line, a clockwise arc about (4, 6) from (2, 6) over the top to (6.0015, 6) — its
+    /// end 0.0015 outside its start's circle (r_s = 2, r_e = 2.0015) — and a falling line.
+    fn off_radius_chain() -> [Seg2; 3] {
+        let (c, s, e) = ([4.0, 6.0], [2.0, 6.0], [6.0015, 6.0]);
+        let arc = match Seg2::arc_through(c, s, e, false, false) {
+            Seg2::Arc { start, sweep, .. } => Seg2::Arc {
+                c,
+                r: dist2(c, e),
+                start,
+                sweep,
+            },
+            l => l,
+        };
+        [line([0.0, 4.0], s), arc, line(e, [8.0, 4.0])]
+    }
+
+    #[test]
+    fn an_arc_after_a_line_ends_on_its_end_circle_scaled_by_the_first_step_only() {
+        // Offset 0.5 outwards in steps, the first 0.1: R_e = r_e·(r_s + 0.1)/r_s + 0.4.
+        let chain = off_radius_chain();
+        let radius = [0.0, 2.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.1,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
+        let expected = 2.0015 * 2.1 / 2.0 + 0.4;
+        let Seg2::Arc { r, .. } = o[1].0 else {
+            panic!("{o:?}")
+        };
+        assert!((r - expected).abs() < 1e-12, "{r} {expected}");
+        // The lines meet it on that circle.
+        assert!((dist2(o[0].0.end(), [4.0, 6.0]) - expected).abs() < 1e-9);
+        assert!((dist2(o[2].0.start(), [4.0, 6.0]) - expected).abs() < 1e-9);
+        // One step: the whole offset scales the end circle.
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.5,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
+        assert!(matches!(o[1].0, Seg2::Arc { r, .. } if (r - 2.0015 * 2.5 / 2.0).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_first_arc_crosses_on_its_start_circle_and_meets_lines_on_its_end_circle() {
+        let chain = off_radius_chain();
+        let radius = [2.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.1,
+        };
+        let o = offset_chain_sourced(&chain[1..], Some(&arcs), 0.5).unwrap();
+        assert!(
+            matches!(o[0].0, Seg2::Arc { r, .. } if (r - 2.5).abs() < 1e-12),
+            "{o:?}"
+        );
+        // The line after it starts on the end circle scaled with the start: r_e·2.5/2.
+        assert!((dist2(o[1].0.start(), [4.0, 6.0]) - 2.0015 * 1.25).abs() < 1e-9);
+        // Without start radii it is an ordinary arc of radius r_e.
+        let plain = offset_chain(&chain[1..], 0.5).unwrap();
+        assert!(matches!(plain[0], Seg2::Arc { r, .. } if (r - 2.5015).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_nearly_tangent_line_that_misses_the_arc_meets_it_at_the_foot() {
+        // A counter-clockwise quarter about the origin from (0, −10) to (10.0003, 0) (r_s = 10,
+        // r_e = 10.0003), then the tangent line up from its end. Offset by 1 to the left (towards
+        // the centre) the end circle would be r_e·9/10 = 9.00027, inside the offset line x =
+        // 9.0003: they meet at the foot of the perpendicular, (9.0003, 0).
+        let e = [10.0003, 0.0];
+        let arc = match Seg2::arc_through([0.0, 0.0], [0.0, -10.0], e, true, false) {
+            Seg2::Arc {
+                c, start, sweep, ..
+            } => Seg2::Arc {
+                c,
+                r: dist2(c, e),
+                start,
+                sweep,
+            },
+            l => l,
+        };
+        let chain = [arc, line(e, [10.0003, 5.0])];
+        let radius = [10.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 1.0,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 1.0).unwrap();
+        // The first arc keeps its start circle for its crossings.
+        assert!(
+            matches!(o[0].0, Seg2::Arc { r, .. } if (r - 9.0).abs() < 1e-12),
+            "{o:?}"
+        );
+        assert!(dist2(o[1].0.start(), [9.0003, 0.0]) < 1e-9, "{o:?}");
+        let end = o[0].0.end();
+        assert!(end[1].atan2(end[0]).abs() < 1e-9);
+    }
+
     #[test]
     fn level_crossings_of_lines_and_arcs() {
         let chain = [

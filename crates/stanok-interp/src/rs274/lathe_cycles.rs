@@ -36,7 +36,10 @@
 //!   closing line I → P0' at l (c_s), feed along +c to the first crossing of the level with
 //!   profile' beyond c_s (none: to Pend'.c), retract r = min(R, cut/2) diagonally (−c, +l), rapid
 //!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
-//!   profile' — cutting its pockets on the way (`pockets.rs`) — and feed to (Pend'.c, S.l).
+//!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
+//!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
+//! * profile' is the profile offset by D as LinuxCNC offsets it, arcs that end off their radius
+//!   included (`arcs.rs`); an arc is printed with its own end point, the next feed's start.
 //! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
 //!   profile is monotonic in Z, else G72's.
@@ -48,7 +51,7 @@
 //! P0' and along profile', staying at its end (LinuxCNC 2.9).
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
-//! follows profile' exactly; the number of levels is bounded by `MAX_LEVELS`; every offset chain
+//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the number of levels is bounded by `MAX_LEVELS`; every offset chain
 //! is connected (stanok_geom::chain2d), and an allowance that would swallow an element is refused
 //! rather than cut.
 

@@ -94,10 +94,10 @@ const END_GAP_ABS: f64 = 0.02;
 
 /// Whether feed `next` starts at the end point of arc `arc` (module comment: an arc is printed
 /// with its end point, which may be up to |R_e − R| off the circle its `Seg2` lies on).
+/// A line (it ends where it ends) never does.
 pub(super) fn joins(arc: &Seg2, next: &Seg2) -> bool {
-    let r = match *arc {
-        Seg2::Arc { r, .. } => r,
-        Seg2::Line { .. } => 0.0,
-    };
-    dist2(arc.end(), next.start()) <= END_GAP_REL * r + END_GAP_ABS
+    match *arc {
+        Seg2::Arc { r, .. } => dist2(arc.end(), next.start()) <= END_GAP_REL * r + END_GAP_ABS,
+        Seg2::Line { .. } => false,
+    }
 }

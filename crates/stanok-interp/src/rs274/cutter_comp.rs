@@ -531,9 +531,9 @@ fn corner(
         );
         return Ok(());
     }
-    // Within the tolerance of tangent, an arc starts where the tool is (LinuxCNC's "convex, one
-    // arc" case): its offset start may be off the tool's position by as much as the arc's end is
-    // off its radius, and no meeting point is sought.
+    // Within the tolerance of tangent next to an arc, the new element starts where the tool is
+    // (LinuxCNC's "convex, one arc" case): no meeting point is sought, and the new offset start
+    // may be off the tool's position by as much as an arc's end is off its radius.
     let with_arc = matches!(new, Element::Arc { .. }) || matches!(last, Element::Arc { .. });
     if with_arc && (comp.sign() * turn).abs() <= CONCAVE_TOLERANCE {
         return Ok(());

@@ -51,9 +51,10 @@
 //! P0' and along profile', staying at its end (LinuxCNC 2.9).
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
-//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the number of levels is bounded by `MAX_LEVELS`; every offset chain
-//! is connected (stanok_geom::chain2d), and an allowance that would swallow an element is refused
-//! rather than cut.
+//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
+//! number of levels is bounded by `MAX_LEVELS`; every offset chain is connected
+//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`), and an
+//! allowance that would swallow an element is refused rather than cut.
 
 use super::unsupported;
 use crate::arc::PlanarArc;

@@ -1,5 +1,5 @@
-//! The final pass of G71/G72 and G71.2/G72.2 along the offset profile, with LinuxCNC's pockets (type-2 profiles:
-//! the profile dips back towards the levels' side and comes up again).
+//! The final pass of G71/G72 and G71.2/G72.2 along the offset profile, with LinuxCNC's pockets
+//! (type-2 profiles: the profile dips back towards the levels' side and comes up again).
 //!
 //! Canonical frame as in `lathe_cycles` (the pass runs towards +c, S on the +l side). Arcs are
 //! first split where l turns, so a dip always starts at an element boundary. Walking the profile:

@@ -7,7 +7,8 @@
 //!   then at every joint i | i+1, with the turn θ from tangent(sᵢ, end) to tangent(sᵢ₊₁, start):
 //!     |θ| ≤ ANGLE_EPS (tangential)        → the pieces meet already: keep them;
 //!     |θ| < NEAR_TANGENT, an arc, crossing → cut both at the first crossing near the corner;
-//!       (no crossing, gap < 0.001 mm)      → join them: the line moves to the arc's end;
+//!       (no crossing, gap < 0.001 mm)      → join them at the foot of the perpendicular from
+//!                                             the arc's centre to the line;
 //!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
 //!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
 //!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
@@ -30,19 +31,138 @@ use std::f64::consts::FRAC_PI_2;
 /// Turns below this (radians) are nearly tangential: see `offset_chain`.
 const NEAR_TANGENT: f64 = 1e-2;
 
+/// A line's offset end this close to the next arc's offset start is a tangent joint: the arc
+/// keeps its start circle (`offset_chain_sourced`), mm.
+const TANGENT_JOINT: f64 = 1e-6;
+
 /// The equidistant of the connected chain `chain` at signed distance `d` to the left of its
 /// direction of travel (d < 0: right), with corners resolved (see the module comment).
 pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
+    offset_chain_sourced(chain, None, d).map(|v| v.into_iter().map(|(s, _)| s).collect())
+}
+
+/// The arcs of a chain that may end off the circle through their start (see
+/// [`offset_chain_sourced`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ArcStarts<'a> {
+    /// For each element of the chain, the radius of the circle about its centre through its
+    /// start (lines: ignored).
+    pub radius: &'a [f64],
+    /// The first of the steps the offset is made in, signed like the offset, |d₁| ≤ |d|.
+    pub first_step: f64,
+}
+
+/// [`offset_chain`] of a chain whose arcs may end off the circle through their start (a lathe
+/// profile as LinuxCNC's G7x offsets it, `stanok-interp`'s `lathe_cycles/arcs.rs`): each arc of
+/// `chain` lies on the circle through its *end* (radius r_e), `arcs.radius[i]` is r_s, the radius
+/// through its start (`None`: every arc's own radius, which is [`offset_chain`]). Each element
+/// comes with the index of the element of `chain` it is the offset of (None: an arc inserted at
+/// a corner). With σ = +1 for a clockwise arc (−1 counter-clockwise), d₁ = `first_step`:
+///
+/// ```text
+///   an arc after a line that does not end    resulting circle = end circle
+///     at its offset start (10⁻⁶ mm)            R_e = r_e·(r_s + σd₁)/r_s + σ(d − d₁)
+///   first, after an arc, or d = 0            resulting circle = start circle r_s + σd,
+///                                              end circle R_e = r_e·(r_s + σd)/r_s
+///   either, followed by a nearly tangent     R_e = the distance of that line's offset from the
+///     line its end circle would not reach      centre (they meet at the foot, below)
+///   joints with lines                        on the end circle R_e
+///   joints of two arcs                       on their resulting circles
+/// ```
+///
+/// An arc's resulting end point (on its resulting circle) may then be up to |R_e − R| from the
+/// next element's start: the caller takes the latter as the arc's end.
+pub fn offset_chain_sourced(
+    chain: &[Seg2],
+    arcs: Option<&ArcStarts>,
+    d: f64,
+) -> Option<Vec<(Seg2, Option<usize>)>> {
+    // The arc of element i on its offset start circle (None: a line, or no start radii).
+    let on_start_circle = |i: usize, o: &Seg2, d: f64| match (*o, arcs) {
+        (
+            Seg2::Arc {
+                c, start, sweep, ..
+            },
+            Some(arcs),
+        ) => {
+            let r = *arcs.radius.get(i)? - d * sweep.signum();
+            Some((r > LEN_EPS && r.is_finite()).then_some(Seg2::Arc { c, r, start, sweep }))
+        }
+        _ => None,
+    };
     if d.abs() < LEN_EPS {
-        return Some(chain.to_vec());
+        return chain
+            .iter()
+            .enumerate()
+            .map(|(i, s)| match on_start_circle(i, s, 0.0) {
+                Some(arc) => arc.map(|a| (a, Some(i))),
+                None => Some((*s, Some(i))),
+            })
+            .collect();
     }
     let mut out: Vec<Seg2> = Vec::with_capacity(chain.len() * 2);
+    let mut source: Vec<Option<usize>> = Vec::with_capacity(chain.len() * 2);
+    // The offset end circle of each arc of `out` that lies on another circle.
+    let mut end_radius: Vec<Option<f64>> = Vec::with_capacity(chain.len() * 2);
     for (i, s) in chain.iter().enumerate() {
         let mut o = s.offset_left(d)?;
+        let mut o_end_radius = None;
+        if let (
+            Some(start_arc),
+            Some(arcs),
+            Seg2::Arc {
+                c, r: r_e, sweep, ..
+            },
+        ) = (on_start_circle(i, &o, d), arcs, *s)
+        {
+            let start_arc = start_arc?;
+            // A corner turning away from the offset side gets an arc first (below): the arc
+            // then follows that one, not the line.
+            let turns_away = i.checked_sub(1).is_some_and(|j| {
+                let theta = turn_angle(chain[j].tangent(1.0), s.tangent(0.0));
+                theta.abs() >= NEAR_TANGENT && (theta < 0.0) == (d > 0.0)
+            });
+            let moved = !turns_away
+                && matches!(out.last(), Some(l @ Seg2::Line { .. })
+                    if dist2(l.end(), start_arc.start()) >= TANGENT_JOINT);
+            let (r_s, sigma) = (arcs.radius[i], -sweep.signum());
+            let d1 = if moved { arcs.first_step } else { d };
+            let mut r_end = r_e * (r_s + sigma * d1) / r_s + sigma * (d - d1);
+            // A nearly tangent line after it that the end circle would not reach.
+            if let Some(next @ Seg2::Line { .. }) = chain.get(i + 1) {
+                let theta = turn_angle(s.tangent(1.0), next.tangent(0.0));
+                if let Some(Seg2::Line { a, b }) = next.offset_left(d) {
+                    let h = dist2(c, foot_on_line(c, a, b));
+                    if theta.abs() < NEAR_TANGENT && h > r_end {
+                        r_end = h;
+                    }
+                }
+            }
+            if !(r_end > LEN_EPS && r_end.is_finite()) {
+                return None;
+            }
+            if moved {
+                if let Seg2::Arc { r, .. } = &mut o {
+                    *r = r_end;
+                }
+            } else {
+                o_end_radius = Some(r_end);
+                o = start_arc;
+            }
+        }
         if let Some(prev_prog) = i.checked_sub(1).map(|j| chain[j]) {
-            let corner = s.start();
+            // The programmed corner (an arc's start may be off the circle it is given on).
+            let corner = prev_prog.end();
             let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
+            let last_index = out.len().checked_sub(1)?;
             let last = out.last_mut()?;
+            // An arc meets the line after it on its end circle.
+            let last_radius = match (&mut *last, end_radius.last().copied().flatten(), &o) {
+                (Seg2::Arc { r, .. }, Some(end_r), Seg2::Line { .. }) => {
+                    Some(std::mem::replace(r, end_r))
+                }
+                _ => None,
+            };
             // Nearly tangential joints with an arc (a programmed arc whose end is a few µm off the
             // tangent) meet where the offset pieces cross, if they do, near the corner — of two
             // such crossings the first along the path (LinuxCNC does).
@@ -64,12 +184,22 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 o = b;
             } else if with_arc && theta.abs() < NEAR_TANGENT && dist2(last.end(), o.start()) < 1e-3
             {
-                // Tangential within the programmed arc's tolerance: join the pieces where the
-                // line meets the arc's end (lines move, arcs keep their circle).
-                let end = last.end();
-                match (&mut *last, &mut o) {
-                    (_, Seg2::Line { a, .. }) => *a = end,
-                    (Seg2::Line { b, .. }, arc) => *b = arc.start(),
+                // Tangential within the programmed arc's tolerance, the offset line passing just
+                // outside the arc's circle: both end at the foot of the perpendicular from the
+                // arc's centre to the line, the point of the line nearest the circle (LinuxCNC
+                // does). The line keeps its direction; the arc ends at the foot's angle, its
+                // point on the circle within 0.001 mm of the foot.
+                match (*last, o) {
+                    (arc @ Seg2::Arc { c, .. }, Seg2::Line { a, b }) => {
+                        let foot = foot_on_line(c, a, b);
+                        *last = trim_end(&arc, foot);
+                        o = Seg2::Line { a: foot, b };
+                    }
+                    (Seg2::Line { a, b }, arc @ Seg2::Arc { c, .. }) => {
+                        let foot = foot_on_line(c, a, b);
+                        *last = Seg2::Line { a, b: foot };
+                        o = trim_start(&arc, foot);
+                    }
                     _ => {}
                 }
             } else if (theta < 0.0) == (d > 0.0) {
@@ -77,6 +207,8 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 let ccw = d < 0.0;
                 let arc = Seg2::arc_through(corner, last.end(), o.start(), ccw, false);
                 out.push(arc);
+                source.push(None);
+                end_radius.push(None);
             } else {
                 // Turn towards it: the pieces overlap; meet at the crossing nearest the corner.
                 let p = curve_intersections(last, &o)
@@ -91,10 +223,27 @@ pub fn offset_chain(chain: &[Seg2], d: f64) -> Option<Vec<Seg2>> {
                 *last = a;
                 o = b;
             }
+            // Back on the circle the arc ends up on, ending at the joint's angle.
+            if let (Some(r0), Some(Seg2::Arc { r, .. })) = (last_radius, out.get_mut(last_index)) {
+                *r = r0;
+            }
         }
         out.push(o);
+        source.push(Some(i));
+        end_radius.push(o_end_radius);
     }
-    Some(out)
+    Some(out.into_iter().zip(source).collect())
+}
+
+/// The foot of the perpendicular from `p` to the line through `a` and `b` (`a` if they coincide).
+fn foot_on_line(p: P2, a: P2, b: P2) -> P2 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    if l2 < 1e-300 || !l2.is_finite() {
+        return a;
+    }
+    let t = ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / l2;
+    [a[0] + t * d[0], a[1] + t * d[1]]
 }
 
 /// Whether `trimmed`, a piece of `s`'s curve, still runs the way `s` does (and is no longer).
@@ -236,6 +385,104 @@ mod tests {
         ];
         assert!(offset_chain(&chain, 0.2).is_some());
         assert!(offset_chain(&chain, 1.0).is_none());
+    }
+
+    /// A rising line, a clockwise arc about (4, 6) from (2, 6) over the top to (6.0015, 6) — its
+    /// end 0.0015 outside its start's circle (r_s = 2, r_e = 2.0015) — and a falling line.
+    fn off_radius_chain() -> [Seg2; 3] {
+        let (c, s, e) = ([4.0, 6.0], [2.0, 6.0], [6.0015, 6.0]);
+        let arc = match Seg2::arc_through(c, s, e, false, false) {
+            Seg2::Arc { start, sweep, .. } => Seg2::Arc {
+                c,
+                r: dist2(c, e),
+                start,
+                sweep,
+            },
+            l => l,
+        };
+        [line([0.0, 4.0], s), arc, line(e, [8.0, 4.0])]
+    }
+
+    #[test]
+    fn an_arc_after_a_line_ends_on_its_end_circle_scaled_by_the_first_step_only() {
+        // Offset 0.5 outwards in steps, the first 0.1: R_e = r_e·(r_s + 0.1)/r_s + 0.4.
+        let chain = off_radius_chain();
+        let radius = [0.0, 2.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.1,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
+        let expected = 2.0015 * 2.1 / 2.0 + 0.4;
+        let Seg2::Arc { r, .. } = o[1].0 else {
+            panic!("{o:?}")
+        };
+        assert!((r - expected).abs() < 1e-12, "{r} {expected}");
+        // The lines meet it on that circle.
+        assert!((dist2(o[0].0.end(), [4.0, 6.0]) - expected).abs() < 1e-9);
+        assert!((dist2(o[2].0.start(), [4.0, 6.0]) - expected).abs() < 1e-9);
+        // One step: the whole offset scales the end circle.
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.5,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
+        assert!(matches!(o[1].0, Seg2::Arc { r, .. } if (r - 2.0015 * 2.5 / 2.0).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_first_arc_crosses_on_its_start_circle_and_meets_lines_on_its_end_circle() {
+        let chain = off_radius_chain();
+        let radius = [2.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 0.1,
+        };
+        let o = offset_chain_sourced(&chain[1..], Some(&arcs), 0.5).unwrap();
+        assert!(
+            matches!(o[0].0, Seg2::Arc { r, .. } if (r - 2.5).abs() < 1e-12),
+            "{o:?}"
+        );
+        // The line after it starts on the end circle scaled with the start: r_e·2.5/2.
+        assert!((dist2(o[1].0.start(), [4.0, 6.0]) - 2.0015 * 1.25).abs() < 1e-9);
+        // Without start radii it is an ordinary arc of radius r_e.
+        let plain = offset_chain(&chain[1..], 0.5).unwrap();
+        assert!(matches!(plain[0], Seg2::Arc { r, .. } if (r - 2.5015).abs() < 1e-12));
+    }
+
+    #[test]
+    fn a_nearly_tangent_line_that_misses_the_arc_meets_it_at_the_foot() {
+        // A counter-clockwise quarter about the origin from (0, −10) to (10.0003, 0) (r_s = 10,
+        // r_e = 10.0003), then the tangent line up from its end. Offset by 1 to the left (towards
+        // the centre) the end circle would be r_e·9/10 = 9.00027, inside the offset line x =
+        // 9.0003: they meet at the foot of the perpendicular, (9.0003, 0).
+        let e = [10.0003, 0.0];
+        let arc = match Seg2::arc_through([0.0, 0.0], [0.0, -10.0], e, true, false) {
+            Seg2::Arc {
+                c, start, sweep, ..
+            } => Seg2::Arc {
+                c,
+                r: dist2(c, e),
+                start,
+                sweep,
+            },
+            l => l,
+        };
+        let chain = [arc, line(e, [10.0003, 5.0])];
+        let radius = [10.0, 0.0];
+        let arcs = ArcStarts {
+            radius: &radius,
+            first_step: 1.0,
+        };
+        let o = offset_chain_sourced(&chain, Some(&arcs), 1.0).unwrap();
+        // The first arc keeps its start circle for its crossings.
+        assert!(
+            matches!(o[0].0, Seg2::Arc { r, .. } if (r - 9.0).abs() < 1e-12),
+            "{o:?}"
+        );
+        assert!(dist2(o[1].0.start(), [9.0003, 0.0]) < 1e-9, "{o:?}");
+        let end = o[0].0.end();
+        assert!(end[1].atan2(end[0]).abs() < 1e-9);
     }
 
     #[test]

@@ -306,13 +306,16 @@ proptest! {
             let (a, b) = (w[0].1.end(), w[1].1.start());
             prop_assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9);
         }
+        // G71.1 leaves out arcs shorter than 0.001 mm (chord), as rs274 does: the feed along
+        // their chord may come within D by at most half that.
+        let slack = if variant == 1 { 5e-4 } else { 1e-6 };
         for (rapid, seg) in &moves[2..] {
             if *rapid {
                 continue;
             }
             for t in 0..=10 {
                 let p = seg.point(t as f64 / 10.0);
-                prop_assert!(distance(&chain, p) >= d - 1e-6, "{p:?} within D\n{program}");
+                prop_assert!(distance(&chain, p) >= d - slack, "{p:?} within D\n{program}");
                 if let Some(x) = profile_x_at(&chain, p[0]) {
                     prop_assert!(p[1] >= x - 1e-6, "{p:?} below the profile\n{program}");
                 }

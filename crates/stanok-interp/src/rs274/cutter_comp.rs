@@ -27,7 +27,14 @@
 //!   the new offset start (clockwise for G41, counter-clockwise for G42);
 //! * **concave** (everything else, straight continuations and reversals included): the previous
 //!   offset element is shortened to where it meets the new offset element (line–line, line–circle
-//!   or circle–circle intersection); no intersection is a gouge error.
+//!   or circle–circle intersection); no intersection is a gouge error;
+//! * **tangent with an arc** (either element an arc, turn within ±[`CONCAVE_TOLERANCE`]): nothing
+//!   is moved; the new element starts where the tool is (LinuxCNC's "convex, one arc" case).
+//!
+//! An arc's offset uses its programmed points as LinuxCNC 2.9 does when the end is off the circle
+//! through the start (|E − C| ≠ |S − C|, by the program's rounding): the offset start is S moved
+//! r along the radius C→S, the offset end E moved r along C→E, and the circle it meets its
+//! neighbours on (and the radius check) is the end's, |E − C| ± r.
 //!
 //! Shortening the previous element means changing a command already queued: while compensation is
 //! on, the driver holds back the last motion command and everything after it (the interpreter's
@@ -403,7 +410,7 @@ pub(super) fn arc(
     let s = comp.program.unwrap_or_else(|| tool_at(cx));
     let e = plane_of(&end, plane);
     let c = planar.centre;
-    let radius = len(sub(s, c));
+    let radius = len(sub(e, c));
     // Inside when the tool's side is the arc's turning side.
     let inside = (comp.side == 1) == ccw;
     let tool_radius = if inside { radius - r } else { radius + r };
@@ -454,7 +461,19 @@ pub(super) fn arc(
             feed,
         );
     } else {
-        let start_tool = add(c, scale(unit(sub(s, c)), tool_radius));
+        // The offset start lies on the radius through the programmed start, r from it.
+        let start_radius = len(sub(s, c));
+        let start_tool = add(
+            c,
+            scale(
+                unit(sub(s, c)),
+                if inside {
+                    start_radius - r
+                } else {
+                    start_radius + r
+                },
+            ),
+        );
         corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
         if let Element::Arc { tool_from, .. } = &mut new {
             *tool_from = tool_at(cx);
@@ -510,6 +529,13 @@ fn corner(
             },
             feed,
         );
+        return Ok(());
+    }
+    // Within the tolerance of tangent next to an arc, the new element starts where the tool is
+    // (LinuxCNC's "convex, one arc" case): no meeting point is sought, and the new offset start
+    // may be off the tool's position by as much as an arc's end is off its radius.
+    let with_arc = matches!(new, Element::Arc { .. }) || matches!(last, Element::Arc { .. });
+    if with_arc && (comp.sign() * turn).abs() <= CONCAVE_TOLERANCE {
         return Ok(());
     }
     // Concave: where the two offset paths meet.

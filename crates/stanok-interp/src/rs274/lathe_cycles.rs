@@ -36,7 +36,10 @@
 //!   closing line I → P0' at l (c_s), feed along +c to the first crossing of the level with
 //!   profile' beyond c_s (none: to Pend'.c), retract r = min(R, cut/2) diagonally (−c, +l), rapid
 //!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
-//!   profile' — cutting its pockets on the way (`pockets.rs`) — and feed to (Pend'.c, S.l).
+//!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
+//!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
+//! * profile' is the profile offset by D as LinuxCNC offsets it, arcs that end off their radius
+//!   included (`arcs.rs`); an arc is printed with its own end point, the next feed's start.
 //! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
 //!   profile is monotonic in Z, else G72's.
@@ -49,17 +52,20 @@
 //! P0' and along profile', staying at its end (LinuxCNC 2.9).
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
-//! follows profile' exactly; the number of levels is bounded by `MAX_LEVELS`; every offset chain
-//! is connected (stanok_geom::chain2d), and an allowance that would swallow an element is refused
-//! rather than cut.
+//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
+//! number of levels is bounded by `MAX_LEVELS`; every offset chain is connected
+//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`), and an
+//! allowance that would swallow an element is refused rather than cut.
 
 use crate::arc::PlanarArc;
 use crate::ctx::Ctx;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
-use stanok_geom::chain2d::{level_crossings, offset_chain};
+use stanok_geom::chain2d::level_crossings;
 use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 
+mod arcs;
+mod climb;
 mod corners;
 mod pockets;
 
@@ -257,7 +263,7 @@ impl Profile {
                     });
                     let (s, e) = (zx(&a.start), zx(&a.end));
                     let full = stanok_geom::offset2d::dist2(s, e) < LEN_EPS;
-                    Seg2::arc_through([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
+                    arcs::end_circle_arc([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
                 }
                 _ => return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into()),
             };
@@ -411,7 +417,7 @@ pub fn finish(
         [p0_c[0], s_c[1]]
     };
     let offset = |d: f64| {
-        offset_chain(&canon, d).ok_or_else(|| {
+        arcs::offset_profile(&canon, p0_c, d).ok_or_else(|| {
             cx.err(
                 "rs274::g7x-offset",
                 "G7X error: the profile cannot be offset by this distance",
@@ -544,6 +550,10 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         a: pend,
         b: [pend[0], s[1]],
     };
+    if call.code % 10 == 1 {
+        climb::climb_pass(moves, prof, p0, close);
+        return Some(());
+    }
     pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
 }
 
@@ -576,7 +586,7 @@ fn emit(
         ..call.start
     };
     let comp = cx.st.rs274.comp.on();
-    for m in moves {
+    for (k, m) in moves.iter().enumerate() {
         match m {
             Move::Rapid(q) if comp => {
                 super::cutter_comp::straight(cx, true, pose(f.to_real(*q)), 0.0, at)?
@@ -595,7 +605,14 @@ fn emit(
                             centre: c,
                             turns: 1,
                         };
-                        let end = pose(real.end());
+                        // An arc ends where the next feed starts: its end point may be off
+                        // the circle it crosses levels on (`arcs.rs`).
+                        let end = match moves.get(k + 1) {
+                            Some(Move::Feed(next)) if arcs::joins(seg, next) => {
+                                pose(f.to_real(next.start()))
+                            }
+                            _ => pose(real.end()),
+                        };
                         if comp {
                             super::cutter_comp::arc(cx, sweep > 0.0, end, arc, feed, at)?;
                         } else {

@@ -1,5 +1,5 @@
-//! The final pass of G71/G72 along the offset profile, with LinuxCNC's pockets (type-2 profiles:
-//! the profile dips back towards the levels' side and comes up again).
+//! The final pass of G71/G72 and G71.2/G72.2 along the offset profile, with LinuxCNC's pockets
+//! (type-2 profiles: the profile dips back towards the levels' side and comes up again).
 //!
 //! Canonical frame as in `lathe_cycles` (the pass runs towards +c, S on the +l side). Arcs are
 //! first split where l turns, so a dip always starts at an element boundary. Walking the profile:
@@ -15,11 +15,8 @@
 //! * G71/G72: pocket levels are the cycle's grid S.l − k·I at or below l_A and above the pocket's
 //!   bottom; G7x.2 (no main levels) steps l_A − k·I from the outermost pocket's top instead. A dip
 //!   inside a pocket is a pocket of its own (on the same grid) when the walk reaches it.
-//! * G7x.1 (no pockets): the dip is bridged by a feed along l_A from A to B; the pass goes on from
-//!   B with the rest of B's element. LinuxCNC repeats element starts in this mode (a zero-length
-//!   feed): not for a line falling from A, but for a whole arc that starts along the level and
-//!   then falls (the allowance's arc round a convex corner), before the bridge; not for the rest
-//!   after B, but when B is a joint, for the element starting there.
+//! * G7x.1 (no pockets) does not come here: its pass climbs every element from the tool's level
+//!   (`climb.rs`), which bridges the dips.
 //! * The closing move up to S's level is left out when it has no length (as LinuxCNC).
 //!
 //! Bounds: every level and every element is visited a bounded number of times (`MAX_LEVELS`).
@@ -176,10 +173,8 @@ fn join_at_bottom(prev: &Seg2, next: &Seg2) -> Option<Seg2> {
 }
 
 fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Seg2) -> Option<()> {
-    let dup = call.code % 10 == 1;
     let mut at = At { i: 0, rest: None };
-    // A remainder after a G7x.1 bridge is not repeated; descents already cut are not cut again.
-    let mut no_dup = false;
+    // Descents already cut are not cut again.
     let mut cut_descent = false;
     // G7x.2: the grid of the outermost pocket the walk is in (nested ones keep it).
     let mut anchor: Option<f64> = None;
@@ -194,41 +189,8 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
         }
         if dl < -1e-9 && !cut_descent {
             let a = seg.start();
-            if let Some((cb, j)) = crossing_after(prof, a[1], a[0]) {
+            if let Some((_, j)) = crossing_after(prof, a[1], a[0]) {
                 cut_descent = true;
-                if dup {
-                    // G7x.1: bridge the pocket. An element that only turns downwards after its
-                    // start (the arc the allowance puts round a convex corner) has its start
-                    // repeated first, as every element does in this mode; one that falls from
-                    // its start (a line, or the rest of an arc split at its top) has not.
-                    if starts_level(prof, &at) && !no_dup {
-                        moves.push(Move::Feed(Seg2::Line { a, b: a }));
-                    }
-                    let b = [cb, a[1]];
-                    moves.push(Move::Feed(Seg2::Line { a, b }));
-                    // B on a joint: the element ending there leaves a zero-length rest (fed if
-                    // it is a line, as in `feed_to`), and the next one starts whole, with its
-                    // start repeated. Inside an element its rest goes on without repetition.
-                    let j = if near(prof[j].end(), b) && j + 1 < prof.len() {
-                        j + 1
-                    } else {
-                        j
-                    };
-                    if j > 0 && near(prof[j].start(), b) {
-                        if matches!(prof[j - 1], Seg2::Line { .. }) {
-                            moves.push(Move::Feed(Seg2::Line { a: b, b }));
-                        }
-                        at = At { i: j, rest: None };
-                        no_dup = false;
-                    } else {
-                        at = At {
-                            i: j,
-                            rest: Some(piece_from(&prof[j], b)),
-                        };
-                        no_dup = true;
-                    }
-                    continue;
-                }
                 let top = if call.code % 10 == 2 {
                     *anchor.get_or_insert(a[1])
                 } else {
@@ -238,12 +200,6 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
                 continue;
             }
         }
-        if dup && !std::mem::take(&mut no_dup) {
-            moves.push(Move::Feed(Seg2::Line {
-                a: seg.start(),
-                b: seg.start(),
-            }));
-        }
         moves.push(Move::Feed(seg));
         at.i += 1;
         at.rest = None;
@@ -251,35 +207,12 @@ fn walk(moves: &mut Vec<Move>, call: &LatheCall, s: P2, prof: &[Seg2], close: Se
             anchor = None;
         }
     }
-    // The closing move up to S's level; none (and no repeated start) when the profile already
-    // ends there — rs274 prints nothing then, in every variant.
-    if close.length() <= LEN_EPS {
-        return Some(());
+    // The closing move up to S's level; none when the profile already ends there — rs274
+    // prints nothing then, in every variant.
+    if close.length() > LEN_EPS {
+        moves.push(Move::Feed(close));
     }
-    if dup {
-        moves.push(Move::Feed(Seg2::Line {
-            a: close.start(),
-            b: close.start(),
-        }));
-    }
-    moves.push(Move::Feed(close));
     Some(())
-}
-
-fn near(p: P2, q: P2) -> bool {
-    (p[0] - q[0]).abs() < EPS && (p[1] - q[1]).abs() < EPS
-}
-
-/// Whether the walk's element is a whole arc (not a rest, not the continuation of an arc split
-/// at a turn of l) whose tangent at its start runs along the level.
-fn starts_level(prof: &[Seg2], at: &At) -> bool {
-    let Seg2::Arc { c, r, .. } = prof[at.i] else {
-        return false;
-    };
-    let continues = at.i > 0
-        && matches!(prof[at.i - 1], Seg2::Arc { c: c0, r: r0, .. }
-            if (c0[0] - c[0]).abs() < 1e-9 && (c0[1] - c[1]).abs() < 1e-9 && (r0 - r).abs() < 1e-9);
-    at.rest.is_none() && !continues && prof[at.i].tangent(0.0)[1].abs() < 1e-6
 }
 
 /// The levels (grid `top` − k·I) of the pocket that starts at `a` (the walk's position) and

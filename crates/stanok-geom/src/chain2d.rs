@@ -18,10 +18,14 @@
 //! The chain's two free ends are offset perpendicular to their element and never extended, so the
 //! offset chain starts at `start(s₀) + d·n(s₀)` — which is where LinuxCNC's lathe cycles start their
 //! finishing passes. Invariants: the result is a connected chain (each element starts within
-//! [`LEN_EPS`] of the previous end); nothing panics; `None` when an arc cannot be offset (its radius
-//! would vanish), an overlapping corner has no intersection, or the offset swallows an element
-//! whole (the offset is larger than the features of the chain: resolving that by dropping the
-//! element is not done yet).
+//! [`LEN_EPS`] of the previous end); nothing panics.
+//!
+//! An element the offset swallows whole — a concave arc whose offset radius vanishes, or a piece
+//! that would have to run backwards to meet its neighbour (a concave fillet or chamfer, a step in
+//! a notch, smaller than the offset) — is left out, and its neighbours' offsets are joined where
+//! they cross (the previous one dropped in turn if it is swallowed too), as LinuxCNC's G7x does.
+//! `None` when an overlapping corner has no crossing, the first or last element is swallowed, or an arc
+//! kept on its end circle (`offset_chain_sourced`) would have to move.
 
 use crate::offset2d::{
     curve_intersections, dist2, turn_angle, wrap_pi, Seg2, ANGLE_EPS, LEN_EPS, P2, PARAM_EPS,
@@ -104,8 +108,20 @@ pub fn offset_chain_sourced(
     let mut source: Vec<Option<usize>> = Vec::with_capacity(chain.len() * 2);
     // The offset end circle of each arc of `out` that lies on another circle.
     let mut end_radius: Vec<Option<f64>> = Vec::with_capacity(chain.len() * 2);
+    // An element the offset swallows whole (module comment) is left out: `skipped` says one was,
+    // since the last element pushed.
+    let mut skipped = false;
+    let mut swallowed_any = false;
     for (i, s) in chain.iter().enumerate() {
-        let mut o = s.offset_left(d)?;
+        let Some(mut o) = s.offset_left(d) else {
+            // An arc whose offset radius vanishes: a concave arc smaller than the offset.
+            if i == 0 {
+                return None;
+            }
+            skipped = true;
+            swallowed_any = true;
+            continue;
+        };
         let mut o_end_radius = None;
         if let (
             Some(start_arc),
@@ -115,7 +131,14 @@ pub fn offset_chain_sourced(
             },
         ) = (on_start_circle(i, &o, d), arcs, *s)
         {
-            let start_arc = start_arc?;
+            let Some(start_arc) = start_arc else {
+                if i == 0 {
+                    return None;
+                }
+                skipped = true;
+                swallowed_any = true;
+                continue;
+            };
             // A corner turning away from the offset side gets an arc first (below): the arc
             // then follows that one, not the line.
             let turns_away = i.checked_sub(1).is_some_and(|j| {
@@ -151,6 +174,32 @@ pub fn offset_chain_sourced(
             }
         }
         if let Some(prev_prog) = i.checked_sub(1).map(|j| chain[j]) {
+            if skipped {
+                // Elements were swallowed since the last one pushed: join it and this one where
+                // their offsets cross (they overlap: the swallowed part was concave).
+                let last = out.last()?;
+                let reference = [
+                    (last.end()[0] + o.start()[0]) / 2.0,
+                    (last.end()[1] + o.start()[1]) / 2.0,
+                ];
+                let Some(joined) = join_after_swallowed_or_keep(
+                    &mut out,
+                    &mut source,
+                    &mut end_radius,
+                    o,
+                    reference,
+                )?
+                else {
+                    // Swallowed as well.
+                    continue;
+                };
+                o = joined;
+                skipped = false;
+                out.push(o);
+                source.push(Some(i));
+                end_radius.push(o_end_radius);
+                continue;
+            }
             // The programmed corner (an arc's start may be off the circle it is given on).
             let corner = prev_prog.end();
             let theta = turn_angle(prev_prog.tangent(1.0), s.tangent(0.0));
@@ -211,17 +260,45 @@ pub fn offset_chain_sourced(
                 end_radius.push(None);
             } else {
                 // Turn towards it: the pieces overlap; meet at the crossing nearest the corner.
-                let p = curve_intersections(last, &o)
-                    .into_iter()
-                    .min_by(|a, b| dist2(*a, corner).total_cmp(&dist2(*b, corner)))?;
-                let (a, b) = (trim_end(last, p), trim_start(&o, p));
-                // An element the offset swallows whole (its trimmed piece would run backwards)
-                // is not resolved: the caller gets None rather than a path that turns back.
-                if !same_sense(last, &a) || !same_sense(&o, &b) {
-                    return None;
+                match join_overlapping(last, &o, corner, false)? {
+                    Joined::Both(a, b) => {
+                        *last = a;
+                        o = b;
+                    }
+                    // This element's trimmed piece would run backwards: it is swallowed.
+                    Joined::NextSwallowed => {
+                        if last_radius.is_some() {
+                            return None;
+                        }
+                        skipped = true;
+                        swallowed_any = true;
+                        continue;
+                    }
+                    // The previous one is swallowed: drop it and join its predecessor to this
+                    // one — which may be swallowed in turn (at most every element pushed).
+                    Joined::LastSwallowed => {
+                        if last_radius.is_some() {
+                            return None;
+                        }
+                        swallowed_any = true;
+                        let Some(joined) = join_after_swallowed(
+                            &mut out,
+                            &mut source,
+                            &mut end_radius,
+                            o,
+                            corner,
+                        )?
+                        else {
+                            skipped = true;
+                            continue;
+                        };
+                        o = joined;
+                        out.push(o);
+                        source.push(Some(i));
+                        end_radius.push(o_end_radius);
+                        continue;
+                    }
                 }
-                *last = a;
-                o = b;
             }
             // Back on the circle the arc ends up on, ending at the joint's angle.
             if let (Some(r0), Some(Seg2::Arc { r, .. })) = (last_radius, out.get_mut(last_index)) {
@@ -232,7 +309,126 @@ pub fn offset_chain_sourced(
         source.push(Some(i));
         end_radius.push(o_end_radius);
     }
+    // A swallowed last element would leave the chain's free end short of it (the end is offset
+    // perpendicular to its element, never trimmed against anything): refused like a first one.
+    if skipped {
+        return None;
+    }
+    // Leaving elements out joins pieces that were not neighbours; where the offset is larger than
+    // the whole neighbourhood (a chain of tiny elements), a free end or a joint can still come
+    // nearer the profile than d. Checked, and refused, rather than cut into the profile.
+    if swallowed_any && !keeps_distance(&out, chain, d.abs()) {
+        return None;
+    }
     Some(out.into_iter().zip(source).collect())
+}
+
+/// Whether every piece of `offset` stays at least `d` (less 10⁻⁶ mm) from every element of
+/// `chain`, sampled at 65 points per piece (ends included: the joints, where a left-out element
+/// comes nearest; between samples the distance to a line or an arc can dip by at most
+/// h²/(8ρ) for spacing h and curvature radius ρ, far below the tolerance for profile-sized
+/// elements).
+fn keeps_distance(offset: &[Seg2], chain: &[Seg2], d: f64) -> bool {
+    offset.iter().all(|s| {
+        (0..=64).all(|k| {
+            let q = s.point(k as f64 / 64.0);
+            chain.iter().all(|e| e.distance_to(q) >= d - 1e-6)
+        })
+    })
+}
+
+/// How two overlapping offset pieces meet (`join_overlapping`).
+enum Joined {
+    /// Both trimmed to their crossing.
+    Both(Seg2, Seg2),
+    /// The first piece would run backwards to reach the crossing: the offset swallowed it.
+    LastSwallowed,
+    /// The second one would.
+    NextSwallowed,
+}
+
+/// Trims `last` (ending) and `next` (starting) to the crossing of their curves nearest
+/// `reference` — with `any_valid`, the nearest at which neither runs backwards, if there is one
+/// (a circle crosses a line twice, and after a swallowed element the reference may lie as near
+/// one as the other). The verdict is taken at the nearest crossing otherwise. None: the curves
+/// do not cross.
+fn join_overlapping(last: &Seg2, next: &Seg2, reference: P2, any_valid: bool) -> Option<Joined> {
+    let mut crossings = curve_intersections(last, next);
+    crossings.sort_by(|a, b| dist2(*a, reference).total_cmp(&dist2(*b, reference)));
+    let verdict = |p: P2| {
+        let (a, b) = (trim_end(last, p), trim_start(next, p));
+        if !same_sense(last, &a) {
+            Joined::LastSwallowed
+        } else if !same_sense(next, &b) {
+            Joined::NextSwallowed
+        } else {
+            Joined::Both(a, b)
+        }
+    };
+    if any_valid {
+        if let Some(both) = crossings
+            .iter()
+            .map(|p| verdict(*p))
+            .find(|j| matches!(j, Joined::Both(..)))
+        {
+            return Some(both);
+        }
+    }
+    Some(verdict(*crossings.first()?))
+}
+
+/// Joins `next` to the last piece of `out`, where their curves cross nearest `reference`; while
+/// that piece would have to run backwards (the offset swallowed it too), it is dropped and the
+/// one before it tried. Returns `next` trimmed to the joint, or `Some(None)` if `next` would
+/// itself run backwards (it is swallowed: the caller leaves it out). None: no crossing, nothing
+/// left to join to, or a piece on an end circle (`end_radius`) would have to move.
+fn join_after_swallowed_or_keep(
+    out: &mut Vec<Seg2>,
+    source: &mut Vec<Option<usize>>,
+    end_radius: &mut Vec<Option<f64>>,
+    next: Seg2,
+    reference: P2,
+) -> Option<Option<Seg2>> {
+    for _ in 0..=out.len() {
+        if end_radius.last() != Some(&None) {
+            return None;
+        }
+        let last = out.last_mut()?;
+        match join_overlapping(last, &next, reference, true)? {
+            Joined::Both(a, b) => {
+                *last = a;
+                return Some(Some(b));
+            }
+            Joined::NextSwallowed => return Some(None),
+            Joined::LastSwallowed => {
+                if out.len() < 2 {
+                    return None;
+                }
+                out.pop();
+                source.pop();
+                end_radius.pop();
+            }
+        }
+    }
+    None
+}
+
+/// [`join_after_swallowed_or_keep`] once the last piece of `out` is known to be swallowed: it
+/// is dropped first.
+fn join_after_swallowed(
+    out: &mut Vec<Seg2>,
+    source: &mut Vec<Option<usize>>,
+    end_radius: &mut Vec<Option<f64>>,
+    next: Seg2,
+    reference: P2,
+) -> Option<Option<Seg2>> {
+    if out.len() < 2 {
+        return None;
+    }
+    out.pop();
+    source.pop();
+    end_radius.pop();
+    join_after_swallowed_or_keep(out, source, end_radius, next, reference)
 }
 
 /// The foot of the perpendicular from `p` to the line through `a` and `b` (`a` if they coincide).
@@ -375,16 +571,43 @@ mod tests {
     }
 
     #[test]
-    fn an_element_swallowed_by_the_offset_is_refused() {
+    fn an_element_swallowed_by_the_offset_is_left_out() {
         // A 0.5 step inside a right-angled notch: offset by 1 towards the notch, the step's
-        // offset would run backwards.
+        // offset would run backwards. It is left out and the corner's arc meets the next line:
+        // LinuxCNC 2.9's G70 on this profile (X5 side, D1) cuts x = 9 to z = −10, the arc about
+        // (−10, 10) to (−10.8660, 9.5), and x = 9.5 on.
         let chain = [
             line([0.0, 10.0], [-10.0, 10.0]),
             line([-10.0, 10.0], [-10.0, 10.5]),
             line([-10.0, 10.5], [-20.0, 10.5]),
         ];
-        assert!(offset_chain(&chain, 0.2).is_some());
-        assert!(offset_chain(&chain, 1.0).is_none());
+        assert_eq!(offset_chain(&chain, 0.2).map(|o| o.len()), Some(4));
+        let o = offset_chain(&chain, 1.0).expect("the step is left out");
+        assert_eq!(o.len(), 3);
+        assert!(close(o[0].start(), [0.0, 9.0]) && close(o[0].end(), [-10.0, 9.0]));
+        let z = -10.0 - 0.75f64.sqrt();
+        assert!(
+            matches!(o[1], Seg2::Arc { c, r, .. } if close(c, [-10.0, 10.0]) && (r - 1.0).abs() < 1e-12)
+        );
+        assert!(close(o[1].end(), [z, 9.5]) && close(o[2].start(), [z, 9.5]));
+        assert!(close(o[2].end(), [-20.0, 9.5]));
+    }
+
+    #[test]
+    fn two_concave_elements_in_a_row_are_both_left_out() {
+        // Along −z at x = 10, a 0.2 chamfer-like rise, a 0.3 steeper one, then up to x = 16:
+        // every corner concave towards +x. Offset by 1 to +x (the right of −z), both short
+        // elements vanish and the first line's offset meets the wall's at (−9, 11).
+        let chain = [
+            line([0.0, 10.0], [-8.8, 10.0]),
+            line([-8.8, 10.0], [-9.0, 10.2]),
+            line([-9.0, 10.2], [-9.1, 10.5]),
+            line([-9.1, 10.5], [-9.1, 16.0]),
+        ];
+        let o = offset_chain(&chain, -1.0).expect("both are left out");
+        assert_eq!(o.len(), 2);
+        assert!(close(o[0].end(), [-8.1, 11.0]) && close(o[1].start(), [-8.1, 11.0]));
+        assert!(close(o[1].end(), [-8.1, 16.0]));
     }
 
     /// A rising line, a clockwise arc about (4, 6) from (2, 6) over the top to (6.0015, 6) — its
@@ -498,5 +721,82 @@ mod tests {
         let c = level_crossings(&chain, 14.0);
         assert_eq!(c.len(), 2);
         assert!((c[0].0 - 12.0).abs() < 1e-9 && (c[1].0 - 18.0).abs() < 1e-9);
+    }
+
+    /// A chain falling in z all along (as a lathe profile does): lines and arcs whose directions
+    /// stay within 80° of −z, short elements included.
+    fn falling_chain(steps: &[(f64, f64, f64, bool)]) -> Vec<Seg2> {
+        let mut p = [0.0, 10.0];
+        let mut chain = Vec::new();
+        for &(angle, len, bend, arc) in steps {
+            // Direction: −z turned by `angle` (|angle| < 80°).
+            let dir = [-angle.cos(), angle.sin()];
+            let s = if arc && bend.abs() > 0.05 {
+                // An arc leaving in `dir` and turning by `bend` (so its end direction stays in
+                // the cone when |angle + bend| < 80° too).
+                let r = len / bend.abs();
+                let side = bend.signum();
+                let n = crate::offset2d::left_normal(dir);
+                let c = [p[0] + side * r * n[0], p[1] + side * r * n[1]];
+                let a0 = (p[1] - c[1]).atan2(p[0] - c[0]);
+                Seg2::Arc {
+                    c,
+                    r,
+                    start: a0,
+                    sweep: bend,
+                }
+            } else {
+                line(p, [p[0] + len * dir[0], p[1] + len * dir[1]])
+            };
+            p = s.end();
+            chain.push(s);
+        }
+        chain
+    }
+
+    proptest::proptest! {
+        /// Offsetting a falling chain — elements the offset swallows included — gives either
+        /// nothing or a connected chain no point of which comes closer to the programmed chain
+        /// than the offset distance (nothing is cut into the profile). Joints are kept clear of
+        /// LinuxCNC's nearly tangent rule, which deliberately meets where the pieces cross (a
+        /// short line extended back to an arc's offset passes up to ~0.2 µm nearer the arc).
+        #[test]
+        fn offsets_are_connected_and_keep_their_distance(
+            steps in proptest::collection::vec(
+                (-1.0f64..1.0, 0.05f64..4.0, -0.35f64..0.35, proptest::bool::ANY), 2..7),
+            d in -2.0f64..2.0,
+        ) {
+            let chain = falling_chain(&steps);
+            proptest::prop_assume!(chain.iter().all(|s| {
+                let (a, b) = (s.tangent(0.0), s.tangent(1.0));
+                a[0] < -0.17 && b[0] < -0.17
+            }));
+            proptest::prop_assume!(d.abs() > 1e-3);
+            if chain.windows(2).any(|w| {
+                turn_angle(w[0].tangent(1.0), w[1].tangent(0.0)).abs() < 2.0 * NEAR_TANGENT
+            }) {
+                return Ok(());
+            }
+            let Some(o) = offset_chain(&chain, d) else {
+                return Ok(());
+            };
+            for w in o.windows(2) {
+                proptest::prop_assert!(dist2(w[0].end(), w[1].start()) < 1e-6);
+            }
+            for s in &o {
+                // 97 points a piece: not the points `keeps_distance` samples.
+                for k in 0..=96 {
+                    let q = s.point(k as f64 / 96.0);
+                    let near = chain
+                        .iter()
+                        .map(|e| e.distance_to(q))
+                        .fold(f64::INFINITY, f64::min);
+                    proptest::prop_assert!(
+                        near >= d.abs() - 1e-6,
+                        "offset point {:?} is {} from the profile (offset {})", q, near, d
+                    );
+                }
+            }
+        }
     }
 }

@@ -54,8 +54,9 @@
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
 //! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
 //! number of levels is bounded by `MAX_LEVELS`; every offset chain is connected
-//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`), and an
-//! allowance that would swallow an element is refused rather than cut.
+//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`); an element
+//! the allowance swallows is left out and its neighbours joined, and an offset that would then
+//! come nearer the profile than the allowance is refused rather than cut.
 
 use crate::arc::PlanarArc;
 use crate::ctx::Ctx;

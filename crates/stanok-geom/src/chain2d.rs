@@ -597,7 +597,7 @@ mod tests {
     fn two_concave_elements_in_a_row_are_both_left_out() {
         // Along −z at x = 10, a 0.2 chamfer-like rise, a 0.3 steeper one, then up to x = 16:
         // every corner concave towards +x. Offset by 1 to +x (the right of −z), both short
-        // elements vanish and the first line's offset meets the wall's at (−9, 11).
+        // elements vanish and the first line's offset meets the wall's at (−8.1, 11).
         let chain = [
             line([0.0, 10.0], [-8.8, 10.0]),
             line([-8.8, 10.0], [-9.0, 10.2]),

@@ -1,6 +1,8 @@
-//! RS274/NGC M codes beyond spindle, coolant and stops: M19 spindle orientation, M48–M53 override
-//! and feed-hold switches, M61 (declare the loaded tool), M62–M65 digital outputs and M66 wait on an
-//! input (spec rs274ngc §5; LinuxCNC 2.9's `rs274` for what it prints).
+//! RS274/NGC M codes: LinuxCNC's steps 5a–7 of a block (`before_dwell`: I/O, M6/M61, spindle,
+//! M70–M73, coolant, M19, overrides, user codes), with M19 spindle orientation, M48–M53 override
+//! and feed-hold switches, M61 (declare the loaded tool), M62–M65 digital outputs and M66 wait on
+//! an input (spec rs274ngc §5; LinuxCNC 2.9's `rs274` for what it prints). The stops (step 21)
+//! stay in `execute`.
 //!
 //! Where they run in a line (LinuxCNC's order of execution): M62–M66 after T and before M6/M61,
 //! M19 with the spindle codes, M48–M53 after coolant and before the user M codes. [`classify_m`]
@@ -9,7 +11,7 @@
 use super::{unsupported, NO_CODE};
 use crate::ctx::Ctx;
 use crate::params::Parameters;
-use stanok_canon::{Canon, Diagnostic};
+use stanok_canon::{Canon, Diagnostic, SpindleDirection};
 use stanok_syntax::ColSpan;
 
 /// Most I/O index a program may address (LinuxCNC's default `num_dio`/`num_aio` is 4; machines
@@ -177,6 +179,77 @@ pub(super) fn set_tool_number(
     cx.st.selected_tool = Some(tool);
     super::tools::load_tool_parameters(params, tool);
     cx.out.push(Canon::SetCurrentTool { tool, slot });
+    Ok(())
+}
+
+/// Steps 5a–7 of LinuxCNC's order of execution: M62–M66, M6, M61, the spindle, M70–M73, coolant,
+/// M19, M48–M53 and the user M codes.
+#[inline(never)]
+pub(super) fn before_dwell(
+    cx: &mut Ctx<'_>,
+    params: &mut Parameters,
+    m: &MCodes,
+) -> Result<(), Diagnostic> {
+    // 5a. HAL I/O: M62–M66.
+    for &(code, span) in &m.io[..m.n_io] {
+        io(cx, code, span)?;
+    }
+    // 6. M6, M61.
+    if m.tool_change {
+        super::tools::change_tool(cx, params);
+        cx.st.rs274.spindle_direction = None;
+        // LinuxCNC resynchronises its position after a tool change: a programmed point left
+        // over from cutter compensation is forgotten.
+        if !cx.st.rs274.comp.on() {
+            cx.st.rs274.comp.program = None;
+        }
+    }
+    if let Some(span) = m.set_tool {
+        set_tool_number(cx, params, span)?;
+    }
+    // 7. Spindle, coolant, user M codes.
+    if m.spindle != NO_CODE {
+        let code = m.spindle;
+        match code {
+            3 | 4 => {
+                let direction = if code == 3 {
+                    SpindleDirection::Clockwise
+                } else {
+                    SpindleDirection::CounterClockwise
+                };
+                cx.st.spindle_on[0] = true;
+                cx.st.rs274.spindle_direction = Some(direction);
+                cx.out.push(Canon::StartSpindle {
+                    spindle: 0,
+                    direction,
+                });
+            }
+            _ => {
+                cx.st.spindle_on[0] = false;
+                cx.st.rs274.spindle_direction = None;
+                cx.out.push(Canon::StopSpindle { spindle: 0 });
+            }
+        }
+    }
+    // 7a. M70–M73: save, forget, restore the modal state.
+    if let Some((code, span)) = m.context {
+        super::modal_context::m70_73(cx, params, code, span)?;
+    }
+    for &code in &m.coolant[..m.n_coolant] {
+        cx.coolant(code);
+    }
+    if let Some(span) = m.orient {
+        orient(cx, span)?;
+    }
+    for &code in &m.overrides[..m.n_overrides] {
+        overrides(cx, code)?;
+    }
+    for &code in &m.user[..m.n_user] {
+        cx.out.push(Canon::AuxiliaryFunction {
+            number: code,
+            timing: stanok_canon::AuxTiming::Prefix,
+        });
+    }
     Ok(())
 }
 

@@ -426,7 +426,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 5a–7. The M codes before the dwell (out of line: rare).
     if let Some(m) = &m {
-        m_codes_before_dwell(cx, params, m)?;
+        mcodes::before_dwell(cx, params, m)?;
     }
     // 8. Dwell.
     if let Some((40, span)) = g.get(Group::NonModal, cx) {
@@ -650,77 +650,6 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     publish_css_law(cx);
     Ok(Outcome::Continue)
-}
-
-/// Steps 5a–7 of LinuxCNC's order of execution: M62–M66, M6, M61, the spindle, M70–M73, coolant,
-/// M19, M48–M53 and the user M codes.
-#[inline(never)]
-fn m_codes_before_dwell(
-    cx: &mut Ctx<'_>,
-    params: &mut Parameters,
-    m: &mcodes::MCodes,
-) -> Result<(), Diagnostic> {
-    // 5a. HAL I/O: M62–M66.
-    for &(code, span) in &m.io[..m.n_io] {
-        mcodes::io(cx, code, span)?;
-    }
-    // 6. M6, M61.
-    if m.tool_change {
-        tools::change_tool(cx, params);
-        cx.st.rs274.spindle_direction = None;
-        // LinuxCNC resynchronises its position after a tool change: a programmed point left
-        // over from cutter compensation is forgotten.
-        if !cx.st.rs274.comp.on() {
-            cx.st.rs274.comp.program = None;
-        }
-    }
-    if let Some(span) = m.set_tool {
-        mcodes::set_tool_number(cx, params, span)?;
-    }
-    // 7. Spindle, coolant, user M codes.
-    if m.spindle != NO_CODE {
-        let code = m.spindle;
-        match code {
-            3 | 4 => {
-                let direction = if code == 3 {
-                    SpindleDirection::Clockwise
-                } else {
-                    SpindleDirection::CounterClockwise
-                };
-                cx.st.spindle_on[0] = true;
-                cx.st.rs274.spindle_direction = Some(direction);
-                cx.out.push(Canon::StartSpindle {
-                    spindle: 0,
-                    direction,
-                });
-            }
-            _ => {
-                cx.st.spindle_on[0] = false;
-                cx.st.rs274.spindle_direction = None;
-                cx.out.push(Canon::StopSpindle { spindle: 0 });
-            }
-        }
-    }
-    // 7a. M70–M73: save, forget, restore the modal state.
-    if let Some((code, span)) = m.context {
-        modal_context::m70_73(cx, params, code, span)?;
-    }
-    for &code in &m.coolant[..m.n_coolant] {
-        cx.coolant(code);
-    }
-    if let Some(span) = m.orient {
-        mcodes::orient(cx, span)?;
-    }
-    for &code in &m.overrides[..m.n_overrides] {
-        mcodes::overrides(cx, code)?;
-    }
-    for &code in &m.user[..m.n_user] {
-        cx.out.push(Canon::AuxiliaryFunction {
-            number: code,
-            timing: stanok_canon::AuxTiming::Prefix,
-        });
-    }
-    Ok(())
 }
 
 /// S as a cutting speed, mm/min: S is m/min under G21 and ft/min under G20.

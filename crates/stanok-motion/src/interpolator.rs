@@ -51,6 +51,11 @@ pub struct Setpoint {
     pub soft: bool,
     /// Source line of the piece.
     pub line: u32,
+    /// The programmed segment the piece belongs to (the stage's running number, see
+    /// [`crate::path::PathBuilder::next_seq`]).
+    pub seq: u64,
+    /// The piece is a blend joining two programmed segments (a junction).
+    pub junction: bool,
     /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
     /// evaluated at `position`).
     pub spindle_rpm: [f64; 4],
@@ -138,6 +143,8 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         jerk: [0.0; 9],
         soft: pc.soft,
         line: pc.line,
+        seq: pc.seq,
+        junction: pc.junction,
         spindle_rpm: [0.0; 4],
     };
     let pt = pt.unwrap_or_else(|| {
@@ -165,6 +172,7 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    seq: u64,
     spindles: Spindles,
     hold: FeedHold,
     switch: Option<Arc<HoldSwitch>>,
@@ -183,6 +191,7 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            seq: 0,
             spindles: Spindles::default(),
             hold: FeedHold::default(),
             switch: None,
@@ -295,7 +304,7 @@ impl Interpolator {
                 // catches up with the new plan.
                 let cap = pc.programmed_speed(&wanted);
                 piece.piece.set_limits(cap, 0.0, planner.axes());
-                let mut rest = piece.piece;
+                let mut rest = piece.piece.clone();
                 rest.length = (rest.length - k.s).max(0.0);
                 piece.v_exit = planner.replan_overrides(wanted, &rest, 0.0);
                 None
@@ -317,7 +326,7 @@ impl Interpolator {
         let cap = piece.piece.programmed_speed(&wanted);
         piece.piece.set_limits(cap, v, planner.axes());
         let rest = (piece.piece.length - s).max(0.0);
-        let mut rest_piece = piece.piece;
+        let mut rest_piece = piece.piece.clone();
         rest_piece.length = rest;
         let e = planner.replan_overrides(wanted, &rest_piece, v);
         piece.v_exit = e;
@@ -356,6 +365,7 @@ impl Interpolator {
                 self.stalled_for_good = true;
                 self.end = piece.piece.shape.at(phase.at(0.0).s).position;
                 self.line = piece.piece.line;
+                self.seq = piece.piece.seq;
                 self.spindles = piece.piece.spindles;
                 self.piece_start = self.tick as f64 * self.period;
                 return;
@@ -437,6 +447,7 @@ impl Interpolator {
         }
         self.end = piece.piece.end;
         self.line = piece.piece.line;
+        self.seq = piece.piece.seq;
         self.spindles = piece.piece.spindles;
     }
 
@@ -455,6 +466,8 @@ impl Interpolator {
             jerk: [0.0; 9],
             soft: false,
             line: self.line,
+            seq: self.seq,
+            junction: false,
             spindle_rpm: self.spindles.rpm_at(&self.end),
         });
         self.tick += 1;

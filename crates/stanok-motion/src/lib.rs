@@ -29,6 +29,7 @@
 pub mod adapter;
 pub mod clothoid;
 pub mod css;
+pub mod curve;
 pub mod hold;
 pub mod interpolator;
 pub mod limits;

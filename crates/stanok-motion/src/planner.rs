@@ -71,7 +71,7 @@ use crate::{profile_scurve, profile_trapezoid};
 use std::collections::VecDeque;
 
 /// A piece with its final boundary speeds.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PlannedPiece {
     /// The piece.
     pub piece: Piece,
@@ -81,7 +81,7 @@ pub struct PlannedPiece {
     pub v_exit: f64,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Entry {
     piece: Piece,
     entry: f64,

@@ -83,8 +83,9 @@ pub enum SpeedClass {
     Fixed,
 }
 
-/// Chord tolerance of spline tessellation, mm.
-pub const SPLINE_CHORD_TOLERANCE: f64 = 1e-3;
+/// Chord tolerance of spline tessellation, mm: half of the 1 µm a spline's setpoints keep from its
+/// curve (the other half goes to the blends at the chords' vertices, see [`crate::path`]).
+pub const SPLINE_CHORD_TOLERANCE: f64 = 0.5e-3;
 
 /// One programmed motion block, ready for planning.
 #[derive(Debug, Clone, PartialEq)]

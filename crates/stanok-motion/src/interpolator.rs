@@ -57,8 +57,10 @@ pub struct Setpoint {
     /// The piece is a blend joining two programmed segments (a junction).
     pub junction: bool,
     /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
-    /// evaluated at `position`).
+    /// evaluated at `position`; times the spindle override), whether it turns or not.
     pub spindle_rpm: [f64; 4],
+    /// How each spindle turns: +1 clockwise (M3), −1 counter-clockwise (M4), 0 stopped.
+    pub spindle_dir: [i8; 4],
 }
 
 /// The time law of one piece.
@@ -146,6 +148,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         seq: pc.seq,
         junction: pc.junction,
         spindle_rpm: [0.0; 4],
+        spindle_dir: pc.spindles.directions(),
     };
     let pt = pt.unwrap_or_else(|| {
         let mut end = pc.shape.at(pc.length);
@@ -162,6 +165,20 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         sp.jerk[i] = j * ti + 3.0 * v * a * ki + v * v * v * qi;
     }
     sp
+}
+
+/// How a piece ran: its time and what its setpoints were doing (for the report's limiting factor,
+/// [`crate::timing`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PieceRun {
+    /// Time from the piece's start to its end (to the next grid instant after a stop), s.
+    pub duration: f64,
+    /// Setpoints at constant path speed.
+    pub cruising: u64,
+    /// Setpoints speeding up or slowing down (and the wait for the grid at a stop).
+    pub ramping: u64,
+    /// Setpoints standing in a feed hold or a zero-override stall.
+    pub standing: u64,
 }
 
 /// Samples released pieces on the servo grid (module doc).
@@ -346,9 +363,11 @@ impl Interpolator {
         mut piece: PlannedPiece,
         planner: &mut Planner,
         out: &mut impl FnMut(&Setpoint),
-    ) {
+    ) -> PieceRun {
+        let started = self.piece_start;
+        let mut run = PieceRun::default();
         if self.stalled_for_good {
-            return;
+            return run;
         }
         let mut phase = self.hold.first_phase(&piece);
         let mut phase_start = self.piece_start;
@@ -356,7 +375,6 @@ impl Interpolator {
             let duration = phase.duration();
             let mut phase_end = phase_start + duration;
             let stall = phase.stalls_at(&piece);
-
             let last = phase.is_last(&piece) && stall.is_none();
             if let (Phase::Stall { .. }, false) =
                 (phase, self.overrides.can_change(planner.overrides()))
@@ -368,7 +386,8 @@ impl Interpolator {
                 self.seq = piece.piece.seq;
                 self.spindles = piece.piece.spindles;
                 self.piece_start = self.tick as f64 * self.period;
-                return;
+                run.duration = self.piece_start - started;
+                return run;
             }
             if last && phase.exit_speed(&piece) == 0.0 {
                 // A stop: the machine stands at the exact end until the next servo instant, so
@@ -407,6 +426,11 @@ impl Interpolator {
                 if let Some(next) = self.hold.trigger(t, &phase, k, &piece) {
                     switched = Some((next, t));
                     break;
+                }
+                match phase {
+                    Phase::Stall { .. } | Phase::Stand { .. } => run.standing += 1,
+                    _ if k.a == 0.0 && k.v > 0.0 => run.cruising += 1,
+                    _ => run.ramping += 1,
                 }
                 let mut sp = sample(&piece, k, t);
                 sp.soft &= phase.is_smooth();
@@ -449,6 +473,8 @@ impl Interpolator {
         self.line = piece.piece.line;
         self.seq = piece.piece.seq;
         self.spindles = piece.piece.spindles;
+        run.duration = self.piece_start - started;
+        run
     }
 
     /// The last setpoint: at the end point, at rest, on the first grid instant at or after the
@@ -469,6 +495,7 @@ impl Interpolator {
             seq: self.seq,
             junction: false,
             spindle_rpm: self.spindles.rpm_at(&self.end),
+            spindle_dir: self.spindles.directions(),
         });
         self.tick += 1;
         t

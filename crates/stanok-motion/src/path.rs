@@ -110,6 +110,9 @@ struct Element {
     chord_tolerance: f64,
     end_rule: EndRule,
     entry_stop: bool,
+    /// It starts, or ends, at a stop its path mode makes (G60/G61 exact stop, an exact-path
+    /// corner): what a report names as the limit of its ramps.
+    exact_stop: bool,
     /// Path tolerance in force (for the report).
     tolerance: f64,
 }
@@ -316,6 +319,7 @@ impl PathBuilder {
             chord_tolerance: 0.0,
             end_rule,
             entry_stop: false,
+            exact_stop: false,
             tolerance: report_tol,
         };
         match &seg.geometry {
@@ -406,7 +410,7 @@ impl PathBuilder {
     }
 
     /// The junction between `prev` and `next` (module doc, step 2).
-    fn join(&mut self, prev: Element, next: &mut Element, out: &mut impl FnMut(Piece)) {
+    fn join(&mut self, mut prev: Element, next: &mut Element, out: &mut impl FnMut(Piece)) {
         let (t1, k1) = prev.tangent_and_curvature(true);
         let (t2, k2) = next.tangent_and_curvature(false);
         let cos = dot9(&t1, &t2).clamp(-1.0, 1.0);
@@ -436,6 +440,10 @@ impl PathBuilder {
         let Some(e) =
             blend_tol.filter(|e| *e > 0.0 && theta < std::f64::consts::PI - REVERSAL_MARGIN)
         else {
+            if !self.stop_next && matches!(rule, EndRule::Stop | EndRule::TangentOnly) {
+                prev.exact_stop = true;
+                next.exact_stop = true;
+            }
             self.emit(&prev, 0.0, out);
             next.entry_stop = true;
             return;
@@ -484,6 +492,7 @@ impl PathBuilder {
             j_max: 0.0,
             soft: prev.soft || next.soft,
             entry_stop: false,
+            exact_stop: false,
             line: next.line,
             seq: next.seq,
             junction: prev.seq != next.seq,
@@ -541,6 +550,7 @@ impl PathBuilder {
             j_max: 0.0,
             soft: false,
             entry_stop: false,
+            exact_stop: false,
             line: next.line,
             seq: next.seq,
             junction: prev.seq != next.seq,
@@ -600,6 +610,7 @@ impl PathBuilder {
             j_max: 0.0,
             soft: true,
             entry_stop: false,
+            exact_stop: false,
             line: next.line,
             seq: next.seq,
             junction: prev.seq != next.seq,
@@ -651,6 +662,7 @@ impl PathBuilder {
             j_max: 0.0,
             soft: c.soft,
             entry_stop: c.entry_stop && c.start_trim == 0.0,
+            exact_stop: c.exact_stop,
             line: c.line,
             seq: c.seq,
             junction: false,
@@ -696,6 +708,7 @@ fn dwell_piece(at: Point9, seconds: f64, line: u32, seq: u64, spindles: Spindles
         j_max: 0.0,
         soft: false,
         entry_stop: true,
+        exact_stop: false,
         line,
         seq,
         junction: false,

@@ -208,6 +208,9 @@ pub struct Piece {
     pub soft: bool,
     /// The piece starts from standstill (an exact stop before it).
     pub entry_stop: bool,
+    /// It starts or ends at a stop of its path mode (G60/G61, an exact-path corner), not a
+    /// forced one (program start and end, M0, tool change…): for the report's limiting factor.
+    pub exact_stop: bool,
     /// Source line.
     pub line: u32,
     /// The programmed segment it belongs to (the stage's running number; a blend belongs to the

@@ -207,13 +207,20 @@ impl LinuxCncPrinter {
                 naive_cam_tolerance,
             } => {
                 let k = self.units.mm_per_unit();
-                // rs274 prints the tolerance, and then the naive-CAM one, only for G64.
+                // rs274 prints the tolerance, and then the naive-CAM one, for G64 (and the naive-CAM one
+                // whenever the command carries it).
                 match mode {
-                    PathMode::ExactStop => {
-                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)".into())
-                    }
-                    PathMode::ExactPath => {
-                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)".into())
+                    PathMode::ExactStop | PathMode::ExactPath => {
+                        let name = if *mode == PathMode::ExactStop {
+                            "CANON_EXACT_STOP"
+                        } else {
+                            "CANON_EXACT_PATH"
+                        };
+                        self.line(n, format!("SET_MOTION_CONTROL_MODE({name})"));
+                        // After a canned cycle rs274 restores the naive-CAM tolerance too.
+                        if let Some(q) = naive_cam_tolerance {
+                            self.line(n, format!("SET_NAIVECAM_TOLERANCE({:.4})", q / k));
+                        }
                     }
                     PathMode::Continuous { tolerance } => {
                         self.line(

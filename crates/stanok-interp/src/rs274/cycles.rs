@@ -304,7 +304,17 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     // The position is the last hole at the clear level, whatever the cycle's last move.
     place(cx, &f, aa, bb, clear);
     if switch_mode {
-        cx.out.push(super::path_mode_canon(saved_mode, saved_naive));
+        // LinuxCNC's convert_cycle restores the mode and then the naive-CAM tolerance, whatever
+        // the mode (issue 21, reproduction 3: SET_NAIVECAM_TOLERANCE after a cycle under G61.1).
+        let mut restore = super::path_mode_canon(saved_mode, saved_naive);
+        if let Canon::SetPathMode {
+            naive_cam_tolerance,
+            ..
+        } = &mut restore
+        {
+            *naive_cam_tolerance = Some(saved_naive);
+        }
+        cx.out.push(restore);
     }
     let st: &mut Rs274State = &mut cx.st.rs274;
     st.cycle_il = il;

@@ -99,9 +99,13 @@ pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
             tolerance: blend_tolerance,
         },
     };
+    // rs274 prints the naive-CAM tolerance after G64 only (and after a canned cycle, which
+    // restores it in any mode: `cycles.rs`).
+    let naive_cam_tolerance = matches!(mode, stanok_canon::PathMode::Continuous { .. })
+        .then_some(naive_cam);
     Canon::SetPathMode {
         mode,
-        naive_cam_tolerance: Some(naive_cam),
+        naive_cam_tolerance,
     }
 }
 
@@ -602,7 +606,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 20. Motion.
     let motion = match g.get(Group::Motion, cx) {
         Some((code, span)) => Some((code, span, true)),
-        None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
+        // LinuxCNC's enhance_block: a block with centre words and no axis words under modal G2/G3
+        // is an arc too (a full circle), as is a block with axis words under any motion mode.
+        None if !axis_words_used_by_modal_0
+            && (cx.has_axis_words()
+                || (matches!(cx.st.motion, MotionMode::ArcCw | MotionMode::ArcCcw)
+                    && cx.st.rs274.motion_code.is_none()
+                    && (cx.words.has(b'I') || cx.words.has(b'J') || cx.words.has(b'K')))) =>
+        {
             let code = match cx.st.motion {
                 _ if cx.st.rs274.motion_code.is_some() => cx.st.rs274.motion_code.unwrap_or(800),
                 MotionMode::Rapid => 0,

@@ -127,9 +127,11 @@ fn motion_block_inner(
                         g53_span,
                     ));
                 }
-                // G53: the words are machine coordinates (tool length offset still applies).
+                // G53: the words are machine coordinates of the controlled point, the tool length
+                // offset not added (LinuxCNC's find_ends takes the offset off the word and canon
+                // adds it back: rs274 prints machine Z0 under G43 H4 as Z = -offset; issue 21,
+                // reproduction 1). Words not given keep the current machine position.
                 let mut m = cx.st.position.to_array();
-                let tlo = cx.st.frame.tlo().to_array();
                 for (k, &letter) in AXIS_WORDS.iter().enumerate() {
                     if let Some(v) = cx.words.take(letter) {
                         let v = if crate::ctx::is_linear(k) {
@@ -137,7 +139,7 @@ fn motion_block_inner(
                         } else {
                             v.v
                         };
-                        m[k] = v + tlo[k];
+                        m[k] = v;
                     }
                 }
                 cx.st.frame.to_program(&Pose::from_array(m))

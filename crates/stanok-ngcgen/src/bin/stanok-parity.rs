@@ -166,7 +166,9 @@ impl Scratch {
         let out = self.dir.join("out.txt");
         let _ = std::fs::remove_file(&out);
         let mut cmd = Command::new(&c.rs274);
-        cmd.current_dir(&self.dir);
+        // rs274 keeps its tool table in a file mapped from $HOME/.tool.mmap: runs in parallel
+        // (and other users' runs) would share it, so each worker has a home of its own.
+        cmd.current_dir(&self.dir).env("HOME", &self.dir);
         if subs {
             let ini = self.dir.join("sub.ini");
             let _ = std::fs::write(

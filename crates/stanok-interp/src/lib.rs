@@ -646,6 +646,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         };
         // Commit.
         self.params.commit();
+        if !held_backup.is_empty() {
+            self.restamp_released(mark, held_backup.len(), number, label_digits);
+        }
         if dialect == Dialect::Axioma {
             self.axioma.release(&mut self.axioma_held, &mut self.queue);
         }
@@ -656,6 +659,20 @@ impl<R: BufRead + Seek> Interpreter<R> {
             self.start_lathe_capture()?;
         }
         Ok(outcome == Outcome::End)
+    }
+
+    /// RS274/NGC cutter compensation: commands an earlier block produced and this one released
+    /// (the `held` commands in `mark - held .. mark` that are no longer held) carry this block's
+    /// N label, as rs274 prints them: LinuxCNC issues a queued compensated move while it executes
+    /// the block that completes its corner, and prints the label of the line it executes.
+    #[cold]
+    fn restamp_released(&mut self, mark: usize, held: usize, number: Option<u32>, digits: u8) {
+        let still_held = self.held();
+        let first_kept = self.queue.len().saturating_sub(still_held);
+        for c in self.queue.range_mut(mark.saturating_sub(held)..mark.min(first_kept)) {
+            c.block_number = number;
+            c.label_digits = digits;
+        }
     }
 
     /// How many commands at the back of the queue are held back (RS274/NGC cutter compensation

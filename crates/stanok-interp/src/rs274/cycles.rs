@@ -400,9 +400,17 @@ impl CycleWords {
             let letters = [b'I', b'J', b'K'];
             let (la, lb) = (letters[a], letters[b]);
             let ln = letters[cx.st.plane.axes().2];
+            // LinuxCNC keeps I, J and K of G87 like R and Q: a block repeating the series may
+            // leave them out (its settings->cycle_i/j/k).
             let get = |cx: &mut Ctx<'_>, l: u8| -> Result<f64, Diagnostic> {
+                let at = usize::from(l - b'I');
                 match cx.words.take(l) {
-                    Some(v) => Ok(cx.mm(v.v)),
+                    Some(v) => {
+                        let v = cx.mm(v.v);
+                        cx.st.rs274.cycle_ijk[at] = v;
+                        Ok(v)
+                    }
+                    None if same_series => Ok(cx.st.rs274.cycle_ijk[at]),
                     None => Err(cx.err(
                         "rs274::g87-word-missing",
                         format!("{} word missing with g87", l as char),

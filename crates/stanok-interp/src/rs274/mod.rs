@@ -64,6 +64,8 @@ pub struct Rs274State {
     pub cycle_p: f64,
     /// Canned cycles: the sticky peck Q, mm.
     pub cycle_q: f64,
+    /// G87: the sticky I, J, K (mm, as written): a repeat block may leave them out.
+    pub cycle_ijk: [f64; 3],
     /// Canned cycles: the drilling-axis level when the series began (program mm).
     pub cycle_il: f64,
     /// `cycle_il` is set (a series is running).

@@ -81,6 +81,7 @@ pub(super) fn straight_probe(
     };
     let want_contact = matches!(kind, ProbeKind::TowardErrorIfNone | ProbeKind::Toward);
     let surfaces = &cx.opts.control.probe_surfaces;
+    let no_surfaces = surfaces.is_empty();
     let in_contact = |p: &Pose| surfaces.iter().any(|s| s.contact(p));
     if !surfaces.is_empty() && in_contact(&start_m) == want_contact {
         return Err(cx.err(
@@ -127,6 +128,26 @@ pub(super) fn straight_probe(
     if cx.st.feed_mode == FeedMode::InverseTime {
         cx.out.push(Canon::SetFeedRate { feed });
     }
+    // Where the probe's result points are: the trip point, or the programmed point.
+    cx.st.position = trip.unwrap_or(end_m);
+    let work = cx.st.program_position().to_array();
+    // With no surface configured (LinuxCNC's standalone rs274), the probe "stops" 0.254 mm
+    // (0.01 in) short of the programmed point along the move, as rs274's simulated canon backs it
+    // off (its STRAIGHT_PROBE); the result parameters still hold the programmed point.
+    let contact = match trip {
+        None if no_surfaces => {
+            let (a, b) = (start_m.to_array(), end_m.to_array());
+            let d = (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+            (d > 0.0).then(|| {
+                let mut p = b;
+                for k in 0..3 {
+                    p[k] += MIN_PROBE_DISTANCE_MM * (a[k] - b[k]) / d;
+                }
+                Pose::from_array(p)
+            })
+        }
+        t => t,
+    };
     cx.out.push(Canon::StraightProbe {
         motion: LineMove {
             start: start_m,
@@ -134,17 +155,15 @@ pub(super) fn straight_probe(
             feed,
         },
         probe: kind,
-        contact: trip,
+        contact,
     });
-    let stop = trip.unwrap_or(end_m);
-    cx.st.position = stop;
-    let work = cx.st.program_position().to_array();
     let k = cx.st.units.mm_per_unit();
     for (i, v) in work.iter().enumerate() {
         let v = if crate::ctx::is_linear(i) { v / k } else { *v };
         params.set(5061 + i, v);
     }
     params.set(5070, if trip.is_some() { 1.0 } else { 0.0 });
+    cx.st.position = contact.unwrap_or(end_m);
     cx.st.rs274.motion_code = Some(code);
     Ok(())
 }

@@ -170,6 +170,7 @@ impl LinuxCncPrinter {
                 constant_surface_speed,
                 max_rpm,
             } => {
+                self.css = *constant_surface_speed;
                 let mode = if *constant_surface_speed {
                     *max_rpm
                 } else {

@@ -370,7 +370,11 @@ impl Parameters {
 
     fn named(&self, name: &str, global: bool) -> Option<f64> {
         if global {
-            self.globals.get(name).copied()
+            // LinuxCNC defines the return value of a subroutine, 0, before any call.
+            self.globals
+                .get(name)
+                .copied()
+                .or_else(|| matches!(name, "_value" | "_value_returned").then_some(0.0))
         } else {
             self.locals.last().and_then(|s| s.get(name).copied())
         }

@@ -96,7 +96,7 @@ pub fn predefined(name: &str, st: &ModalState, params: &Parameters, line: u32) -
             if st.feed_mode == FeedMode::InverseTime {
                 st.feed
             } else {
-                st.feed / units
+                st.feed / rs.feed_units.map_or(units, |u| u.mm_per_unit())
             }
         }
         "_rpm" => st.spindle_speed[0],

@@ -220,17 +220,25 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     let words = CycleWords::read(cx, code, &g, same_series, incremental, bottom, span)?;
     let direction = cx.st.rs274.spindle_direction;
     match code {
+        // LinuxCNC 2.9's messages: a stopped spindle first, then the wrong direction.
+        740 | 840 if direction.is_none() || !cx.st.spindle_on[0] => {
+            return Err(cx.err(
+                "rs274::tap-spindle",
+                format!("Spindle not turning in {}", if code == 740 { "G74" } else { "G84" }),
+                span,
+            ))
+        }
         840 if direction != Some(SpindleDirection::Clockwise) => {
             return Err(cx.err(
                 "rs274::g84-spindle",
-                "Spindle not turning clockwise in g84 canned cycle",
+                "Spindle turning counterclockwise in G84",
                 span,
             ))
         }
         740 if direction != Some(SpindleDirection::CounterClockwise) => {
             return Err(cx.err(
                 "rs274::g74-spindle",
-                "Spindle not turning counterclockwise in g74 canned cycle",
+                "Spindle turning clockwise in G74",
                 span,
             ))
         }
@@ -371,7 +379,9 @@ impl CycleWords {
                         span,
                     ))
                 }
-                None => Some(0.0),
+                // G74/G84 without P dwell the sticky P of any earlier cycle (LinuxCNC's
+                // settings->cycle_p, 0 before any).
+                None => Some(cx.st.rs274.cycle_p),
             };
         }
         if matches!(code, 730 | 830) {
@@ -441,6 +451,33 @@ fn traverse(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
 
 fn feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
     let p = point(cx, f, aa, bb, cc);
+    let feed = cx.path_feed(0.0);
+    cx.straight(false, p, feed);
+}
+
+/// A feed of G74/G84. LinuxCNC 2.9 issues the tapping feeds with the coordinates of an XY-plane
+/// cycle: in G18 and G19 the move goes to the hole's point with its X Y Z (after the work
+/// offsets, before the tool length offset) rotated — G18 (X, Y, Z) ← (Y, Z, X), G19 ← (Z, X, Y) —
+/// while its interpreter goes on from the true point (rs274 and milltask alike: it is the
+/// interpreter's doing). Stanok moves as LinuxCNC does; the next move starts from the true point,
+/// the second exception to continuous motion beside G88's manual retract.
+fn tap_feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
+    let p = point(cx, f, aa, bb, cc);
+    let rotate: Option<fn([f64; 3]) -> [f64; 3]> = match f.n {
+        1 => Some(|v| [v[1], v[2], v[0]]),
+        0 => Some(|v| [v[2], v[0], v[1]]),
+        _ => None,
+    };
+    let Some(rotate) = rotate else {
+        return feed(cx, f, aa, bb, cc);
+    };
+    let tlo = cx.st.frame.tlo().to_array();
+    let mut m = cx.st.frame.to_machine(&p).to_array();
+    let canon = rotate([m[0] - tlo[0], m[1] - tlo[1], m[2] - tlo[2]]);
+    for k in 0..3 {
+        m[k] = canon[k] + tlo[k];
+    }
+    let p = cx.st.frame.to_program(&Pose::from_array(m));
     let feed = cx.path_feed(0.0);
     cx.straight(false, p, feed);
 }
@@ -534,21 +571,22 @@ fn hole(
                 SpindleDirection::CounterClockwise => SpindleDirection::Clockwise,
             };
             overrides(cx, false);
-            feed(cx, f, aa, bb, f.bottom);
+            tap_feed(cx, f, aa, bb, f.bottom);
             stop_spindle(cx);
             spindle(cx, reverse);
             cx.out.push(Canon::Dwell { seconds: dwell });
-            feed(cx, f, aa, bb, f.clear);
+            tap_feed(cx, f, aa, bb, f.clear);
             stop_spindle(cx);
             spindle(cx, dir);
             overrides(cx, true);
+            // The interpreter's position is the hole's clear point (see `tap_feed`).
+            place(cx, f, aa, bb, f.clear);
         }
         850 => {
             feed(cx, f, aa, bb, f.bottom);
             feed(cx, f, aa, bb, f.r);
-            if f.clear != f.r {
-                traverse(cx, f, aa, bb, f.clear);
-            }
+            // LinuxCNC's convert_cycle_g85 traverses to the clear level even when it is R.
+            traverse(cx, f, aa, bb, f.clear);
         }
         860 => {
             feed(cx, f, aa, bb, f.bottom);

@@ -64,6 +64,9 @@ pub struct Rs274State {
     pub cycle_p: f64,
     /// Canned cycles: the sticky peck Q, mm.
     pub cycle_q: f64,
+    /// The units F was last programmed in: LinuxCNC keeps the F number across G20/G21, and
+    /// `#<_feed>` reads that number (None: no F yet, the current units).
+    pub feed_units: Option<LengthUnits>,
     /// G87: the sticky I, J, K (mm, as written): a repeat block may leave them out.
     pub cycle_ijk: [f64; 3],
     /// Canned cycles: the drilling-axis level when the series began (program mm).
@@ -380,6 +383,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             return Err(cx.err("rs274::negative-f", "Negative F word found", f.span));
         }
         let feed = cx.mm(f.v);
+        cx.st.rs274.feed_units = Some(cx.st.units);
         cx.st.feed = if cx.st.feed_mode == FeedMode::InverseTime {
             f.v
         } else {
@@ -653,7 +657,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         match code {
             0 => cx.out.push(Canon::ProgramStop { optional: false }),
             1 => cx.out.push(Canon::ProgramStop { optional: true }),
-            60 => return Err(unsupported(cx, "M60", "RS274/NGC completeness", span)),
+            // M60: exchange the pallets, then stop as M0 (LinuxCNC's convert_stop).
+            60 => {
+                let _ = span;
+                cx.out.push(Canon::PalletShuttle);
+                cx.out.push(Canon::ProgramStop { optional: false });
+            }
             _ => {
                 program_end(cx, params, code == 30);
                 publish_css_law(cx);

@@ -29,6 +29,7 @@ pub struct SavedContext {
     units: LengthUnits,
     feed_mode: FeedMode,
     feed: f64,
+    feed_units: Option<LengthUnits>,
     speed: f64,
     spindle: Option<SpindleDirection>,
     plane: Plane,
@@ -48,6 +49,7 @@ fn capture(cx: &Ctx<'_>, auto_restore: bool) -> SavedContext {
         units: st.units,
         feed_mode: st.feed_mode,
         feed: st.feed,
+        feed_units: st.rs274.feed_units,
         speed: st.spindle_speed[0],
         spindle: if st.spindle_on[0] {
             st.rs274.spindle_direction
@@ -98,6 +100,7 @@ pub fn restore(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) 
         cx.st.units = saved.units;
         cx.out.push(Canon::UseLengthUnits { units: saved.units });
     }
+    cx.st.rs274.feed_units = saved.feed_units;
     if cx.st.feed_mode != saved.feed_mode {
         super::set_feed_mode(cx, saved.feed_mode);
     } else if cx.st.feed != saved.feed {

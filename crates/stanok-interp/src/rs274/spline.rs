@@ -127,31 +127,23 @@ fn pair(cx: &mut Ctx<'_>, a: u8, b: u8) -> (Option<f64>, Option<f64>) {
 /// G5.
 pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5", span)?;
-    let continuing = cx.st.rs274.motion_code == Some(50);
     let (i, j) = pair(cx, b'I', b'J');
     let (p, q) = pair(cx, b'P', b'Q');
-    let (Some(p), Some(q)) = (p, q) else {
-        return Err(cx.err("rs274::g5-pq", "Must specify both P and Q in G5", span));
-    };
+    // LinuxCNC 2.9's convert_spline: without I and J the first control point continues the
+    // previous G5 (its -P, -Q, kept however long ago it was; 0 before any G5).
     let (i, j) = match (i, j) {
         (Some(i), Some(j)) => (i, j),
-        (None, None) if continuing => (-cx.st.rs274.g5_pq[0], -cx.st.rs274.g5_pq[1]),
-        (None, None) => {
-            return Err(cx
-                .err(
-                    "rs274::g5-ij-first",
-                    "I and J are required on the first G5 of a series",
-                    span,
-                )
-                .with_note("later G5 blocks may omit both: the curve then continues tangentially"))
-        }
+        (None, None) => (-cx.st.rs274.g5_pq[0], -cx.st.rs274.g5_pq[1]),
         _ => {
             return Err(cx.err(
                 "rs274::g5-ij",
-                "Must specify both I and J, or neither, in G5",
+                "Must specify both I and J, or neither",
                 span,
             ))
         }
+    };
+    let (Some(p), Some(q)) = (p, q) else {
+        return Err(cx.err("rs274::g5-pq", "Must specify both P and Q with G5", span));
     };
     let f = feed(cx, "G5", f_in_block, span)?;
     let s = cx.st.program_position();
@@ -159,7 +151,8 @@ pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result
     let pts = [[s.x, s.y], [s.x + i, s.y + j], [e[0] + p, e[1] + q], e];
     emit(cx, &pts, vec![1.0; 4], stanok_geom::bezier_knots(3), f);
     cx.st.rs274.g5_pq = [p, q];
-    cx.st.rs274.motion_code = Some(50);
+    // LinuxCNC leaves the motion mode as it was: axis words alone after a G5 block repeat the
+    // mode before it, and #<_motion_mode> reads that mode.
     Ok(())
 }
 
@@ -170,24 +163,18 @@ pub(super) fn quadratic(
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.1", span)?;
-    let (i, j) = pair(cx, b'I', b'J');
-    if i.unwrap_or(0.0) == 0.0 && j.unwrap_or(0.0) == 0.0 {
+    let (Some(i), Some(j)) = pair(cx, b'I', b'J') else {
         return Err(cx.err(
             "rs274::g5-1-ij",
-            "Must specify I or J (not both zero) with G5.1",
+            "Must specify both I and J with G5.1",
             span,
         ));
-    }
+    };
     let f = feed(cx, "G5.1", f_in_block, span)?;
     let s = cx.st.program_position();
     let (e, _) = end_xy(cx)?;
-    let pts = [
-        [s.x, s.y],
-        [s.x + i.unwrap_or(0.0), s.y + j.unwrap_or(0.0)],
-        e,
-    ];
+    let pts = [[s.x, s.y], [s.x + i, s.y + j], e];
     emit(cx, &pts, vec![1.0; 3], stanok_geom::bezier_knots(2), f);
-    cx.st.rs274.motion_code = Some(51);
     Ok(())
 }
 

@@ -374,7 +374,7 @@ impl LinuxCncPrinter {
                 self.line(n, format!("SET_ORIENTATION_INTERPOLATION({name})"))
             }
             Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
-            Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),
+            Canon::ChangeTool { slot, .. } => self.line(n, format!("CHANGE_TOOL({slot})")),
             Canon::UseToolLengthOffset { offset } => {
                 self.tlo = *offset;
                 let v = self.scale_linear(offset.to_array());

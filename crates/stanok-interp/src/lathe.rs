@@ -35,9 +35,8 @@ pub(crate) struct LatheCapture {
     position: stanok_canon::Pose,
     /// Call depth at the G7x block; the profile is over when the depth is back to it.
     depth: usize,
-    /// The G7x block: the cycle's commands carry its span and number.
+    /// The G7x block: the cycle's commands carry its span (and the endsub line's N label).
     span: Span,
-    number: Option<u32>,
     /// Feed and spindle speeds before the profile (F and S in a profile are ignored).
     feed: f64,
     spindle_speed: [f64; 4],
@@ -92,7 +91,6 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 crate::FlowAction::Seek(_) | crate::FlowAction::CallFile { .. }
             ))),
             span: self.block.span(),
-            number: self.block.number,
             feed: self.state.feed,
             spindle_speed: self.state.spindle_speed,
             css_mm_per_min: self.state.rs274.css_mm_per_min,
@@ -137,7 +135,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let out = ctx::Emitter {
             queue: &mut self.queue,
             span: cap.span,
-            number: cap.number,
+            // rs274 prints the label of the line it executes when it issues the cycle: the
+            // profile's endsub line, not the G7x line.
+            number: self.block.number,
             label_digits: 0,
         };
         let mut cx = Ctx {

@@ -234,23 +234,33 @@ impl Scratch {
     }
 }
 
-/// A listed difference between the standalone rs274 and a real LinuxCNC (docs/linuxcnc.md):
-/// the name of the one the program shows, if any.
-fn known_difference(text: &str) -> Option<&'static str> {
+/// A listed difference between the standalone rs274 and a real LinuxCNC (docs/linuxcnc.md,
+/// "Known differences"): the name of the one the program shows, if any. The test is on the text,
+/// line by line in file order (a good enough stand-in for execution order in these programs).
+pub fn known_difference(text: &str) -> Option<&'static str> {
+    let mut tool_loaded = false;
     for line in text.lines() {
-        let l = line
-            .split(['(', ';'])
-            .next()
-            .unwrap_or("")
-            .to_ascii_lowercase();
+        let l = line.split(['(', ';']).next().unwrap_or("").to_ascii_lowercase();
         let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
-        let has_m6 = l
-            .match_indices("m6")
-            .any(|(i, _)| !l[i + 2..].starts_with(|c: char| c.is_ascii_digit() || c == '.'))
-            || l.contains("m06");
-        if has_m6 && l.contains("g43") {
+        let has = |code: &str| {
+            l.match_indices(code).any(|(i, _)| {
+                !l[i + code.len()..].starts_with(|c: char| c.is_ascii_digit() || c == '.')
+            })
+        };
+        let m6 = has("m6") || has("m06");
+        if m6 && has("g43") {
             return Some("T… M6 G43 in one block");
         }
+        if !tool_loaded {
+            // rs274's simulated tool changer starts with the tool of table slot 1 in the
+            // spindle; LinuxCNC's (and Stanok's) spindle is empty until M6 or M61.
+            let writes_slot_1 = ["g10l1p1", "g10l10p1", "g10l11p1"].iter().any(|c| has(c));
+            let g43_loaded = has("g43") && !l.contains('h');
+            if writes_slot_1 || g43_loaded || l.contains("_current_pocket") {
+                return Some("the spindle holds tool slot 1 at start");
+            }
+        }
+        tool_loaded |= m6 || has("m61");
     }
     None
 }

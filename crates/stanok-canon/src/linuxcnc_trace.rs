@@ -56,7 +56,11 @@ pub fn parse(text: &str) -> Trace {
         if let Some(call) = call_line(raw) {
             let body = &call[7..];
             if let Some(rest) = body.strip_prefix("ON_RESET()") {
+                // rs274 writes "executing" (or its message) right after its last ON_RESET().
                 let rest = rest.trim();
+                if !after_error {
+                    t.lines.push(format!("{}ON_RESET()", &call[..7]));
+                }
                 if t.error.is_none() && !rest.is_empty() && rest != "executing" {
                     t.error = Some(rest.to_string());
                     after_error = true;
@@ -117,8 +121,14 @@ pub fn split_numbers(line: &str) -> (String, Vec<f64>) {
             while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
                 i += 1;
             }
-            nums.push(line[start..i].parse().unwrap_or(f64::NAN));
-            skeleton.push('#');
+            // Text that only looks like a number ("1.7.2008" in a comment) stays text.
+            match line[start..i].parse() {
+                Ok(v) => {
+                    nums.push(v);
+                    skeleton.push('#');
+                }
+                Err(_) => skeleton.push_str(&line[start..i]),
+            }
         } else {
             let ch = line[i..].chars().next().unwrap_or(' ');
             skeleton.push(ch);
@@ -363,6 +373,11 @@ mod tests {
         assert!(!same_line(
             "N..... SELECT_PLANE(CANON_PLANE_XY)",
             "N..... SELECT_PLANE(CANON_PLANE_XZ)",
+            TOL
+        ));
+        assert!(same_line(
+            "N0020  COMMENT(\"Date: 1.7.2008\")",
+            "N0020  COMMENT(\"Date: 1.7.2008\")",
             TOL
         ));
         assert!(same_line(

@@ -577,7 +577,7 @@ impl Evaluator<'_> {
         Ok(match op {
             BinOp::Pow => {
                 if a < 0.0 && b.fract() != 0.0 {
-                    return Err(self.domain(id, "Attempt to raise negative to non-integer power"));
+                    return Err(self.domain(id, "Attempt to raise negative to non integer power"));
                 }
                 a.powf(b)
             }
@@ -589,8 +589,9 @@ impl Evaluator<'_> {
                 a / b
             }
             BinOp::Mod => {
+                // LinuxCNC computes fmod(a, 0) = NaN and then refuses the NaN.
                 if b == 0.0 {
-                    return Err(self.domain(id, "Attempt to divide by zero"));
+                    return Err(self.domain(id, "Calculation resulted in 'not a number'"));
                 }
                 let r = a % b;
                 if r < 0.0 {

@@ -456,8 +456,8 @@ fn feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
 }
 
 /// A feed of G74/G84. LinuxCNC 2.9 issues the tapping feeds with the coordinates of an XY-plane
-/// cycle: in G18 and G19 the move goes to the hole's point with its X Y Z (after the work
-/// offsets, before the tool length offset) rotated — G18 (X, Y, Z) ← (Y, Z, X), G19 ← (Z, X, Y) —
+/// cycle: in G18 and G19 the move goes to the hole's point with its program X Y Z rotated —
+/// G18 (X, Y, Z) ← (Y, Z, X), G19 ← (Z, X, Y) — and the offsets then added as to any point —
 /// while its interpreter goes on from the true point (rs274 and milltask alike: it is the
 /// interpreter's doing). Stanok moves as LinuxCNC does; the next move starts from the true point,
 /// the second exception to continuous motion beside G88's manual retract.
@@ -471,13 +471,10 @@ fn tap_feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
     let Some(rotate) = rotate else {
         return feed(cx, f, aa, bb, cc);
     };
-    let tlo = cx.st.frame.tlo().to_array();
-    let mut m = cx.st.frame.to_machine(&p).to_array();
-    let canon = rotate([m[0] - tlo[0], m[1] - tlo[1], m[2] - tlo[2]]);
-    for k in 0..3 {
-        m[k] = canon[k] + tlo[k];
-    }
-    let p = cx.st.frame.to_program(&Pose::from_array(m));
+    let mut v = p.to_array();
+    let r = rotate([v[0], v[1], v[2]]);
+    v[..3].copy_from_slice(&r);
+    let p = Pose::from_array(v);
     let feed = cx.path_feed(0.0);
     cx.straight(false, p, feed);
 }
@@ -597,10 +594,15 @@ fn hole(
         }
         870 => {
             let (oa, ob) = (aa + w.offset[0], bb + w.offset[1]);
+            // LinuxCNC orients in the spindle's sense: 2 under M3, 3 under M4 (rs274's trace).
             let orient = Canon::OrientSpindle {
                 spindle: 0,
                 degrees: 0.0,
-                direction: 2,
+                direction: if dir == SpindleDirection::CounterClockwise {
+                    3
+                } else {
+                    2
+                },
                 timeout: None,
             };
             traverse(cx, f, oa, ob, f.r);

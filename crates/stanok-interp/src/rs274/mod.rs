@@ -443,7 +443,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         let Some(p) = cx.words.take(b'P') else {
             return Err(cx.err(
                 "rs274::dwell-p-missing",
-                "Dwell time P word missing with G4",
+                "Dwell time missing with g4",
                 span,
             ));
         };

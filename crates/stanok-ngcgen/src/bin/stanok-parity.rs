@@ -256,11 +256,13 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
             // spindle; LinuxCNC's (and Stanok's) spindle is empty until M6 or M61.
             let writes_slot_1 = ["g10l1p1", "g10l10p1", "g10l11p1"].iter().any(|c| has(c));
             let g43_loaded = has("g43") && !l.contains('h');
-            if writes_slot_1 || g43_loaded || l.contains("_current_pocket") {
+            let raw = line.to_ascii_lowercase();
+            if writes_slot_1 || g43_loaded || raw.contains("_current_pocket") {
                 return Some("the spindle holds tool slot 1 at start");
             }
         }
-        tool_loaded |= m6 || has("m61");
+        // M61 Q1 declares the tool rs274 believes loaded already: its state stays apart.
+        tool_loaded |= m6 || (has("m61") && !has("q1"));
     }
     None
 }

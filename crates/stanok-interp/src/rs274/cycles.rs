@@ -496,7 +496,11 @@ fn stop_spindle(cx: &mut Ctx<'_>) {
     cx.out.push(Canon::StopSpindle { spindle: 0 });
 }
 
+/// Tapping switches the overrides off and back on, but not on if M49 had them off (LinuxCNC).
 fn overrides(cx: &mut Ctx<'_>, enabled: bool) {
+    if enabled && cx.st.rs274.feed_override_disabled {
+        return;
+    }
     cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
     cx.out.push(Canon::SetSpindleOverrideEnabled {
         spindle: 0,

@@ -218,8 +218,17 @@ fn feed_for(
             Ok(cx.st.feed)
         }
         FeedMode::UnitsPerRevolution => {
+            // LinuxCNC's messages are those of G94.
             if cx.st.feed <= 0.0 {
-                return Err(cx.err("rs274::zero-feed", "Cannot feed with zero feed rate", span));
+                return Err(cx.err(
+                    "rs274::zero-feed",
+                    if arc {
+                        "Cannot make arc with zero feed rate"
+                    } else {
+                        "Cannot do g1 with zero feed rate"
+                    },
+                    span,
+                ));
             }
             if cx.st.spindle_speed[0] <= 0.0 {
                 return Err(cx.err(

@@ -96,6 +96,13 @@ pub(super) fn m70_73(
 
 /// Puts the saved state back, announcing what changes (module doc for the order).
 pub fn restore(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) {
+    // rs274 prints the restoring calls without the block's N label (observed for M72).
+    let number = cx.out.number.take();
+    restore_state(cx, params, saved);
+    cx.out.number = number;
+}
+
+fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) {
     if cx.st.units != saved.units {
         cx.st.units = saved.units;
         cx.out.push(Canon::UseLengthUnits { units: saved.units });

@@ -15,7 +15,11 @@
 //! standalone `rs274` does (its simulated probe reports failure silently).
 //!
 //! Checks before anything moves (LinuxCNC's): feed not zero, cutter compensation off, the target at
-//! least 0.01 in (0.254 mm) away, the probe not already in the requested state.
+//! least 0.01 in (0.254 mm) away for G38.2/G38.4, the probe not already in the requested state.
+//!
+//! With no surface configured (LinuxCNC's standalone `rs274`), the probe stands 0.254 mm short of
+//! the programmed point along the move afterwards, as rs274's simulated probe puts it; the result
+//! parameters hold the programmed point and #5070 = 0.
 
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
@@ -66,7 +70,8 @@ pub(super) fn straight_probe(
         let (a, b) = (start_m.xyz(), end_m.xyz());
         (0..3).map(|i| (b[i] - a[i]).powi(2)).sum::<f64>().sqrt()
     };
-    if d < MIN_PROBE_DISTANCE_MM {
+    // LinuxCNC checks the distance for the probes that must change state (G38.2, G38.4) only.
+    if d < MIN_PROBE_DISTANCE_MM && matches!(code, 382 | 384) {
         return Err(cx.err(
             "rs274::probe-too-close",
             "Start point too close to probe point",

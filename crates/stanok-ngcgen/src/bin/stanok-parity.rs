@@ -6,10 +6,13 @@
 //! known difference (docs/linuxcnc.md).
 //!
 //!   stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH]
-//!                 [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--program FILE…]
+//!                 [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--tools TBL]
+//!                 [--program FILE…]
 //!
 //! `--coverage` only generates and prints the feature table; `--emit DIR` writes the programs;
-//! `--program FILE…` compares given files instead of generated ones (another generator's).
+//! `--program FILE…` compares given files instead of generated ones (another generator's, or
+//! LinuxCNC's samples: `scripts/linuxcnc-parity.sh`); `--tools TBL` replaces the generator's tool
+//! table for both sides.
 //!
 //! ## Algorithm
 //! Workers (threads) take program indices from a shared counter. For index i, draws
@@ -42,11 +45,12 @@ struct Config {
     shrink: bool,
     coverage: bool,
     emit: Option<PathBuf>,
+    tools: Option<PathBuf>,
     programs: Vec<PathBuf>,
 }
 
 fn usage() -> ExitCode {
-    eprintln!("usage: stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH] [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--program FILE...]");
+    eprintln!("usage: stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH] [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--tools TBL] [--program FILE...]");
     ExitCode::from(2)
 }
 
@@ -68,6 +72,7 @@ fn config() -> Result<Config, ExitCode> {
         shrink: true,
         coverage: false,
         emit: None,
+        tools: None,
         programs: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
@@ -83,6 +88,7 @@ fn config() -> Result<Config, ExitCode> {
             "--rs274" => c.rs274 = value()?.into(),
             "--keep" => c.keep = Some(value()?.into()),
             "--emit" => c.emit = Some(value()?.into()),
+            "--tools" => c.tools = Some(value()?.into()),
             "--no-shrink" => c.shrink = false,
             "--coverage" => c.coverage = true,
             "--program" => {
@@ -140,11 +146,14 @@ struct Scratch {
 }
 
 impl Scratch {
-    fn new(worker: usize) -> Scratch {
+    fn new(worker: usize, tools: Option<&Path>) -> Scratch {
         let dir =
             std::env::temp_dir().join(format!("stanok-parity-{}-{worker}", std::process::id()));
         let _ = std::fs::create_dir_all(dir.join("subs"));
-        let _ = std::fs::write(dir.join("tool.tbl"), TOOL_TABLE);
+        let table = tools
+            .and_then(|t| std::fs::read_to_string(t).ok())
+            .unwrap_or_else(|| TOOL_TABLE.to_string());
+        let _ = std::fs::write(dir.join("tool.tbl"), table);
         Scratch { dir }
     }
 
@@ -240,6 +249,7 @@ impl Scratch {
 pub fn known_difference(text: &str) -> Option<&'static str> {
     let mut tool_loaded = false;
     let mut after_m61 = false;
+    let mut offset_in_force = false;
     for line in text.lines() {
         let l = line.split(['(', ';']).next().unwrap_or("").to_ascii_lowercase();
         let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
@@ -274,6 +284,15 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
             return Some("M61 leaves the tool data as it was");
         }
         after_m61 |= has("m61");
+        // G20/G21 under a tool length offset: LinuxCNC keeps the offset's number, which then
+        // means another length (its later G43.2, G53, G28/G30 use it); Stanok keeps the length.
+        if offset_in_force && (has("g20") || has("g21")) {
+            return Some("G20/G21 under a tool length offset");
+        }
+        if has("g49") {
+            offset_in_force = false;
+        }
+        offset_in_force |= l.contains("g43");
         // M61 Q1 declares the tool rs274 believes loaded already: its state stays apart.
         tool_loaded |= m6 || (has("m61") && !has("q1"));
     }
@@ -447,7 +466,7 @@ fn main() -> ExitCode {
         for worker in 0..c.jobs {
             let (c, next, results, given) = (&c, &next, &results, &given);
             s.spawn(move || {
-                let scratch = Scratch::new(worker);
+                let scratch = Scratch::new(worker, c.tools.as_deref());
                 loop {
                     let k = next.fetch_add(1, Ordering::Relaxed);
                     if k >= total {

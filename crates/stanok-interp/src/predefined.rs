@@ -50,6 +50,7 @@ pub fn predefined(name: &str, st: &ModalState, params: &Parameters, line: u32) -
                 MotionMode::Linear => 10.0,
                 MotionMode::ArcCw => 20.0,
                 MotionMode::ArcCcw => 30.0,
+                MotionMode::None if rs.motion_unset => -1.0,
                 MotionMode::None => 800.0,
             },
         },

@@ -67,6 +67,8 @@ pub struct Rs274State {
     /// The units F was last programmed in: LinuxCNC keeps the F number across G20/G21, and
     /// `#<_feed>` reads that number (None: no F yet, the current units).
     pub feed_units: Option<LengthUnits>,
+    /// After G5.3 LinuxCNC has no motion mode (-1); cleared by the next motion block.
+    pub motion_unset: bool,
     /// G87: the sticky I, J, K (mm, as written): a repeat block may leave them out.
     pub cycle_ijk: [f64; 3],
     /// Canned cycles: the drilling-axis level when the series began (program mm).

@@ -23,6 +23,7 @@ pub(super) fn motion_block(
     if cx.st.rs274.in_profile && matches!(code, 0 | 10 | 20 | 30) {
         return motion_in_profile(cx, params, code, span, explicit, g53, f_in_block);
     }
+    cx.st.rs274.motion_unset = false;
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 

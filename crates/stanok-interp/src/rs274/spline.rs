@@ -187,8 +187,11 @@ pub(super) fn nurbs_point(
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.2", span)?;
     let opening = explicit || cx.st.rs274.motion_code != Some(52);
-    let weight = match cx.words.take(b'P') {
+    // LinuxCNC's convert_nurbs: every point after the first (the current point) needs P > 0.
+    let p_word = cx.words.take(b'P');
+    let weight = match p_word {
         Some(p) if p.v > 0.0 => p.v,
+        _ if opening => 1.0,
         Some(p) => {
             return Err(cx.err(
                 "rs274::nurbs-weight",
@@ -196,7 +199,13 @@ pub(super) fn nurbs_point(
                 p.span,
             ))
         }
-        None => 1.0,
+        None => {
+            return Err(cx.err(
+                "rs274::nurbs-weight",
+                "Must specify positive weight P for every Control Point",
+                span,
+            ))
+        }
     };
     let order = cx.words.take(b'L').map(|l| l.v);
     let has_x = cx.words.has(b'X');
@@ -210,8 +219,10 @@ pub(super) fn nurbs_point(
     }
     let here = cx.st.program_position();
     if opening {
+        // LinuxCNC takes L only above 3 (order 3 otherwise).
         let k = match order {
-            Some(l) if l >= 2.0 && l.fract() == 0.0 && l <= 16.0 => l as u32,
+            Some(l) if l > 3.0 && l.fract() == 0.0 && l <= 16.0 => l as u32,
+            Some(l) if l <= 3.0 => 3,
             Some(_) => {
                 return Err(cx.err(
                     "rs274::nurbs-order",
@@ -238,14 +249,11 @@ pub(super) fn nurbs_point(
     if has_x {
         let x = cx.words.take(b'X').map_or(0.0, |v| cx.mm(v.v));
         let y = cx.words.take(b'Y').map_or(0.0, |v| cx.mm(v.v));
-        let last = params
-            .nurbs()
-            .points
-            .last()
-            .map_or([here.x, here.y, here.z], |p| p.0);
+        // Incremental points are relative to the current point, which stays where the G5.2
+        // block began until G5.3 (LinuxCNC's find_ends on an unmoved current point).
         let (x, y) = match cx.st.distance {
             DistanceMode::Absolute => (x, y),
-            DistanceMode::Incremental => (last[0] + x, last[1] + y),
+            DistanceMode::Incremental => (here.x + x, here.y + y),
         };
         let buf = params.nurbs_mut();
         if buf.points.len() >= MAX_NURBS_POINTS {
@@ -271,7 +279,7 @@ pub(super) fn nurbs_end(
     if cx.st.rs274.motion_code != Some(52) {
         return Err(cx.err(
             "rs274::g5-3-without-g5-2",
-            "G5.3 without a G5.2 block to close",
+            "Cannot use G5.3 without G5.2 first",
             span,
         ));
     }
@@ -281,7 +289,9 @@ pub(super) fn nurbs_end(
     if n_points < k {
         return Err(cx.err(
             "rs274::nurbs-too-few",
-            format!("G5.2 needs at least L = {k} control points, got {n_points}"),
+            format!(
+                "You must specify a number of control points at least equal to the order L = {k}"
+            ),
             span,
         ));
     }
@@ -305,5 +315,7 @@ pub(super) fn nurbs_end(
     params.nurbs_mut().points.clear();
     cx.st.rs274.motion_code = None;
     cx.st.motion = crate::state::MotionMode::None;
+    // LinuxCNC leaves no motion mode at all (-1, not G80's 80): #<_motion_mode> reads -1.
+    cx.st.rs274.motion_unset = true;
     Ok(())
 }

@@ -669,7 +669,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
     fn restamp_released(&mut self, mark: usize, held: usize, number: Option<u32>, digits: u8) {
         let still_held = self.held();
         let first_kept = self.queue.len().saturating_sub(still_held);
-        for c in self.queue.range_mut(mark.saturating_sub(held)..mark.min(first_kept)) {
+        for c in self
+            .queue
+            .range_mut(mark.saturating_sub(held)..mark.min(first_kept))
+        {
             c.block_number = number;
             c.label_digits = digits;
         }

@@ -121,11 +121,14 @@ pub fn predefined(name: &str, st: &ModalState, params: &Parameters, line: u32) -
         "_abs_w" => abs_axis(8),
         "_current_tool" => st.current_tool as f64,
         // The tool's pocket as its table gives it (LinuxCNC's `P`; rs274 prints 10 for T10 P10).
-        "_current_pocket" => params.tools().get(st.current_tool).map_or(0.0, |t| t.pocket as f64),
+        "_current_pocket" => params
+            .tools()
+            .get(st.current_tool)
+            .map_or(0.0, |t| t.pocket as f64),
         "_selected_tool" => st.selected_tool.map_or(-1.0, |t| t as f64),
-        "_selected_pocket" => st
-            .selected_tool
-            .map_or(-1.0, |t| params.tools().get(t).map_or(0.0, |t| t.pocket as f64)),
+        "_selected_pocket" => st.selected_tool.map_or(-1.0, |t| {
+            params.tools().get(t).map_or(0.0, |t| t.pocket as f64)
+        }),
         // Standalone interpretation (LinuxCNC's preview/rs274: 0; 1 = running on a machine).
         "_task" => 0.0,
         "_remap_level" => 0.0,

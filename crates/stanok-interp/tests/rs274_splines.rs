@@ -66,7 +66,10 @@ fn g5_first_without_ij_starts_along_no_tangent() {
     let p = &s[0].control_points;
     assert!(close([p[1][0], p[1][1]], [p[0][0], p[0][1]]));
     let (_, err) = run("G20 F10 G17\nG5 I1 P0 Q-3 X1 Y1\nM2\n", Dialect::Rs274ngc);
-    assert_eq!(err.unwrap().message, "Must specify both I and J, or neither");
+    assert_eq!(
+        err.unwrap().message,
+        "Must specify both I and J, or neither"
+    );
 }
 
 #[test]

@@ -496,7 +496,10 @@ fn last_straight_end(cmds: &[stanok_canon::Spanned<stanok_canon::Canon>]) -> [f6
 fn assert_at(cmds: &[stanok_canon::Spanned<stanok_canon::Canon>], want: [f64; 3], why: &str) {
     let end = last_straight_end(cmds);
     for k in 0..3 {
-        assert!((end[k] - want[k]).abs() < 1e-9, "{why}: ends at {end:?}, not {want:?}");
+        assert!(
+            (end[k] - want[k]).abs() < 1e-9,
+            "{why}: ends at {end:?}, not {want:?}"
+        );
     }
 }
 
@@ -520,7 +523,8 @@ fn known_difference_t_m6_g43_in_one_block_as_milltask() {
 /// spindle (G43 takes 7: Z 27).
 #[test]
 fn known_difference_the_spindle_is_empty_at_start_as_milltask() {
-    let program = "G21 G90 G94 F3000\nG0 Y[#<_current_tool> + 1]\nG10 L1 P1 Z7\nG43\nG0 Z20\nG0 X5\nM2\n";
+    let program =
+        "G21 G90 G94 F3000\nG0 Y[#<_current_tool> + 1]\nG10 L1 P1 Z7\nG43\nG0 Z20\nG0 X5\nM2\n";
     let (cmds, err) = run(program, Dialect::Rs274ngc);
     assert!(err.is_none(), "{err:?}");
     assert_at(&cmds, [5.0, 1.0, 20.0], "milltask ends at X5 Y1 Z20");

@@ -224,7 +224,10 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
         740 | 840 if direction.is_none() || !cx.st.spindle_on[0] => {
             return Err(cx.err(
                 "rs274::tap-spindle",
-                format!("Spindle not turning in {}", if code == 740 { "G74" } else { "G84" }),
+                format!(
+                    "Spindle not turning in {}",
+                    if code == 740 { "G74" } else { "G84" }
+                ),
                 span,
             ))
         }

@@ -108,8 +108,8 @@ pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
     };
     // rs274 prints the naive-CAM tolerance after G64 only (and after a canned cycle, which
     // restores it in any mode: `cycles.rs`).
-    let naive_cam_tolerance = matches!(mode, stanok_canon::PathMode::Continuous { .. })
-        .then_some(naive_cam);
+    let naive_cam_tolerance =
+        matches!(mode, stanok_canon::PathMode::Continuous { .. }).then_some(naive_cam);
     Canon::SetPathMode {
         mode,
         naive_cam_tolerance,
@@ -443,11 +443,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 8. Dwell.
     if let Some((40, span)) = g.get(Group::NonModal, cx) {
         let Some(p) = cx.words.take(b'P') else {
-            return Err(cx.err(
-                "rs274::dwell-p-missing",
-                "Dwell time missing with g4",
-                span,
-            ));
+            return Err(cx.err("rs274::dwell-p-missing", "Dwell time missing with g4", span));
         };
         if p.v < 0.0 {
             return Err(cx.err(

@@ -93,6 +93,7 @@ pub fn strip_counter(line: &str) -> String {
 }
 
 /// The comparison rules of every LinuxCNC parity check (`stanok_canon::linuxcnc_trace`).
+#[allow(unused_imports)]
 pub use stanok_canon::linuxcnc_trace::same_line;
 
 /// An rs274 trace file split into canon lines (counter stripped, exit ON_RESET pair removed), the
@@ -106,8 +107,6 @@ pub fn read_trace(text: &str) -> Trace {
     let t = stanok_canon::linuxcnc_trace::parse(text);
     Trace {
         lines: t.lines,
-        error: t
-            .error
-            .map(|m| (m, t.error_block.unwrap_or_default())),
+        error: t.error.map(|m| (m, t.error_block.unwrap_or_default())),
     }
 }

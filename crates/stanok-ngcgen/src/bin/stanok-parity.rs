@@ -251,7 +251,11 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
     let mut after_m61 = false;
     let mut offset_in_force = false;
     for line in text.lines() {
-        let l = line.split(['(', ';']).next().unwrap_or("").to_ascii_lowercase();
+        let l = line
+            .split(['(', ';'])
+            .next()
+            .unwrap_or("")
+            .to_ascii_lowercase();
         let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
         let has = |code: &str| {
             l.match_indices(code).any(|(i, _)| {
@@ -303,13 +307,16 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
 /// Stanok's own shortcoming, listed so that the run stays a regression guard for everything else.
 pub fn open_difference(text: &str) -> Option<&'static str> {
     for line in text.lines() {
-        let l = line.split(['(', ';']).next().unwrap_or("").to_ascii_lowercase();
+        let l = line
+            .split(['(', ';'])
+            .next()
+            .unwrap_or("")
+            .to_ascii_lowercase();
         let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
         let g7x = ["g70", "g71", "g72"].iter().any(|c| l.contains(c));
-        let allowance = l
-            .match_indices('d')
-            .any(|(i, _)| l[i + 1..].starts_with(|c: char| c.is_ascii_digit() || c == '.' || c == '+'))
-            && !l.contains("d0 ")
+        let allowance = l.match_indices('d').any(|(i, _)| {
+            l[i + 1..].starts_with(|c: char| c.is_ascii_digit() || c == '.' || c == '+')
+        }) && !l.contains("d0 ")
             && !l.ends_with("d0");
         if g7x && allowance {
             return Some("OPEN: G7x finishing allowance D at some corners");

@@ -128,6 +128,8 @@ pub struct BlockTime {
     pub planned_s: f64,
     /// Length / programmed feed (rapid rate) at 100 %, dwells at their time, s.
     pub nominal_s: f64,
+    /// Path length, mm (0 for a dwell): length / planned time is the block's mean speed.
+    pub length_mm: f64,
     /// What set its speed for most of its time: "programmed feed", "axis velocity", "axis
     /// acceleration", "jerk", "curvature", "blend tolerance", "exact stop", "look-ahead window",
     /// "override" or "dwell".
@@ -140,6 +142,7 @@ impl From<&stanok_motion::timing::BlockTime> for BlockTime {
             line: b.line,
             planned_s: b.planned_s,
             nominal_s: b.nominal_s,
+            length_mm: b.length_mm,
             limit: b.limit.name(),
         }
     }

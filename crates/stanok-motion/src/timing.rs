@@ -107,6 +107,8 @@ pub struct BlockTime {
     pub planned_s: f64,
     /// Length / programmed speed, s.
     pub nominal_s: f64,
+    /// Path length, mm (in the 9-D pose space of the pieces; 0 for a dwell).
+    pub length_mm: f64,
     /// What set its speed for most of its time.
     pub limit: Limit,
 }
@@ -124,6 +126,7 @@ struct Open {
     seq: u64,
     planned: f64,
     nominal: f64,
+    length: f64,
     by_cause: [f64; 10],
 }
 
@@ -182,6 +185,7 @@ pub struct PieceInfo {
     line: u32,
     seq: u64,
     nominal: f64,
+    length: f64,
     dwell: bool,
     speed: Limit,
     ramp: Limit,
@@ -202,6 +206,7 @@ impl PieceInfo {
             line: pc.line,
             seq: pc.seq,
             nominal,
+            length: if dwell { 0.0 } else { pc.length },
             dwell,
             speed: speed_cause(pp, overrides),
             ramp: ramp_cause(pp),
@@ -223,6 +228,7 @@ impl BlockTimer {
                 seq: info.seq,
                 planned: 0.0,
                 nominal: 0.0,
+                length: 0.0,
                 by_cause: [0.0; 10],
             });
         }
@@ -232,6 +238,7 @@ impl BlockTimer {
         o.seq = info.seq;
         o.planned += run.duration;
         o.nominal += info.nominal;
+        o.length += info.length;
         if info.dwell {
             o.by_cause[Limit::Dwell.index()] += run.duration;
             return;
@@ -259,6 +266,7 @@ impl BlockTimer {
             line: o.line,
             planned_s: o.planned,
             nominal_s: o.nominal,
+            length_mm: o.length,
             limit,
         };
         if self.blocks.len() < MAX_BLOCKS {

@@ -26,6 +26,10 @@
 //! 5. **Annotate** each view: title, direction arrows for its axes, a scale bar of a round length
 //!    (1, 2 or 5 × 10ⁿ mm) and the start marker.
 //!
+//! **Colour by block** ([`PlotOptions::colouring`], `plot --color speed|limit`): each motion is
+//! drawn in the colour of its source line's class (rapids still dashed, runs of one class in one
+//! `<path>` of class `class-K`), and the header's key lists the classes instead of rapid/feed.
+//!
 //! Invariants: the output is a well-formed SVG document for any input (an empty stream gives a
 //! sheet that says "no motion"); all text is escaped; all numbers are finite; the same input gives
 //! byte-identical output.
@@ -36,6 +40,7 @@ mod view;
 
 use stanok_canon::{Canon, Spanned, SplineMove};
 use stanok_geom::{dot, normalize, Helix, Nurbs, Vec3};
+use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::fmt::Write;
 use svg::{escape, num, PathData};
@@ -62,6 +67,20 @@ pub struct PlotOptions {
     /// Tool-axis ticks of a 5-axis program: each from the tool tip along the tool vector, machine
     /// X Y Z mm (empty = none). The caller computes them with the machine's kinematics.
     pub tool_axis: Vec<[[f64; 3]; 2]>,
+    /// Colour by block (module doc): `None` draws rapids and feeds in their two styles.
+    pub colouring: Option<Colouring>,
+}
+
+/// A class per source line and the key of the classes (`plot --color`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Colouring {
+    /// Heading of the key, e.g. "limit" or "mean speed mm/min".
+    pub title: String,
+    /// The classes in key order: label and colour (`#rrggbb`).
+    pub classes: Vec<(String, String)>,
+    /// Class (index into `classes`) of each source line; a motion whose line is not listed keeps
+    /// its rapid or feed style.
+    pub line_class: BTreeMap<u32, usize>,
 }
 
 impl Default for PlotOptions {
@@ -75,6 +94,7 @@ impl Default for PlotOptions {
             reference: Vec::new(),
             lathe: false,
             tool_axis: Vec::new(),
+            colouring: None,
         }
     }
 }
@@ -88,6 +108,8 @@ enum Kind {
     Programmed,
     /// A short tick along the tool axis from the tip (5-axis programs).
     ToolAxis,
+    /// A motion of a [`Colouring`] class (index into its classes); rapid or not.
+    Class(usize, bool),
 }
 
 impl Kind {
@@ -104,6 +126,27 @@ impl Kind {
             Kind::ToolAxis => {
                 r##"class="tool-axis" fill="none" stroke="#2f9e44" stroke-width="1""##
             }
+            Kind::Class(..) => "",
+        }
+    }
+
+    /// [`Kind::attributes`], with a class's colour from `classes`.
+    fn attributes_in(self, classes: &[(String, String)]) -> String {
+        match self {
+            Kind::Class(k, rapid) => {
+                let colour = classes.get(k).map_or("#495057", |c| c.1.as_str());
+                format!(
+                    r#"class="class-{k}" fill="none" stroke="{}" stroke-width="{}"{}"#,
+                    escape(colour),
+                    if rapid { "1" } else { "1.8" },
+                    if rapid {
+                        r#" stroke-dasharray="6 4""#
+                    } else {
+                        ""
+                    }
+                )
+            }
+            _ => self.attributes().to_string(),
         }
     }
 }
@@ -129,6 +172,13 @@ impl Shape {
 
 /// Step 1: the segments of the stream and the start point.
 fn collect(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>) {
+    let (segments, start, _) = collect_with_lines(commands);
+    (segments, start)
+}
+
+/// [`collect`], with the source line of each segment.
+fn collect_with_lines(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>, Vec<u32>) {
+    let mut lines = Vec::new();
     let finite = |p: &[Vec3]| p.iter().flatten().all(|c| c.is_finite());
     let mut segments = Vec::new();
     let mut start = None;
@@ -175,9 +225,10 @@ fn collect(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>) {
         if ok {
             start.get_or_insert(seg.1.start());
             segments.push(seg);
+            lines.push(cmd.span.line);
         }
     }
-    (segments, start)
+    (segments, start, lines)
 }
 
 /// Step 2: the box around the path and the start point.
@@ -235,7 +286,10 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
         r##"<text class="sheet-title" x="12" y="26" font-size="18" fill="#212529">{}</text>"##,
         escape(&options.title)
     );
-    let (mut segments, start) = collect(commands);
+    let (mut segments, start, lines) = collect_with_lines(commands);
+    if let Some(c) = &options.colouring {
+        colour(&mut segments, &lines, c);
+    }
     // The reference's feed moves go first, so the path is drawn over them.
     let (reference, _) = collect(&options.reference);
     let with_reference = reference.iter().any(|(k, _)| *k == Kind::Feed);
@@ -257,13 +311,20 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
     );
     match start {
         Some(start) if !segments.is_empty() => {
-            legend(&mut out, width, with_reference);
+            match &options.colouring {
+                Some(c) => colour_key(&mut out, width, c),
+                None => legend(&mut out, width, with_reference),
+            }
             let views = view::layout(width, height, HEADER, options.lathe);
             let (lo, hi) = bounds(&segments, start);
             let mappings = view::fit(&views, lo, hi);
             let tolerance = options.chord_tolerance;
+            let classes = options
+                .colouring
+                .as_ref()
+                .map_or(&[][..], |c| &c.classes[..]);
             for (v, m) in views.iter().zip(&mappings) {
-                draw_view(&mut out, v, m, &segments, start, tolerance);
+                draw_view(&mut out, v, m, &segments, start, tolerance, classes);
             }
         }
         _ => {
@@ -277,6 +338,45 @@ pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String 
     }
     out.push_str("</svg>\n");
     out
+}
+
+/// Gives each motion of `segments` whose source line (`lines`, parallel) has a class that class.
+fn colour(segments: &mut [(Kind, Shape)], lines: &[u32], c: &Colouring) {
+    for ((kind, _), line) in segments.iter_mut().zip(lines) {
+        if let Some(&k) = c.line_class.get(line) {
+            *kind = Kind::Class(k, *kind == Kind::Rapid);
+        }
+    }
+}
+
+/// The key of a colouring in the header: its title, then a swatch and label per class.
+fn colour_key(out: &mut String, width: f64, c: &Colouring) {
+    // About 6.5 px per character at 12 px, a 20 px swatch and a gap.
+    let entry = |label: &str| 34.0 + 6.5 * label.chars().count() as f64;
+    let total: f64 = 6.5 * c.title.chars().count() as f64
+        + 12.0
+        + c.classes.iter().map(|(l, _)| entry(l)).sum::<f64>();
+    let mut x = (width - 12.0 - total).max(260.0);
+    let _ = write!(
+        out,
+        r##"<g class="legend colour-key" font-size="12" fill="#212529"><text x="{}" y="25" font-weight="bold">{}</text>"##,
+        num(x),
+        escape(&c.title)
+    );
+    x += 6.5 * c.title.chars().count() as f64 + 12.0;
+    for (label, colour) in &c.classes {
+        let _ = write!(
+            out,
+            r#"<path d="M{} 21H{}" stroke="{}" stroke-width="4"/><text x="{}" y="25">{}</text>"#,
+            num(x),
+            num(x + 20.0),
+            escape(colour),
+            num(x + 25.0),
+            escape(label)
+        );
+        x += entry(label);
+    }
+    out.push_str("</g>");
 }
 
 /// Height of the sheet's header band, px.
@@ -324,6 +424,7 @@ fn draw_view(
     segments: &[(Kind, Shape)],
     start: Vec3,
     chord_tolerance: f64,
+    classes: &[(String, String)],
 ) {
     let c = v.cell;
     let _ = write!(
@@ -352,7 +453,7 @@ fn draw_view(
         w = num(c.w - 2.0),
         h = num(c.h - 2.0),
     );
-    draw_path(out, v.projection, m, segments, chord_tolerance);
+    draw_path(out, v.projection, m, segments, chord_tolerance, classes);
     let p = m.to_screen(v.projection.project(start));
     let _ = write!(
         out,
@@ -372,6 +473,7 @@ fn draw_path(
     m: &Mapping,
     segments: &[(Kind, Shape)],
     chord_tolerance: f64,
+    classes: &[(String, String)],
 ) {
     let screen = |p: Vec3| m.to_screen(projection.project(p));
     // Finer than 0.25 px, and than the caller's tolerance when that is smaller.
@@ -415,7 +517,8 @@ fn draw_path(
         }
         let last_of_run = !matches!(segments.get(i + 1), Some((next, _)) if next == kind);
         if last_of_run && !data.is_empty() {
-            let _ = write!(out, r#"<path {} d="{}"/>"#, kind.attributes(), data.take());
+            let attributes = kind.attributes_in(classes);
+            let _ = write!(out, r#"<path {attributes} d="{}"/>"#, data.take());
         }
     }
 }

@@ -49,6 +49,15 @@ impl From<DialectArg> for stanok_syntax::Dialect {
     }
 }
 
+/// What `plot --color` colours the path by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PlotColor {
+    /// Each source line's mean path speed (length / planned time), in six bands.
+    Speed,
+    /// The limit that set each line's speed (programmed feed, axis velocity, …).
+    Limit,
+}
+
 /// Target dialect of `stanok convert`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum TargetArg {
@@ -313,6 +322,10 @@ pub enum Command {
         /// Output SVG file.
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
+        /// Colour the path by block, with a key: `speed` (each line's mean path speed) or
+        /// `limit` (what set its speed, as `run` reports it). Runs the motion on the machine.
+        #[arg(long, value_enum)]
+        color: Option<PlotColor>,
         #[command(flatten)]
         machine: MachineArgs,
     },

@@ -15,6 +15,7 @@ mod cutting;
 mod diagnostics;
 mod machine_show;
 mod perm;
+mod plot_colour;
 mod progress;
 mod report;
 mod tool_axis;
@@ -81,8 +82,9 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             file,
             dialect,
             output,
+            color,
             machine,
-        } => plot(&file, dialect.map(Into::into), &output, &machine),
+        } => plot(&file, dialect.map(Into::into), &output, color, &machine),
         Command::Serve {
             bind,
             token,
@@ -660,6 +662,7 @@ fn plot(
     file: &Path,
     dialect: Option<Dialect>,
     output: &Path,
+    color: Option<cli::PlotColor>,
     args: &MachineArgs,
 ) -> Result<ExitCode, String> {
     let machine = match load_machine(args) {
@@ -688,6 +691,7 @@ fn plot(
         // The lab lathes (X = radius): the turning drawing's ZX view.
         lathe: matches!(used, Dialect::Nc31 | Dialect::P2p32),
         tool_axis: tool_axis::ticks(&commands, machine.five_axis().as_ref()),
+        colouring: color.map(|by| plot_colour::colouring(&commands, &machine, by)),
         ..Default::default()
     };
     let svg = stanok_plot::render_svg(&commands, &options);

@@ -324,4 +324,57 @@ fn block_limits_name_what_set_the_speed() {
     assert_eq!(code, 0);
     assert!(text.contains("line     3  3.005 s planned"), "{text}");
     assert!(text.contains("axis velocity"), "{text}");
+    // Its length: 50 mm, less what the G64 blends at its ends cut off.
+    assert!((z_block["length_mm"].as_f64().unwrap() - 50.0).abs() < 0.1);
+
+    // The plot coloured by limit: each move in its limit's colour, the key lists the three.
+    let svg = std::path::Path::new(&prog).with_file_name("limits.svg");
+    let svg_arg = svg.display().to_string();
+    let (code, _, err) = stanok(&[
+        "plot",
+        &prog,
+        "--machine",
+        &machine,
+        "--color",
+        "limit",
+        "-o",
+        &svg_arg,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let key_at = text.find(r#"class="legend colour-key""#).expect("key");
+    let key = &text[key_at..key_at + text[key_at..].find("</g>").unwrap()];
+    let labels: Vec<&str> = key
+        .split("<text ")
+        .skip(2)
+        .map(|t| &t[t.find('>').unwrap() + 1..t.find("</text>").unwrap()])
+        .collect();
+    assert_eq!(
+        labels,
+        ["programmed feed", "axis velocity", "axis acceleration"]
+    );
+    // The XY view: X100 in the feed's green, X101 in the acceleration's orange (the Z move is a
+    // point there); the XZ view draws the Z move in the velocity's blue.
+    for (class, colour) in [(0, "#2f9e44"), (1, "#1c7ed6"), (2, "#f59f00")] {
+        let attrs = format!(r#"class="class-{class}" fill="none" stroke="{colour}""#);
+        assert!(text.contains(&attrs), "{attrs}");
+    }
+    // Coloured by speed: X100 at ~3000 mm/min and X101 at ~1000 mm/min or less fall in different
+    // bands of 500 mm/min (the fastest line, ~2980 mm/min, over six bands).
+    let (code, _, err) = stanok(&[
+        "plot",
+        &prog,
+        "--machine",
+        &machine,
+        "--color",
+        "speed",
+        "-o",
+        &svg_arg,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("mean speed mm/min"), "{text}");
+    assert!(text.contains(">2500–3000</text>"), "{text}");
+    assert!(text.contains(r##"class="class-5" fill="none" stroke="#313695""##));
+    assert!(text.contains(r##"class="class-1" fill="none" stroke="#f46d43""##));
 }

@@ -312,6 +312,7 @@ fn text_is_escaped_and_bad_numbers_are_dropped() {
         lathe: false,
         // A tick with a NaN end is dropped like a bad move.
         tool_axis: vec![[[0.0; 3], [f64::NAN, 0.0, 0.0]]],
+        colouring: None,
     };
     let mut cmds = sample_program();
     cmds.push(feed(p(0.0, 20.0, 5.0), p(f64::NAN, 0.0, 0.0)));
@@ -466,4 +467,42 @@ fn lathe_sheet_shows_z_right_and_x_up() {
     assert!(svg.contains("ZX (lathe: Z right, X radius up)"));
     let mill = render_svg(&cmds, &PlotOptions::default());
     assert!(mill.contains(r#"data-view="xz""#) && !mill.contains(r#"data-view="zx""#));
+}
+
+/// `plot --color`: a motion of a listed line takes its class's colour (rapids dashed), one of an
+/// unlisted line keeps its style, and the key replaces the rapid/feed legend with escaped labels.
+#[test]
+fn colouring_draws_each_line_in_its_class() {
+    let on_line = |line: u32, c: Spanned<Canon>| Spanned::new(Span::new(0, 0, line, 1), c.value);
+    let cmds = vec![
+        init(0.0, 0.0, 0.0),
+        on_line(2, rapid(p(0.0, 0.0, 0.0), p(10.0, 0.0, 0.0))),
+        on_line(3, feed(p(10.0, 0.0, 0.0), p(10.0, 10.0, 0.0))),
+        on_line(4, feed(p(10.0, 10.0, 0.0), p(0.0, 10.0, 0.0))),
+    ];
+    let options = PlotOptions {
+        colouring: Some(Colouring {
+            title: "limit".into(),
+            classes: vec![
+                ("a<b".into(), "#111111".into()),
+                ("c".into(), "#222222".into()),
+            ],
+            line_class: [(2, 1), (3, 0)].into_iter().collect(),
+        }),
+        ..Default::default()
+    };
+    let svg = render_svg(&cmds, &options);
+    assert!(svg.contains(
+        r##"class="class-1" fill="none" stroke="#222222" stroke-width="1" stroke-dasharray="6 4""##
+    ));
+    assert!(svg.contains(r##"class="class-0" fill="none" stroke="#111111" stroke-width="1.8""##));
+    assert!(
+        svg.contains(r#"<path class="feed""#),
+        "line 4 keeps the feed style"
+    );
+    assert!(svg.contains(">a&lt;b</text>"));
+    assert!(
+        !svg.contains(r#"<g class="legend" "#),
+        "the key replaces the legend"
+    );
 }

@@ -53,7 +53,10 @@
 //!
 //! **Limits.** q′, q″, q‴ are sampled at [`BLEND_SAMPLES`] points; their per-axis maxima, raised by
 //! [`SAMPLE_MARGIN`] for what lies between samples (the functions are smooth polynomials times
-//! sines over a short interval: the sampling error is of order 1e-4), are B1, B2, B3 above.
+//! sines over a short interval: the sampling error is of order 1e-4), are B1, B2, B3 above. The
+//! programmed feed is divided by max |q′| — the largest sample raised to the vertex of the
+//! parabola through it and its neighbours, and by [`FEED_SAMPLE_MARGIN`] — not by the 1 %: the
+//! feed is no machine limit, and the axis velocities keep their 1 % through B1.
 //!
 //! ## Invariants
 //! * An arc piece's points are the formula's: on the programmed curve to rounding.
@@ -68,8 +71,13 @@ use crate::segment::Point9;
 
 /// Samples of a blend's derivatives for its limits.
 pub const BLEND_SAMPLES: usize = 65;
-/// Relative margin on sampled maxima.
+/// Relative margin on sampled maxima of the derivatives (for the axis limits).
 pub const SAMPLE_MARGIN: f64 = 0.01;
+/// Relative margin on the maximum of |q′| for the programmed feed (the sampled maximum refined by
+/// the parabola through it and its neighbours, module doc, Limits): the feed is a target, not a
+/// machine limit. With the axes' 1 % a near-tangent blend of two arcs — every junction of a
+/// spiral made of arcs — ran 1 % below the feed over its whole length.
+pub const FEED_SAMPLE_MARGIN: f64 = 1e-6;
 /// max over x ∈ [0, ½] of β(x)·(1 − 2x)^k, k = 1, 2, 3, rounded up.
 const SMOOTH_STEP_MOMENTS: [f64; 3] = [0.070_553, 0.026_658, 0.013_159];
 
@@ -351,8 +359,8 @@ impl Blend {
             deviation: g(d),
         };
         let mut b = [[0.0f64; 9]; 3];
-        let mut speed: f64 = 0.0;
-        for k in 0..BLEND_SAMPLES {
+        let mut speeds = [0.0f64; BLEND_SAMPLES];
+        for (k, speed) in speeds.iter_mut().enumerate() {
             let s = 2.0 * d * k as f64 / (BLEND_SAMPLES - 1) as f64;
             let q = blend.at(s);
             for (bound, d) in b.iter_mut().zip([q.d1, q.d2, q.d3]) {
@@ -360,13 +368,26 @@ impl Blend {
                     *m = m.max(x.abs());
                 }
             }
-            speed = speed.max(q.d1.iter().map(|x| x * x).sum::<f64>().sqrt());
+            *speed = q.d1.iter().map(|x| x * x).sum::<f64>().sqrt();
+        }
+        // The largest sample, raised to the vertex of the parabola through it and its neighbours
+        // (|q′| is smooth: what remains between samples is of third order in the spacing).
+        let top = (0..BLEND_SAMPLES)
+            .max_by(|&i, &j| speeds[i].total_cmp(&speeds[j]))
+            .unwrap_or(0);
+        let mut speed = speeds[top];
+        if top > 0 && top + 1 < BLEND_SAMPLES {
+            let (l, m, r) = (speeds[top - 1], speeds[top], speeds[top + 1]);
+            let curvature = l - 2.0 * m + r;
+            if curvature < 0.0 {
+                speed = speed.max(m - (r - l) * (r - l) / (8.0 * curvature));
+            }
         }
         if !(speed.is_finite() && speed > 0.0) {
             return None;
         }
         blend.bounds = b.map(|row| row.map(|x| x * (1.0 + SAMPLE_MARGIN)));
-        blend.speed_scale = 1.0 / (speed * (1.0 + SAMPLE_MARGIN));
+        blend.speed_scale = 1.0 / (speed * (1.0 + FEED_SAMPLE_MARGIN));
         Some(blend)
     }
 

@@ -285,3 +285,52 @@ proptest! {
         }
     }
 }
+
+/// A spiral made of arcs (LinuxCNC's arcspiral.ngc: R-format arcs whose radius shrinks a little
+/// from one to the next, so consecutive arcs meet at a slight corner and every junction is a long,
+/// nearly tangent smooth blend) runs at its programmed feed. The blends' feed scale used to carry
+/// the axes' 1 % sampling margin, and the whole spiral ran 1 % slow; now the time above nominal is
+/// the start and the stop only.
+#[test]
+fn a_spiral_of_arcs_runs_at_its_feed() {
+    let feed = 609.6; // F24 in/min, as arcspiral.ngc
+    let g64 = PathMode::Continuous { tolerance: 0.05 };
+    let (mut inputs, mut length) = (Vec::new(), 0.0);
+    let point = |k: usize| {
+        let (r, th) = (50.0 - 0.05 * k as f64, -(k as f64) * 10f64.to_radians());
+        p3(r * th.cos(), r * th.sin(), 0.0)
+    };
+    for k in 0..72 {
+        let (s, e) = (point(k), point(k + 1));
+        // The circle of radius R = the start's distance from the origin through s and e, its
+        // centre on the origin's side of the chord (a clockwise arc below 180°).
+        let radius = 50.0 - 0.05 * k as f64;
+        let m = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
+        let c = [e[0] - s[0], e[1] - s[1]];
+        let half = 0.5 * c[0].hypot(c[1]);
+        let n = [-c[1] / (2.0 * half), c[0] / (2.0 * half)];
+        let off = (radius * radius - half * half).sqrt();
+        let side = if n[0] * -m[0] + n[1] * -m[1] > 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let centre = [m[0] + side * off * n[0], m[1] + side * off * n[1], 0.0];
+        let helix = Helix {
+            start: [s[0], s[1], 0.0],
+            end: [e[0], e[1], 0.0],
+            centre,
+            axis: [0.0, 0.0, -1.0],
+            turns: 1,
+        };
+        length += helix.length();
+        inputs.push(arc(s, e, helix, feed, g64, AccelerationProfile::Brisk));
+    }
+    let (trace, monitor, t) = run(&mill(), point(0), inputs);
+    assert!(monitor.violations.is_empty(), "{:?}", monitor.violations);
+    let nominal = length / (feed / 60.0);
+    // Starting and stopping at 1000 mm/s² cost v/a = 0.01 s; the servo grid 1 ms more.
+    assert!(t <= nominal + 0.012, "t {t} nominal {nominal}");
+    let end = trace.last().unwrap().position;
+    assert!((end[0] - point(72)[0]).abs() < 1e-9 && (end[1] - point(72)[1]).abs() < 1e-9);
+}

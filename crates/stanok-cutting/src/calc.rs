@@ -444,10 +444,8 @@ fn feed(
             "table 2.4: S = {}-{} mm/rev; S = {} mm/rev (the lower bound)",
             row.s[0], row.s[1], row.s[0]
         ));
-        step.defaults.push(
-            "a table feed range gives its lower bound (--feed chooses another)"
-                .into(),
-        );
+        step.defaults
+            .push("a table feed range gives its lower bound (--feed chooses another)".into());
         if input.operation != Operation::Longitudinal {
             step.lines.push(
                 "note: table 2.4 is for external longitudinal turning; used here as the nearest data"

@@ -125,21 +125,46 @@ fn check_one(
     }
     eprintln!("{name}: {errors} error(s), {warnings} warning(s)");
     if choice.guessed {
-        let hint = dialect::hint_for(choice.dialect, errors, |d| {
-            diagnose(program, d, machine, args, Some(TRIAL_BLOCKS))
-                .map(|(_, n)| n)
-                .unwrap_or(usize::MAX)
-        });
-        if let Some((better, n)) = hint {
-            eprintln!(
-                "hint: read as {} ({}) the program has {n} error(s) instead of {errors}: try --dialect {}",
-                better.id(),
-                control_name(better),
-                better.id()
-            );
-        }
+        say_hint(program, choice.dialect, errors, machine, args);
     }
     Ok(1)
+}
+
+/// After `errors` errors from a guessed `dialect`: reads the program in the other dialects and,
+/// if one fits far better, says so on stderr.
+pub fn say_hint(
+    program: &Program,
+    dialect: Dialect,
+    errors: usize,
+    machine: &MachineData,
+    args: &ProgramArgs,
+) {
+    let hint = dialect::hint_for(dialect, errors, |d| {
+        diagnose(program, d, machine, args, Some(TRIAL_BLOCKS))
+            .map(|(_, n)| n)
+            .unwrap_or(usize::MAX)
+    });
+    if let Some((better, n)) = hint {
+        eprintln!(
+            "hint: read as {} ({}) the program has {n} error(s) instead of {errors}: try --dialect {}",
+            better.id(),
+            control_name(better),
+            better.id()
+        );
+    }
+}
+
+/// A run stopped at an error of a guessed dialect: counts the program's errors as `check` would
+/// and, if they are many, hints at a dialect that fits better.
+pub fn hint_after_run(
+    program: &Program,
+    dialect: Dialect,
+    machine: &MachineData,
+    args: &ProgramArgs,
+) {
+    if let Ok((_, errors)) = diagnose(program, dialect, machine, args, Some(TRIAL_BLOCKS)) {
+        say_hint(program, dialect, errors, machine, args);
+    }
 }
 
 /// The control a dialect belongs to, for hints.

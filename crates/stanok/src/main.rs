@@ -426,6 +426,9 @@ fn run_program(
             diagnostics::render(&program, d);
         }
         write_stdout(&report::text(&name, dialect, &rep, failure.as_ref()))?;
+        if failure.is_some() && choice.guessed {
+            check::hint_after_run(&program, dialect, &machine_for_hints, program_args);
+        }
     }
     Ok(if failure.is_some() {
         program::program_error()

@@ -107,6 +107,10 @@ fn many_errors_after_a_guess_name_the_likely_dialect() {
             && hint.ends_with("try --dialect balt"),
         "{hint}"
     );
+    // run stops at the first error and gives the same hint.
+    let (code, _, err) = stanok(&["run", "--machine", "5axis-cvu-tt", &f]);
+    assert_eq!(code, 1);
+    assert!(err.contains("hint: read as balt (Balt-System)"), "{err}");
     // Given the dialect, it is clean; given a wrong one on purpose, no hint second-guesses it.
     assert_eq!(
         stanok(&[

@@ -15,7 +15,8 @@ cd "$(dirname "$0")/.."
 blocks="${1:-10000000}"
 out="target/plot-memory"
 mkdir -p "$out"
-cargo build --release -q -p stanok -p stanok-interp --examples
+cargo build --release -q -p stanok
+cargo build --release -q -p stanok-interp --example gen_program
 ./target/release/examples/gen_program "$blocks" > "$out/stadium.ngc"
 awk -v n="$blocks" 'BEGIN {
   print "G21 G17 G90 F3000"; print "G0 X0 Y0 Z1"; print "G1 Z-1";

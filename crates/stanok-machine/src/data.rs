@@ -127,10 +127,11 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
 
 /// The names of the built-in machines (`--machine NAME`), in the order `stanok machine list`
 /// shows them; [`MachineData::builtin`] knows each.
-pub const BUILTIN_MACHINES: [&str; 9] = [
+pub const BUILTIN_MACHINES: [&str; 10] = [
     "mill",
     "lathe",
     "beavermill",
+    "linuxcnc",
     "5axis-bc-head",
     "5axis-ab-head",
     "5axis-ac-table",
@@ -602,6 +603,7 @@ impl MachineData {
                 "beavermill",
             )
             .ok(),
+            "linuxcnc" => Self::linuxcnc(),
             _ => BUILTIN_FIVE_AXIS
                 .iter()
                 .find(|(n, _)| *n == name)
@@ -613,6 +615,22 @@ impl MachineData {
     /// drawings (Z right, X up).
     pub fn is_lathe(&self) -> bool {
         self.axes.iter().any(|a| a.transverse) && !self.axes.iter().any(|a| a.name == 'Y')
+    }
+
+    /// The built-in `linuxcnc` machine: LinuxCNC's standalone `rs274` as a machine (X Y Z A B C,
+    /// inch LinuxCNC units, the tool table of LinuxCNC's sim configurations), so that `stanok canon
+    /// --machine linuxcnc` prints what `rs274 -g` prints (`machines/linuxcnc.toml`).
+    pub fn linuxcnc() -> Option<MachineData> {
+        let mut m =
+            Self::from_toml_str(include_str!("../../../machines/linuxcnc.toml"), "linuxcnc")
+                .ok()?;
+        m.control.tools = crate::linuxcnc::parse_tool_table(
+            include_str!("../../../machines/linuxcnc-sim.tbl"),
+            "linuxcnc-sim.tbl",
+            m.linuxcnc_units,
+        )
+        .ok()?;
+        Some(m)
     }
 
     /// The machine's kinematics, built: None for a Cartesian machine.

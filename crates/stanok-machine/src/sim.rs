@@ -391,7 +391,7 @@ impl SimMachine {
                 }
             }
             Canon::SetSurfaceSpeedLaw { law: Some(_), .. } => self.report.surface_speed = true,
-            Canon::ChangeTool { tool } => {
+            Canon::ChangeTool { tool, .. } => {
                 if !self.report.tools_used.contains(tool) {
                     self.report.tools_used.push(*tool);
                 }

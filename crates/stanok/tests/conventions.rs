@@ -287,9 +287,9 @@ fn no_help_text_or_message_talks_about_issues() {
         texts.push(out);
     }
     texts.push(stanok(&["man"]).1);
-    // An unsupported code's note (M60 in RS274/NGC).
-    let m60 = temp("m60.ngc", "M60\nM2\n");
-    texts.push(stanok(&["check", &m60]).2);
+    // An unsupported code's note (the UVW plane G17.1 in RS274/NGC).
+    let uvw = temp("uvw-plane.ngc", "G17.1\nM2\n");
+    texts.push(stanok(&["check", &uvw]).2);
     for t in &texts {
         let lower = t.to_lowercase();
         assert!(!lower.contains("issue"), "{t}");

@@ -264,7 +264,12 @@ fn issue22_failing_balt_block_after_bsp_or_esp_leaves_the_spline_buffer() {
         o
     };
     // Opening a definition, opening one while another is open, adding nodes, closing it.
-    check(opts(), "G1 F1000\n", "(BSP,X,Y,0) G1 X0 Y0 Z0 Q5", RS274_UNUSED);
+    check(
+        opts(),
+        "G1 F1000\n",
+        "(BSP,X,Y,0) G1 X0 Y0 Z0 Q5",
+        RS274_UNUSED,
+    );
     let open = "G1 F1000\n(BSP,X,Y,0)\nG1 X0 Y0 Z0\nG06 X1 Y1 Z0\nX2 Y0 Z0\n";
     check(opts(), open, "G06 X3 Y1 Z0 Q5", RS274_UNUSED);
     check(opts(), open, "(ESP) Q5", RS274_UNUSED);

@@ -13,8 +13,11 @@ use metamorphic::*;
 use proptest::prelude::*;
 
 fn base(segs: &[Seg]) -> Result<Vec<Mv>, TestCaseError> {
-    motions(&program(segs, Form::BASE, ""), options())
-        .map_err(|d| TestCaseError::fail(format!("base program refused: {d}")))
+    let want = motions(&program(segs, Form::BASE, ""), options())
+        .map_err(|d| TestCaseError::fail(format!("base program refused: {d}")))?;
+    // The stream compared is the path itself, not an empty one.
+    prop_assert_eq!(want.len(), segs.len(), "one motion per segment");
+    Ok(want)
 }
 
 fn run(segs: &[Seg], form: Form, header: &str) -> Result<Vec<Mv>, TestCaseError> {

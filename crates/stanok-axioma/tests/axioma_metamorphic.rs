@@ -272,3 +272,39 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: cases(), .. ProptestConfig::default() })]
+
+    /// A drilling cycle (G81, G83) called at generated holes moves with a zero offset, a rotation
+    /// and a mirror: every feed and rapid of every call, by the map. (A scale is not claimed: which
+    /// parameters a scale transforms is spec axioma-3 §6's table, a law of its own.)
+    #[test]
+    fn drilling_cycles_move_with_the_frame(
+        holes in proptest::collection::vec((-60i32..60, -60i32..60), 1..6),
+        peck in any::<bool>(), which in 0usize..3, tenths in -3600i32..3600,
+    ) {
+        let q = tenths as f64 / 10.0;
+        let (s, c) = q.to_radians().sin_cos();
+        let (header, map): (String, Box<dyn Fn([f64; 3]) -> [f64; 3]>) = match which {
+            0 => ("G193\nG194 X12.5 Y-7.25\n".into(), Box::new(|p| [p[0] + 12.5, p[1] - 7.25, p[2]])),
+            1 => (format!("G273 Q{q} I0 J0\n"), Box::new(move |p| [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]])),
+            _ => ("G73 Y-1 I0 J0\n".into(), Box::new(|p| [p[0], -p[1], p[2]])),
+        };
+        let program = |header: &str| {
+            let mut t = format!("G71\nG17 G90 G191 G94 F500 G98\n{header}G00 X0 Y0 Z0\nG00 Z20\n");
+            let cycle = if peck { "G83 Q3=500 Q5=-12 Q6=0.5 Q7=4" } else { "G81 Q3=500 Q5=-8 Q6=0.5" };
+            for (i, (x, y)) in holes.iter().enumerate() {
+                let g = if i == 0 { format!("{cycle} ") } else { String::new() };
+                t.push_str(&format!("{g}X{x} Y{y} Z0\n"));
+            }
+            t.push_str("G80\nM30\n");
+            t
+        };
+        let (a, b) = (program(""), program(&header));
+        let want = motions(&a, options()).map_err(|d| TestCaseError::fail(format!("{d}\n{a}")))?;
+        let got = motions(&b, options()).map_err(|d| TestCaseError::fail(format!("{d}\n{b}")))?;
+        prop_assert!(want.len() > holes.len(), "the cycles moved");
+        assert_transformed(&want, &got, &Transform { point: &*map, flips: false })?;
+    }
+}

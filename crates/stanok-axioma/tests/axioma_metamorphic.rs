@@ -202,6 +202,9 @@ proptest! {
     }
 }
 
+/// A law's map of points (program → moved program), boxed per case.
+type PointMap = Box<dyn Fn([f64; 3]) -> [f64; 3]>;
+
 /// The spline pieces of a program after its start line: (control points, weights, knots).
 type Piece = (Vec<[f64; 3]>, Vec<f64>, Vec<f64>);
 
@@ -250,7 +253,7 @@ proptest! {
         let kind = ["ASPLINE", "CSPLINE", "BSPLINE"][kind];
         let q = tenths as f64 / 10.0;
         let (s, c) = q.to_radians().sin_cos();
-        let (header, map): (String, Box<dyn Fn([f64; 3]) -> [f64; 3]>) = match which {
+        let (header, map): (String, PointMap) = match which {
             0 => ("G193\nG194 X12.5 Y-7.25 Z3\n".into(), Box::new(|p| [p[0] + 12.5, p[1] - 7.25, p[2] + 3.0])),
             1 => (format!("G273 Q{q} I0 J0\n"), Box::new(move |p| [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]])),
             2 => ("G173 P2.5 I0 J0 K0\n".into(), Box::new(|p| [2.5 * p[0], 2.5 * p[1], 2.5 * p[2]])),
@@ -286,7 +289,7 @@ proptest! {
     ) {
         let q = tenths as f64 / 10.0;
         let (s, c) = q.to_radians().sin_cos();
-        let (header, map): (String, Box<dyn Fn([f64; 3]) -> [f64; 3]>) = match which {
+        let (header, map): (String, PointMap) = match which {
             0 => ("G193\nG194 X12.5 Y-7.25\n".into(), Box::new(|p| [p[0] + 12.5, p[1] - 7.25, p[2]])),
             1 => (format!("G273 Q{q} I0 J0\n"), Box::new(move |p| [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]])),
             _ => ("G73 Y-1 I0 J0\n".into(), Box::new(|p| [p[0], -p[1], p[2]])),

@@ -30,13 +30,16 @@ pub struct ChannelData {
     pub edge_positions: BTreeMap<u32, [f64; 2]>,
 }
 
+/// `code = [Z, X]` entries, as written.
+type RawEdges = Spanned<BTreeMap<Spanned<String>, Spanned<[f64; 2]>>>;
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct RawChannel {
     spindle_encoder: Option<bool>,
     plc_outputs: Option<Spanned<i64>>,
     compensation_depth: Option<Spanned<i64>>,
-    edge_positions: Option<Spanned<BTreeMap<Spanned<String>, Spanned<[f64; 2]>>>>,
+    edge_positions: Option<RawEdges>,
 }
 
 fn in_range(

@@ -21,7 +21,7 @@ use super::mtable::{MState, MTable};
 use super::probe::ProbeState;
 use super::splines::SplineState;
 use super::technology::{default_table, Technology};
-use stanok_canon::{Canon, Diagnostic, Spanned};
+use stanok_canon::{Canon, Diagnostic, Span, Spanned};
 use std::collections::VecDeque;
 
 /// Machine parameters of the AxiOMA functions of spec axioma-3 that the machine data does not hold
@@ -88,6 +88,29 @@ impl Default for AxiomaMachineParams {
 }
 
 impl AxiomaMachineParams {
+    /// The channel parameters the machine data gives (issue 22 item 8): the channel's maximum
+    /// feed (G276 refuses a faster thread), and each `[channel]` key that is present — spindle
+    /// encoder, PLC outputs, compensation look-ahead depth, cutting-edge positions by code (codes
+    /// past 9 are ignored: the machine data refuses them). Absent values keep the defaults.
+    pub fn set_channel<'a>(
+        &mut self,
+        max_feed: Option<f64>,
+        spindle_encoder: Option<bool>,
+        plc_outputs: Option<u32>,
+        comp_depth: Option<u32>,
+        edge_positions: impl IntoIterator<Item = (&'a u32, &'a [f64; 2])>,
+    ) {
+        self.max_feed = max_feed.or(self.max_feed);
+        self.spindle_encoder = spindle_encoder.unwrap_or(self.spindle_encoder);
+        self.plc_outputs = plc_outputs.unwrap_or(self.plc_outputs);
+        self.comp_depth = comp_depth.map_or(self.comp_depth, |d| d as usize);
+        for (&code, &v) in edge_positions {
+            if let Some(slot) = self.edge_positions.get_mut(code as usize) {
+                *slot = v;
+            }
+        }
+    }
+
     /// Replaces the table entries the machine data gives (`[feed_table]`, `[speed_table]`:
     /// index 0…127 → value); the others keep their defaults. Indices past the table are ignored
     /// (the machine data refuses them).
@@ -206,9 +229,10 @@ impl Extension {
         held: &mut VecDeque<Spanned<Canon>>,
         queue: &mut VecDeque<Spanned<Canon>>,
         warnings: &mut Vec<Diagnostic>,
+        reported_spline: &mut Option<Span>,
     ) -> Result<(), Diagnostic> {
         self.comp.flush_at_end(warnings)?;
-        self.spline.finish(params.cspline_window)?;
+        self.spline.finish(params.cspline_window, reported_spline)?;
         self.release(held, queue);
         Ok(())
     }

@@ -166,6 +166,125 @@ pub(super) fn shift(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     Ok(())
 }
 
+/// The block-level rules of the frame functions (issue 22 items 1 and 4): G10 and G16 alone in
+/// their block, one `P` user per block.
+pub(super) fn block_rules(
+    cx: &Ctx<'_>,
+    actions: &[(crate::GAction, u32, ColSpan)],
+) -> Result<(), Diagnostic> {
+    use crate::state::MotionMode;
+    use crate::GAction;
+    for &(a, code, _) in actions {
+        match a {
+            GAction::Diameter => alone(cx, code, &crate::ctx::AXIS_WORDS)?,
+            GAction::Polar(true) => {
+                let (h, v, _) = cx.st.plane.axes();
+                let pole = [crate::ctx::AXIS_WORDS[h], crate::ctx::AXIS_WORDS[v]];
+                alone(cx, code, &pole)?
+            }
+            _ => {}
+        }
+    }
+    one_p_user(
+        cx,
+        actions.iter().filter_map(|&(a, code, _)| match a {
+            GAction::ZeroOffset(Some(_))
+            | GAction::Workpiece(Some(_))
+            | GAction::Scale(true)
+            | GAction::Motion(MotionMode::ArcCw | MotionMode::ArcCcw) => Some(code),
+            _ => None,
+        }),
+    )?;
+    Ok(())
+}
+
+/// Spec axioma-1 §9 [D] and A15: `P` is the page of G54…G59/G154…G159, the uniform factor of
+/// G173 and the extra turns of an arc, one user per block. The words layer keeps the last of two
+/// `P` words (with a warning), which would hand G54's page to G173 as a factor: so two `P` words
+/// are refused here, and so is one `P` that two of its users in the block would both read.
+pub(super) fn one_p_user(cx: &Ctx<'_>, users: impl Iterator<Item = u32>) -> Result<(), Diagnostic> {
+    let mut p_words = cx
+        .block
+        .words
+        .iter()
+        .filter(|w| w.address == stanok_syntax::Address::Letter(b'P'));
+    let Some(first) = p_words.next() else {
+        return Ok(());
+    };
+    if let Some(second) = p_words.next() {
+        return Err(cx
+            .err(
+                "axioma::p-twice",
+                format!(
+                    "two P words in one block (`{}` and `{}`): P may have one user per block",
+                    cx.block.slice(first.span),
+                    cx.block.slice(second.span)
+                ),
+                second.span,
+            )
+            .with_note(
+                "P is the page of G54…G59/G154…G159 and the factor of G173: program them in separate blocks",
+            ));
+    }
+    let users: Vec<u32> = users.collect();
+    if users.len() > 1 {
+        return Err(cx
+            .err(
+                "axioma::p-ambiguous",
+                format!(
+                    "`{}` could belong to {} or {}: P may have one user per block",
+                    cx.block.slice(first.span),
+                    crate::g_name(users[0]),
+                    crate::g_name(users[1])
+                ),
+                first.span,
+            )
+            .with_note("program the functions that read P in separate blocks"));
+    }
+    Ok(())
+}
+
+/// G10 (spec §14) and G16 (§17.4) are programmed "in a separate block without any other codes":
+/// [D] besides the function, N and comments, only the letters in `allowed` (G10: axis words, the
+/// mode selectors; G16: the two pole coordinates of the plane) — anything else is refused, so that
+/// `G10 X1 F100 G01` cannot set a feed or a motion mode as a side effect (issue 22 item 4).
+pub(super) fn alone(cx: &Ctx<'_>, code: u32, allowed: &[u8]) -> Result<(), Diagnostic> {
+    use stanok_syntax::{Address, Value};
+    let name = crate::g_name(code);
+    for w in &cx.block.words {
+        let ok = match w.address {
+            Address::Letter(b'G') => {
+                matches!(w.value, Value::Number(v) if (v * 10.0).round() as u32 == code)
+            }
+            Address::Letter(l) => allowed.contains(&l),
+            _ => false,
+        };
+        if !ok {
+            return Err(cx
+                .err(
+                    "axioma::not-alone",
+                    format!(
+                        "{name} is programmed in a block of its own: `{}` cannot be in it",
+                        cx.block.slice(w.span)
+                    ),
+                    w.span,
+                )
+                .with_note(format!(
+                    "move `{}` to the block before or after",
+                    cx.block.slice(w.span)
+                )));
+        }
+    }
+    if cx.block.message.is_some() {
+        return Err(cx.err(
+            "axioma::not-alone",
+            format!("{name} is programmed in a block of its own: MSG cannot be in it"),
+            cx.whole(),
+        ));
+    }
+    Ok(())
+}
+
 /// The page of a G54…G59 / G154…G159 block: `P1`…`P32`, default 1.
 fn page(cx: &mut Ctx<'_>) -> Result<u8, Diagnostic> {
     match cx.words.take(b'P') {

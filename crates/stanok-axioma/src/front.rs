@@ -39,6 +39,10 @@ pub struct AxiomaPart {
     /// `MSG(expr)`: the message text the high-level language evaluated for this block; `None`
     /// outside a block that has one.
     pub message: Option<String>,
+    /// The spline whose error was reported (span of its first point): diagnostic bookkeeping that
+    /// survives the failed block's rollback on purpose, so that a run continuing after errors
+    /// reports a bad spline once (`SplineState::flush_once`).
+    pub reported_spline: Option<stanok_canon::Span>,
 }
 
 impl Hooks for AxiomaPart {
@@ -111,6 +115,7 @@ impl Axioma {
                 ext: Extension::default(),
                 params,
                 message: None,
+                reported_spline: None,
             },
             hll: None,
             owner: None,
@@ -261,6 +266,7 @@ impl FrontEnd for Axioma {
             &mut core.staging,
             &mut core.queue,
             &mut core.warnings,
+            &mut self.part.reported_spline,
         )?;
         self.hll_end_of_input(core)
     }

@@ -29,6 +29,7 @@ mod frames;
 mod front;
 mod hll;
 mod home;
+mod message;
 mod mfunc;
 mod modes;
 mod motion;
@@ -199,7 +200,7 @@ fn group_key(a: GAction, _code: u32) -> u32 {
     }
 }
 
-use cutter_comp::Comp;
+use cutter_comp::{forbidden_under_comp, Comp};
 
 use mfunc::{m_function, run_m, set_speed, MFunction, MWords};
 use motion::{dwell_block, motion};
@@ -394,10 +395,11 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let comp_active = cx.fe.ext.comp.is_active();
 
     // 1. Message.
-    if let Some(text) = cx.block.message {
-        let text = cx.block.slice(text).to_string();
-        cx.out.push(Canon::Message { text });
-    } else if let Some(text) = cx.fe.message.take() {
+    let text = match cx.block.message {
+        Some(text) => Some(cx.block.slice(text).to_string()),
+        None => cx.fe.message.take(),
+    };
+    if let Some(text) = text.and_then(|t| message::displayed(cx, t)) {
         cx.out.push(Canon::Message { text });
     }
     // 2. Modal G codes.
@@ -548,6 +550,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             )
         })
         .count();
+    frames::block_rules(cx, &actions)?;
     if frame_functions > 1 {
         let (_, _, span) = actions[actions.len() - 1];
         return Err(cx.err(
@@ -688,10 +691,14 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             mw.speed_done[spindle as usize] = true;
         }
     }
-    if let Some((_, _, span)) = actions
-        .iter()
-        .find(|(a, _, _)| matches!(a, GAction::Css(true)))
-    {
+    // G96 needs a cutting speed: stored earlier, stored just above, or this block's S that its
+    // spindle function (`G96 S100 M3`, issue 22 item 2) sets below.
+    if let (Some((_, _, span)), false) = (
+        actions
+            .iter()
+            .find(|(a, _, _)| matches!(a, GAction::Css(true))),
+        mw.speed.iter().any(Option::is_some),
+    ) {
         technology::check_css_speed(cx, *span)?;
     }
     technology::refresh(cx);
@@ -786,14 +793,4 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
     Comp::end_of_block(cx)?;
     Ok(outcome)
-}
-
-/// A word the manual forbids while radius compensation is active (spec axioma-3 §4.4).
-fn forbidden_under_comp(cx: &Ctx<'_>, what: &str, at: ColSpan) -> Diagnostic {
-    cx.err(
-        "axioma::forbidden-under-compensation",
-        format!("{what} is not allowed while radius compensation (G41/G42/G143/G144) is active"),
-        at,
-    )
-    .with_note("switch compensation off with G40 (and its exit block) first")
 }

@@ -7,7 +7,8 @@
 //!
 //! * `MTable::generic()` — table 2.2: program control, spindles 1–4 (M<x>03/04/05/13/14/19/70),
 //!   M902/M903/M905, coolant M07/M08/M09, tool change M06/M66, chuck M21/M22, chip conveyor
-//!   M50/M51, guard M54/M55, batch probe M910/M911.
+//!   M50/M51, guard M54/M55, batch probe M910/M911, quill M16/M17, air M108/M109, abrasive
+//!   M110, jet pressure M111/M112 and M999.
 //! * `MTable::beavermill()` — the generic table with the BeaverMill BVR B-110 groups of table 8.1:
 //!   M_Cool_AirCool (M7/M8/M9/M10/M708/M710, replacing the generic coolant group),
 //!   M_ProbeSwitch (M73/M74/M75) and MSwivelRotaryTable (M115/M116/M120–M123).
@@ -240,6 +241,21 @@ impl MTable {
         let probe = t.group("M_BatchProbe", 8, Some(911), false);
         t.add(910, probe, Prefix, MKind::BatchProbe { on: true });
         t.add(911, probe, Postfix, MKind::BatchProbe { on: false });
+        // The rest of table 2.2 (issue 22 item 3): functions the CNC only passes to the PLC. The
+        // texts of M16/M17, M108/M109 and M111/M112 are identical in the manual (A27); the timing
+        // and defaults are the table's. M999 has no meaning given: a PLC function of M_PrgCtrl.
+        let quill = t.group("M_Clamp", 11, None, false);
+        t.add(16, quill, Postfix, MKind::Machine);
+        t.add(17, quill, Prefix, MKind::Machine);
+        let air = t.group("M_AirCtrl", 12, Some(109), false);
+        t.add(108, air, Prefix, MKind::Machine);
+        t.add(109, air, Postfix, MKind::Machine);
+        let abrasive = t.group("M_AbrasiveCtrl", 13, None, false);
+        t.add(110, abrasive, Postfix, MKind::Machine);
+        let pressure = t.group("M_PressureCtrl", 14, Some(112), false);
+        t.add(111, pressure, Prefix, MKind::Machine);
+        t.add(112, pressure, Postfix, MKind::Machine);
+        t.add(999, prg, Postfix, MKind::Machine);
         t
     }
 

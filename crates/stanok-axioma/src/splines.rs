@@ -229,17 +229,50 @@ impl SplineState {
         } else {
             self.emit_ready(true, cspline_window);
         }
+        self.drop_points();
+        Ok(())
+    }
+
+    fn drop_points(&mut self) {
         self.points.clear();
         self.starts = true;
         self.emitted = 0;
         self.tangent = None;
-        Ok(())
+    }
+
+    /// [`flush`](Self::flush), reporting a spline's error once (issue 22 item 10). A run that
+    /// continues after an error (`stanok check`) rolls the failed block back, buffer included, so
+    /// the next breaking block — and the end of input — would find the same bad spline again.
+    /// `reported` (kept outside the rolled-back state) names the spline whose error was reported,
+    /// by the span of its first point; meeting it again drops the spline silently.
+    pub fn flush_once(
+        &mut self,
+        cspline_window: usize,
+        at: Span,
+        reported: &mut Option<Span>,
+    ) -> Result<(), Diagnostic> {
+        let first = self.points.front().map(|p| p.tag.span);
+        match self.flush(cspline_window, at) {
+            Err(_) if first.is_some() && *reported == first => {
+                self.drop_points();
+                Ok(())
+            }
+            Err(e) => {
+                *reported = first;
+                Err(e)
+            }
+            Ok(()) => Ok(()),
+        }
     }
 
     /// End of the program text.
-    pub fn finish(&mut self, cspline_window: usize) -> Result<(), Diagnostic> {
+    pub fn finish(
+        &mut self,
+        cspline_window: usize,
+        reported: &mut Option<Span>,
+    ) -> Result<(), Diagnostic> {
         let at = self.points.back().map(|p| p.tag.span).unwrap_or_default();
-        self.flush(cspline_window, at)
+        self.flush_once(cspline_window, at, reported)
     }
 
     fn emit_nurbs(&mut self, at: Span) -> Result<(), Diagnostic> {
@@ -381,7 +414,7 @@ pub(super) fn before_motion(
     let st = &mut cx.fe.ext.spline;
     let new_kind = w.keyword.map(|k| k.0).filter(|k| st.kind != Some(*k));
     if st.kind.is_some() && (other_motion || breaks || w.splbreak || new_kind.is_some()) {
-        st.flush(window, at)?;
+        st.flush_once(window, at, &mut cx.fe.reported_spline)?;
     }
     if other_motion {
         cx.fe.ext.spline.kind = None;
@@ -502,7 +535,7 @@ pub(super) fn point(cx: &mut Ctx<'_>, span: ColSpan, w: &SplineWords) -> Result<
     };
     if same_xyz && kind != SplineKind::Nurbs {
         // A zero-length chord: the spline is split here (spec §2.4.1 PROPOSAL).
-        st.flush(window, cx.block.span())?;
+        st.flush_once(window, cx.block.span(), &mut cx.fe.reported_spline)?;
         let moves = (0..9).any(|k| (start.to_array()[k] - end_m.to_array()[k]).abs() > 1e-12);
         if moves {
             let feed = match rule {

@@ -75,6 +75,23 @@ pub(crate) fn arc(
     let (a, b, _) = plane.axes();
     let s = cx.st.program_position().to_array();
     let ccw = (cx.st.motion == MotionMode::ArcCcw) != cx.fe.modes.plane_reversed;
+    // R+ is an arc of at most 179.999° (§6.5): a chord longer than 2r·sin(179.999°/2) — a half
+    // circle, within the tolerance of the radius check — needs R− (issue 22 item 16).
+    let half_chord = 0.5 * (end[a] - s[a]).hypot(end[b] - s[b]);
+    if radius > 0.0 && half_chord > radius * (179.999f64 / 2.0).to_radians().sin() {
+        return Err(cx
+            .err(
+                "balt::arc",
+                format!(
+                    "R{}: the arc sweeps 180° or more, which R+ cannot program",
+                    r.v
+                ),
+                r.span,
+            )
+            .with_note(
+                "R+ programs arcs of up to 179.999°, R− those of 180° to 359.999°: write R-",
+            ));
+    }
     let centre = stanok_geom::centre_from_radius(
         [s[a], s[b]],
         [end[a], end[b]],

@@ -13,9 +13,11 @@
 //!   re-expresses the position as the tip the axes hold: nothing moves (§6.1).
 //! * In CVU=1 the tip follows the programmed line in part coordinates while the rotary axes move
 //!   linearly (the kin stage turns every servo setpoint into machine axes); an IJK block's angles
-//!   come from `FiveAxis::orient` (both solutions, travel limits, least motion, continuity; a
-//!   singular pose keeps the free axis, §5.7–§5.8).
-//! * `CVU=0` switches back: the position is the machine axes again; nothing moves.
+//!   come from `FiveAxis::orient_least_travel` (both solutions, travel limits, least
+//!   |Δθo| + |Δθi|; a singular pose keeps the free axis, §5.7–§5.8).
+//! * `CVU=0` (the tool along Z again, AMB-11) switches back: the position is the machine axes
+//!   again; nothing moves. Outside CVU the corrector's length is a 3-axis length offset along Z
+//!   (§5.1), so a programmed Z means the tip before, during and after CVU=1.
 //!
 //! * `CVU=3` (positional machining in a tilted plane, §5.10, §6.8): tool-centre-point control as
 //!   in CVU=1, and X Y Z are coordinates of the local frame `(LCS,1,X…,Y…,Z…,A…,B…,C…)`: part
@@ -296,6 +298,9 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                     .get(corrector)
                     .and_then(|t| t.edges.first())
                     .map_or(0.0, |e| e.length[0] + e.length_wear[0]);
+                if !cx.fe.modes.cvu {
+                    set_length_offset(cx, cx.fe.modes.length);
+                }
             }
             3 | 4 => cx.out.push(Canon::StartSpindle {
                 spindle: 0,
@@ -336,6 +341,20 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     Ok(outcome)
 }
 
+/// 3-axis tool length compensation along Z (§5.1): with the rotary axes at 0 the tip is the gauge
+/// point − L·e_z, so the programmed Z is the tip under CVU=0 as under CVU=1. The machine
+/// position stays; the program position follows the new offset.
+fn set_length_offset(cx: &mut Ctx<'_>, length: f64) {
+    let offset = Pose {
+        z: length,
+        ..Pose::ZERO
+    };
+    if *cx.st.frame.tlo() != offset {
+        cx.st.frame.set_tlo(offset);
+        cx.out.push(Canon::UseToolLengthOffset { offset });
+    }
+}
+
 /// CVU=1 / CVU=0 (§6.1): nothing moves, the position changes meaning.
 fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
     let base = kinematics(cx, span)?;
@@ -366,6 +385,9 @@ fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
                 active: true,
                 tool_offset: c0,
             });
+            // TCP takes the length over from the 3-axis offset (c0): the tip stays where the
+            // program had it, so nothing jumps (§5.1, issue 22 item 15).
+            set_length_offset(cx, 0.0);
             cx.st.position = tip;
             cx.fe.modes.cvu = true;
         }
@@ -374,13 +396,29 @@ fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
                 return Ok(());
             }
             let joints = base
+                .clone()
                 .with_tool_offset(c0)
                 .inverse(&cx.st.position)
                 .map_err(|e| cx.err("balt::kinematics", e.to_string(), span))?;
+            // §6.1 [PROPOSED], AMB-11 (issue 22 item 13): CVU=0 needs the tool along Z, as CVU=1
+            // does; else "Format error" — the 3-axis position would not be the programmed tip.
+            if (base.tool_vector(&Pose::from_array(joints))[2] - 1.0).abs() > 1e-9 {
+                return Err(cx
+                    .err(
+                        "balt::cvu-precondition",
+                        "Format error: CVU=0 needs the tool along Z, pointing to −Z",
+                        span,
+                    )
+                    .with_note(
+                        "turn the rotary axes back to the tool's zero orientation before CVU=0",
+                    ));
+            }
             cx.out.push(Canon::SetToolCentrePoint {
                 active: false,
                 tool_offset: [0.0; 3],
             });
+            // Back to 3-axis length compensation (§5.1): the programmed Z is the tip again.
+            set_length_offset(cx, cx.fe.modes.length);
             cx.st.position = Pose::from_array(joints);
             cx.fe.modes.cvu = false;
             cx.fe.modes.cvu3 = false;
@@ -450,7 +488,7 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
         }
         let kin = kinematics(cx, at)?;
         let oriented = kin
-            .orient([v[0] / len, v[1] / len, v[2] / len], &cx.st.position)
+            .orient_least_travel([v[0] / len, v[1] / len, v[2] / len], &cx.st.position)
             .map_err(|err| {
                 cx.err(
                     "balt::orientation-unreachable",

@@ -133,8 +133,12 @@ fn plan_passes(depth: &DepthInput) -> Vec<(PassKind, f64)> {
             .iter()
             .enumerate()
             .map(|(i, share)| {
+                // Lab 1: rough/finish 0.7/0.3, rough/semi-finish/finish 0.7/0.2/0.1 — the
+                // last pass finishes, the ones between semi-finish (issue 22 item 19).
                 let kind = if i == 0 {
                     PassKind::Rough
+                } else if i + 1 < split.len() {
+                    PassKind::SemiFinish
                 } else {
                     PassKind::Finish
                 };

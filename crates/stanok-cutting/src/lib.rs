@@ -159,7 +159,9 @@ impl Operation {
 pub enum PassKind {
     /// Roughing: feed from table 2.4.
     Rough,
-    /// Finishing (and semi-finishing): feed from table 2.5.
+    /// Semi-finishing: the middle pass of a three-way split (0.7/0.2/0.1); feed from table 2.5.
+    SemiFinish,
+    /// Finishing: feed from table 2.5.
     Finish,
 }
 
@@ -174,7 +176,8 @@ pub enum DepthInput {
         /// Roughing or finishing.
         pass: PassKind,
     },
-    /// An allowance per side split into passes (first rough, the rest finish).
+    /// An allowance per side split into passes: rough, then finish; of three passes the middle one
+    /// is semi-finish.
     Allowance {
         /// Allowance per side, mm.
         allowance_mm: f64,

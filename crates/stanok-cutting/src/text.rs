@@ -20,6 +20,7 @@ pub fn text(c: &Calculation) -> String {
     for p in &c.passes {
         let kind = match p.kind {
             PassKind::Rough => "rough",
+            PassKind::SemiFinish => "semi-finish",
             PassKind::Finish => "finish",
         };
         let _ = writeln!(

@@ -311,3 +311,30 @@ fn tables_are_well_formed() {
         assert!(g.class == "carbide" || g.class == "hss");
     }
 }
+
+/// Issue 22 item 19: of the split 0.7/0.2/0.1 the middle pass is semi-finishing (Lab 1), with the
+/// finishing feed table 2.5; 0.7/0.3 stays rough/finish.
+#[test]
+fn issue22_three_way_split_labels_the_middle_pass_semi_finish() {
+    let mut input = steel_part();
+    input.depth = DepthInput::Allowance {
+        allowance_mm: 3.0,
+        split: vec![0.7, 0.2, 0.1],
+    };
+    let c = calculate(&Tables::lab(), &input).unwrap();
+    let kinds: Vec<PassKind> = c.passes.iter().map(|p| p.kind).collect();
+    assert_eq!(
+        kinds,
+        [PassKind::Rough, PassKind::SemiFinish, PassKind::Finish]
+    );
+    close("semi t", c.passes[1].depth_mm, 0.6, 1e-12);
+    close("finish t", c.passes[2].depth_mm, 0.3, 1e-12);
+    // Semi-finish takes its feed from table 2.5, like finishing.
+    assert_eq!(
+        c.passes[1].feed_table_range_mm_rev.is_some(),
+        c.passes[2].feed_table_range_mm_rev.is_some()
+    );
+    let text = stanok_cutting::text(&c);
+    assert!(text.contains("== pass 2 (semi-finish)"), "{text}");
+    assert!(text.contains("== pass 3 (finish)"), "{text}");
+}

@@ -254,6 +254,28 @@ fn balt_spline_buffer_and_cvu() {
     check(opts(), "G1 F1000\n", "CVU=1 G1 X1 Q5", RS274_UNUSED);
 }
 
+/// Issue 22 item 20: a Balt block that fails after `(BSP,…)` or `(ESP)` leaves the spline
+/// buffer as it was (it used to live in the AxiOMA state, backed up only for AxiOMA).
+#[test]
+fn issue22_failing_balt_block_after_bsp_or_esp_leaves_the_spline_buffer() {
+    let opts = || {
+        let mut o = InterpOptions::new(Dialect::Balt);
+        o.five_axis = Some(five_axis());
+        o
+    };
+    // Opening a definition, opening one while another is open, adding nodes, closing it.
+    check(
+        opts(),
+        "G1 F1000\n",
+        "(BSP,X,Y,0) G1 X0 Y0 Z0 Q5",
+        RS274_UNUSED,
+    );
+    let open = "G1 F1000\n(BSP,X,Y,0)\nG1 X0 Y0 Z0\nG06 X1 Y1 Z0\nX2 Y0 Z0\n";
+    check(opts(), open, "G06 X3 Y1 Z0 Q5", RS274_UNUSED);
+    check(opts(), open, "(ESP) Q5", RS274_UNUSED);
+    check(opts(), open, "(ESP) G1 X4 Y0 Z0 Q5", RS274_UNUSED);
+}
+
 #[test]
 fn mazatrol_tool_length_and_tool_tip_control() {
     let opts = || {

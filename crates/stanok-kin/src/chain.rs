@@ -461,6 +461,50 @@ impl FiveAxis {
             .ok_or(KinError::OrientationUnreachable)
     }
 
+    /// The Balt-System CVU choice between the solutions (cvu-five-axis §5.8): every branch and
+    /// whole-turn variant within the travel limits is a candidate; the one with the least
+    /// |Δθo| + |Δθi| wins, on a tie (1e-9°) the smaller |Δθo| (θo: the outer axis — the head's
+    /// first, else the table's first), then the first solution S1. Unlike [`Self::orient`]
+    /// (AxiOMA's least time), the axes' speeds play no part.
+    pub fn orient_least_travel(&self, t: [f64; 3], current: &Pose) -> Result<Pose, KinError> {
+        const TIE: f64 = 1e-9;
+        let (su, sv) = self
+            .solver_axes()
+            .ok_or_else(|| KinError::Degenerate("orientation needs two rotary axes".into()))?;
+        let u_is_outer = match (self.head.as_slice(), self.table.as_slice()) {
+            ([h1, _], []) => std::ptr::eq(h1, su.axis),
+            ([], [w1, _]) => std::ptr::eq(w1, su.axis),
+            _ => std::ptr::eq(self.table.first().unwrap_or(su.axis), su.axis),
+        };
+        let cur = current.to_array();
+        // (Σ|Δ|, |Δθo|): the first candidate met keeps a tie, and branches come S1 first.
+        let mut best: Option<([f64; 9], (f64, f64))> = None;
+        for branch in self.branches(t, current)? {
+            let cand_u = unwrapped_candidates(su.axis, branch[0].1, cur[su.axis.slot()]);
+            let cand_v = unwrapped_candidates(sv.axis, branch[1].1, cur[sv.axis.slot()]);
+            for &tu in &cand_u {
+                for &tv in &cand_v {
+                    let du = (tu - cur[su.axis.slot()]).abs();
+                    let dv = (tv - cur[sv.axis.slot()]).abs();
+                    let key = (du + dv, if u_is_outer { du } else { dv });
+                    let better = match &best {
+                        None => true,
+                        Some((_, k)) if (key.0 - k.0).abs() > TIE => key.0 < k.0,
+                        Some((_, k)) => key.1 < k.1 - TIE,
+                    };
+                    if better {
+                        let mut p = cur;
+                        p[su.axis.slot()] = tu;
+                        p[sv.axis.slot()] = tv;
+                        best = Some((p, key));
+                    }
+                }
+            }
+        }
+        best.map(|(p, _)| Pose::from_array(p))
+            .ok_or(KinError::OrientationUnreachable)
+    }
+
     /// How fast each joint moves per mm of path over a sampled segment: the largest
     /// |Δjoint| / Δs between consecutive samples (`samples[i]` at path length `i·length/(n−1)`).
     /// The planner divides each joint's velocity limit by it to bound the path speed.

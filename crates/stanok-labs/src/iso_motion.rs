@@ -3,7 +3,7 @@
 
 use super::iso::{Exec, Gs};
 use super::iso_arcs::{arc, ArcInput};
-use super::iso_words::{axis_index, code, correction, dimension, err, number, Pending};
+use super::iso_words::{axis_index, checked_dimension, code, correction, err, number, Pending};
 use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span};
 use stanok_syntax::labs::words::{Item, Word};
 use stanok_syntax::Dialect;
@@ -50,7 +50,7 @@ impl Exec<'_> {
                 ));
             }
             let n = number(w, self.st)?;
-            v.push((axis, dimension(self.dialect, n), *w));
+            v.push((axis, checked_dimension(self.dialect, n, w)?, *w));
         }
         Ok(v)
     }
@@ -116,7 +116,20 @@ impl Exec<'_> {
                     after_g4x = true;
                 } else if w.letter == 'D' && after_g4x {
                     radius_d = Some(w.span);
-                    self.st.radius_comp.1 = Some(code(w, self.st)? as u32);
+                    let d = code(w, self.st)? as u32;
+                    self.st.radius_comp.1 = Some(d);
+                    // An unset corrector is radius 0: say so, as AxiOMA does for an unknown
+                    // tool (issue 22 item 18).
+                    if !self.opts.labs.correctors.contains_key(&d) {
+                        self.warnings.push(
+                            Diagnostic::warning(
+                                "lab::unset-corrector",
+                                format!("corrector D{d} is not set: the compensation radius is 0"),
+                                w.span,
+                            )
+                            .with_note(format!("set it with --corrector {d}=<radius mm>")),
+                        );
+                    }
                     break;
                 }
             }
@@ -257,11 +270,11 @@ impl Exec<'_> {
         let mut ijk = [None; 3];
         for (k, l) in ['I', 'J', 'K'].into_iter().enumerate() {
             if let Some(w) = self.word(l) {
-                ijk[k] = Some(dimension(self.dialect, number(w, self.st)?));
+                ijk[k] = Some(checked_dimension(self.dialect, number(w, self.st)?, w)?);
             }
         }
         let radius = match self.word('R') {
-            Some(w) => Some(dimension(self.dialect, number(w, self.st)?)),
+            Some(w) => Some(checked_dimension(self.dialect, number(w, self.st)?, w)?),
             None => None,
         };
         let plane = self.st.plane;

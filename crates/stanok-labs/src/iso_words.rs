@@ -25,6 +25,40 @@ pub fn dimension(dialect: Dialect, n: Number) -> f64 {
     }
 }
 
+/// A dimension word's value in mm (degrees), checked against GOST-20999's number format (spec
+/// §4.3, issue 22 item 17): at most 4 digits before the point and 3 after it, so ±9999.999 and a
+/// resolution of 0.001. Checked on the value — a whole number of 0.001 mm, at most 9 999 999 of
+/// them —, which covers written numbers and variables alike. The other dialects: unchecked here.
+pub fn checked_dimension(dialect: Dialect, n: Number, w: &Word) -> Result<f64, Diagnostic> {
+    let mm = dimension(dialect, n);
+    if dialect == Dialect::Gost20999 {
+        let counts = mm * 1000.0;
+        if (counts - counts.round()).abs() > 1e-6 * counts.abs().max(1.0) {
+            return Err(Diagnostic::error(
+                "lab::number-format",
+                format!(
+                    "{}: more than 3 digits after the point (resolution 0.001)",
+                    w.letter
+                ),
+                w.span,
+            )
+            .with_note("GOST 20999 words have at most 4 digits before the point and 3 after it"));
+        }
+        if counts.round().abs() > 9_999_999.0 {
+            return Err(Diagnostic::error(
+                "lab::number-format",
+                format!(
+                    "{}: {mm} is beyond ±9999.999 (4 digits before the point)",
+                    w.letter
+                ),
+                w.span,
+            )
+            .with_note("GOST 20999 words have at most 4 digits before the point and 3 after it"));
+        }
+    }
+    Ok(mm)
+}
+
 /// The number a word stands for: its own, or its variable's ([decide] §4.10: a variable keeps the
 /// number as written, point included, and is scaled where it is used like a written number).
 pub fn number(w: &Word, st: &LabState) -> Result<Number, Diagnostic> {

@@ -295,3 +295,33 @@ fn axioma_feed_and_speed_tables_are_read_checked_and_written_back() {
     // An offset file may not hold them.
     assert!(offsets_from_toml_str("[feed_table]\n1 = 2.0\n", "o.toml").is_err());
 }
+
+#[test]
+fn issue22_channel_parameters_are_read_and_checked() {
+    let m = machine(
+        "[channel]\nspindle_encoder = false\nplc_outputs = 16\ncompensation_depth = 5\n\
+         [channel.edge_positions]\n3 = [-1.0, -0.5]\n",
+    )
+    .unwrap();
+    assert_eq!(m.channel.spindle_encoder, Some(false));
+    assert_eq!(m.channel.plc_outputs, Some(16));
+    assert_eq!(m.channel.compensation_depth, Some(5));
+    assert_eq!(m.channel.edge_positions.get(&3), Some(&[-1.0, -0.5]));
+    // Absent: the control's defaults (None here).
+    let m = machine("").unwrap();
+    assert_eq!(m.channel, crate::ChannelData::default());
+    let (msg, line, _) = err("[channel]\ncompensation_depth = 1\n");
+    assert!(msg.contains("compensation_depth must be 2 … 64"), "{msg}");
+    assert_eq!(line, 2);
+    let (msg, _, _) = err("[channel]\nplc_outputs = 0\n");
+    assert!(msg.contains("plc_outputs must be 1 … 4096"), "{msg}");
+    let m = machine("[channel.edge_positions]\n0 = [0.5, 0.0]\n").unwrap();
+    assert_eq!(m.channel.edge_positions.get(&0), Some(&[0.5, 0.0]));
+    let (msg, line, _) = err("[channel]\n[channel.edge_positions]\n10 = [0.0, 0.0]\n");
+    assert!(msg.contains("code must be 0…9"), "{msg}");
+    assert_eq!(line, 3);
+    let (msg, _, _) = err("[channel]\n[channel.edge_positions]\n1 = [2.0, 0.0]\n");
+    assert!(msg.contains("−1 … 1"), "{msg}");
+    let (msg, _, _) = err("[channel]\nencoder = true\n");
+    assert!(msg.contains("unknown field"), "{msg}");
+}

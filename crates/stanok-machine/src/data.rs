@@ -11,6 +11,7 @@
 //! path_tolerance = 0.05         # mm, > 0, optional (G64 without a programmed tolerance)
 //! linuxcnc_units = "mm"         # optional, "mm" | "inch": units of LinuxCNC .tbl/.var files
 //! m_functions = "generic"       # optional, AxiOMA M-function profile: "generic" | "beavermill"
+//! [channel]                     # optional AxiOMA channel parameters (`data/channel.rs`)
 //! [[axis]]                      # one table per axis, at least one
 //! name = "X"                    # X Y Z U V W (linear, mm) or A B C (rotary, deg); no duplicates
 //! kind = "linear"               # "linear" | "rotary", must match the letter
@@ -52,8 +53,10 @@ use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
 
+mod channel;
 mod sections;
 mod stored;
+pub use channel::ChannelData;
 pub use sections::PATH_TOLERANCE;
 use sections::{rate_table, tolerance, validate_kinematics};
 pub use stored::{
@@ -100,6 +103,9 @@ pub struct MachineData {
     pub feed_table: BTreeMap<u32, f64>,
     /// AxiOMA channel spindle-speed table (`STABLE(i)`, `[speed_table]`, rev/min), as `feed_table`.
     pub speed_table: BTreeMap<u32, f64>,
+    /// AxiOMA channel parameters (`[channel]`: encoder, PLC outputs, compensation depth, edge
+    /// positions); absent keys keep the control's defaults.
+    pub channel: ChannelData,
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
@@ -213,6 +219,9 @@ struct RawFile {
     m_functions: Option<Spanned<String>>,
     feed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     speed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
+    // Not `Spanned`: toml cannot give a span to a table created implicitly by its sub-table
+    // (`[channel.edge_positions]` alone).
+    channel: Option<channel::RawChannel>,
     axis: Option<Spanned<Vec<RawAxis>>>,
     active_system: Option<Spanned<String>>,
     zero_offset: Option<Spanned<Vec<Spanned<RawZeroOffset>>>>,
@@ -397,6 +406,7 @@ impl RawFile {
             ("m_functions", at(&self.m_functions)),
             ("feed_table", at(&self.feed_table)),
             ("speed_table", at(&self.speed_table)),
+            ("channel", self.channel.as_ref().map(|_| 0..0)),
             ("axis", at(&self.axis)),
             ("active_system", at(&self.active_system)),
             ("zero_offset", at(&self.zero_offset)),
@@ -509,6 +519,10 @@ impl RawFile {
         };
         let feed_table = rate_table(&self.feed_table, "feed_table")?;
         let speed_table = rate_table(&self.speed_table, "speed_table")?;
+        let channel = match &self.channel {
+            Some(c) => c.validate()?,
+            None => ChannelData::default(),
+        };
         let Some(raw_axes) = &self.axis else {
             return Err((
                 "missing field `axis` (a machine needs at least one [[axis]])".into(),
@@ -548,6 +562,7 @@ impl RawFile {
             kinematics,
             feed_table,
             speed_table,
+            channel,
         })
     }
 }
@@ -693,6 +708,7 @@ impl MachineData {
             kinematics: None,
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
+            channel: ChannelData::default(),
         }
     }
 
@@ -727,6 +743,7 @@ impl MachineData {
             kinematics: None,
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
+            channel: ChannelData::default(),
         }
     }
 

@@ -309,6 +309,14 @@ pub fn interp_options(
     }
     opts.axioma
         .set_table_entries(&machine.feed_table, &machine.speed_table);
+    let ch = &machine.channel;
+    opts.axioma.set_channel(
+        Some(machine.max_feed),
+        ch.spindle_encoder,
+        ch.plc_outputs,
+        ch.compensation_depth,
+        &ch.edge_positions,
+    );
     opts.subroutine_path = subroutine_path.to_vec();
     // Tool-centre-point control (TRAORI, CVU, G43.4/G43.5) as on the command line.
     opts.five_axis = machine.tcp_kinematics();

@@ -125,6 +125,14 @@ pub fn options(
     }
     opts.axioma
         .set_table_entries(&machine.feed_table, &machine.speed_table);
+    let ch = &machine.channel;
+    opts.axioma.set_channel(
+        Some(machine.max_feed),
+        ch.spindle_encoder,
+        ch.plc_outputs,
+        ch.compensation_depth,
+        &ch.edge_positions,
+    );
     opts.subroutine_path = args.subroutine_path.clone();
     opts.optional_stop = !args.skip_optional_stops;
     if let Some(n) = args.max_loop_iterations {

@@ -61,13 +61,15 @@ fn machine(fat: &str, corrector: u32) -> MachineData {
     m
 }
 
+/// The fragment between `CVU=1` and `CVU=0`; the tool goes back along Z before `CVU=0` (AMB-11),
+/// as every manual example that ends with CVU=0 does.
 fn fragment(name: &str) -> String {
     let body: String = corpus_text(&format!("cvu/{name}"))
         .lines()
         .filter(|l| !l.starts_with(';'))
         .map(|l| format!("{l}\n"))
         .collect();
-    format!("T1.1 M6\nCVU=1\nG1 F1000\n{body}CVU=0\nM30\n")
+    format!("T1.1 M6\nCVU=1\nG1 F1000\n{body}G1 A0 C0\nCVU=0\nM30\n")
 }
 
 fn at_gauge(z: f64) -> Pose {
@@ -233,7 +235,7 @@ fn prohibited_codes_and_precondition() {
 
 #[test]
 fn g91_moves_xyz_only_and_angles_stay_absolute() {
-    let text = "T1.1 M6\nCVU=1\nG1 G91 X10 A20 F1000\nX10 A20\nCVU=0\n";
+    let text = "T1.1 M6\nCVU=1\nG1 G91 X10 A20 F1000\nX10 A20\nA0\nCVU=0\n";
     let r = run_on(
         text,
         Dialect::Balt,
@@ -433,7 +435,7 @@ fn oracle_o5_cvu3_tilted_plane_with_movst_2() {
 fn cvu3_movst_1_keeps_the_tip_and_lcs_errors() {
     // MOVST=1: the orientation block holds the tip at local (0,50,0) → part (12.32, 80.62, 55.36)
     // and the axes end on O5's TT row for (0,50,0).
-    let text = "T1.1 M6\nG0X0Y0Z0A0C0\n(LCS,1,X30,Y50,Z20,A45,C30)\nCVU=3\nMOVST=1\nG1XY50ZF1000\nG1A45C30\nCVU=0\nM30\n";
+    let text = "T1.1 M6\nG0X0Y0Z0A0C0\n(LCS,1,X30,Y50,Z20,A45,C30)\nCVU=3\nMOVST=1\nG1XY50ZF1000\nG1A45C30\nG1A0C0\nCVU=0\nM30\n";
     let r = run_on(
         text,
         Dialect::Balt,
@@ -622,7 +624,8 @@ fn cvu1_circle_in_yz_keeps_the_tip_on_the_arc() {
     // so at every setpoint: the tip in the plane x = 0 (1e-9 mm), within 1e-3 mm of the circle
     // y² + z² = 1 on the +Y side, and A equal to the tip's polar angle within 0.01°; the block
     // ends exactly on O4's point 4 (1e-6).
-    let text = "T1.4M6\n(DPI,Y,Z)\nCVU=1\nG1 X0 Y0 Z1 A0 C0 F60\nG2 Y0 Z-1 R-1 A180\nCVU=0\nM30\n";
+    let text =
+        "T1.4M6\n(DPI,Y,Z)\nCVU=1\nG1 X0 Y0 Z1 A0 C0 F60\nG2 Y0 Z-1 R-1 A180\nG1 A0\nCVU=0\nM30\n";
     for (fat, end) in [
         ("C,0,,,A,0,,", [0.0, 0.0, -6.0]),
         ("A,1,,,C,1,,", [0.0, 0.0, 6.0]),

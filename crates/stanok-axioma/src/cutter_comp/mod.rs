@@ -372,6 +372,14 @@ impl Comp {
             self.head = Head::Own;
             Kind::Entry { from }
         } else if self.exit_pending {
+            // A17 for the exit (issue 22 item 7): S the exit block's programmed start on the
+            // contour, E its end, where the tool centre goes. |E − S| = r is allowed: the manual's
+            // examples 9.3 and 9.4 leave with `G40 X15` from (10, 10) at r = 5 (docs/decisions.md).
+            if dist2(s, e) < r - LEN_EPS && r > 0.0 {
+                return Err(cx
+                    .err("axioma::comp-exit-too-close", "the exit block ends within one tool radius of its start", at)
+                    .with_note("on exit the distance to the contour must be greater than the tool radius (spec axioma-3 §4.3)"));
+            }
             Kind::Exit
         } else {
             Kind::Contour
@@ -670,4 +678,14 @@ impl Comp {
         };
         Ok(())
     }
+}
+
+/// A word the manual forbids while radius compensation is active (spec axioma-3 §4.4).
+pub(crate) fn forbidden_under_comp(cx: &Ctx<'_>, what: &str, at: ColSpan) -> Diagnostic {
+    cx.err(
+        "axioma::forbidden-under-compensation",
+        format!("{what} is not allowed while radius compensation (G41/G42/G143/G144) is active"),
+        at,
+    )
+    .with_note("switch compensation off with G40 (and its exit block) first")
 }

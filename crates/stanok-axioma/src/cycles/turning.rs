@@ -121,6 +121,20 @@ pub(super) fn thread(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
                 "G276 synchronises every pass with the spindle angle (spec axioma-3 §8.1)",
             ));
     }
+    // §8.1 [M] precondition, §9.4 [D] error (issue 22 item 6): under G96 the spindle speed follows
+    // the tool's radius, so S·pitch would not be a constant thread feed.
+    if c.cx.fe.ext.tech.css {
+        return Err(c
+            .cx
+            .err(
+                "axioma::thread-under-css",
+                "G276 is called with constant surface speed G96 active",
+                c.span,
+            )
+            .with_note(
+                "switch to a constant spindle speed with G97 S… before the threading cycle",
+            ));
+    }
     let speed = c.cx.st.spindle_speed[0];
     if !c.cx.st.spindle_on[0] || speed <= 0.0 {
         return Err(c

@@ -47,8 +47,10 @@ pub(super) fn validate_kinematics(
     for r in &mut data.rotary {
         let Some(axis) = axes.iter().find(|a| a.name == r.name.to_ascii_uppercase()) else {
             return Err((
+                // The Balt-System's error 169: "AXCFIL lacks an axis needed for the 5-axis
+                // transformation" (cvu-five-axis §4.4; the [[axis]] list is Stanok's AXCFIL).
                 format!(
-                    "kinematics: rotary axis {} is not one of the machine's [[axis]] entries",
+                    "kinematics: FAT error 169: rotary axis {} is not one of the machine's [[axis]] entries",
                     r.name
                 ),
                 k.span(),

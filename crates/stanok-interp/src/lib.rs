@@ -53,7 +53,10 @@ pub use axioma::probe::ProbeLatch;
 pub use axioma::{css_rpm, AxiomaMachineParams};
 pub use hll::value::HVal;
 pub use labs::{LabMachineParams, LabState};
-pub use options::InterpOptions;
+pub use options::{
+    InterpOptions, DEFAULT_MAX_BLOCKS, DEFAULT_MAX_DIAGNOSTICS_PER_LINE, DEFAULT_MAX_NESTING,
+    DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
+};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
 
@@ -65,6 +68,22 @@ use stanok_syntax::{Block, BlockReader, CommentKind, Dialect, SourcePos};
 use std::collections::VecDeque;
 use std::io::{BufRead, Seek};
 use words::Words;
+
+/// Most warnings one run keeps (see `Interpreter::admit_warnings`).
+pub const MAX_WARNINGS: usize = 1000;
+
+/// Sets the note `and K more warning(s) …` on `d` (replacing an earlier one of its kind).
+fn note_more(d: &mut Diagnostic, k: usize, where_: &str) {
+    let note = format!("and {k} more warning(s) {where_}");
+    match d
+        .notes
+        .iter_mut()
+        .find(|n| n.starts_with("and ") && n.ends_with(where_))
+    {
+        Some(n) => *n = note,
+        None => d.notes.push(note),
+    }
+}
 
 /// Counters of a run.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -104,6 +123,12 @@ pub struct Interpreter<R: BufRead + Seek> {
     /// or expression, so that programs without HLL keep their speed.
     hll: Option<Box<hll::Hll>>,
     warnings: Vec<Diagnostic>,
+    /// Code, span and file of every warning given (`admit_warnings`).
+    warning_keys: std::collections::HashSet<(String, u64, u64, Option<String>)>,
+    /// Warnings given per line (`admit_warnings`).
+    warnings_per_line: std::collections::HashMap<(Option<String>, u32), usize>,
+    /// Warnings dropped past [`MAX_WARNINGS`].
+    dropped_warnings: usize,
     syntax: Vec<Diagnostic>,
     phase: Phase,
     stats: Stats,
@@ -130,8 +155,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
     pub fn new(mut source: R, opts: InterpOptions) -> Self {
         // The lab dialects hold their (short) program in memory: see `labs`.
         let lab = opts.dialect.is_lab().then(|| {
+            // Read one byte past the bound so that `LabRun` sees the program is too large;
+            // never more (`/dev/zero` has no end).
+            let bound = (labs::MAX_PROGRAM_BYTES as u64).min(opts.max_program_bytes) + 1;
             let mut bytes = Vec::new();
-            let _ = std::io::Read::read_to_end(&mut source, &mut bytes);
+            let _ = std::io::Read::read_to_end(
+                &mut std::io::Read::take(&mut source, bound),
+                &mut bytes,
+            );
             Box::new(labs::LabRun::new(&String::from_utf8_lossy(&bytes), &opts))
         });
         let state = ModalState {
@@ -196,8 +227,10 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 state.frame.set_origin(z.offset);
             }
         }
+        let mut reader = BlockReader::new(source, opts.dialect);
+        reader.set_limits(opts.max_line_bytes, opts.max_program_bytes);
         Interpreter {
-            reader: BlockReader::new(source, opts.dialect),
+            reader,
             files: Vec::new(),
             block: Block::default(),
             words: Words::default(),
@@ -209,6 +242,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
             axioma: axioma::Extension::default(),
             hll: None,
             warnings: Vec::new(),
+            warning_keys: Default::default(),
+            warnings_per_line: Default::default(),
+            dropped_warnings: 0,
             syntax: Vec::new(),
             phase: Phase::Start,
             stats: Stats::default(),
@@ -272,9 +308,36 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 )
             })?;
         if more {
-            self.stats.lines_read += 1;
+            self.count_line()?;
         }
         Ok(more)
+    }
+
+    /// One more line read (executed, control flow or skipped): the run's work bound
+    /// `max_blocks` counts them all, so a loop whose body is skipped or only control flow still
+    /// ends.
+    fn count_line(&mut self) -> Result<(), Diagnostic> {
+        self.stats.lines_read += 1;
+        if self.stats.lines_read > self.opts.max_blocks {
+            return Err(self.too_many_blocks(self.block.span()));
+        }
+        Ok(())
+    }
+
+    #[cold]
+    fn too_many_blocks(&self, span: stanok_canon::Span) -> Diagnostic {
+        Diagnostic::error(
+            "interp::too-many-blocks",
+            format!(
+                "more than {} lines read: stopping (endless loop?)",
+                self.opts.max_blocks
+            ),
+            span,
+        )
+        .with_note(
+            "the bound counts every line read, loops and skipped lines included: the option \
+             --max-blocks",
+        )
     }
 
     /// Executes one line. Ok(true) when the program is over.
@@ -421,15 +484,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let (done, units) = lab.step(&mut self.queue, &mut self.warnings, &self.opts)?;
         self.stats.lines_read += units;
         self.stats.blocks_executed += units;
-        if self.stats.blocks_executed > self.opts.max_blocks {
-            return Err(Diagnostic::error(
-                "interp::too-many-blocks",
-                format!(
-                    "more than {} blocks executed: stopping (endless loop?)",
-                    self.opts.max_blocks
-                ),
-                stanok_canon::Span::default(),
-            ));
+        if self.stats.lines_read > self.opts.max_blocks {
+            let span = self.queue.back().map(|c| c.span).unwrap_or_default();
+            return Err(self.too_many_blocks(span));
         }
         Ok(done)
     }
@@ -440,18 +497,64 @@ impl<R: BufRead + Seek> Interpreter<R> {
         self.lab.as_deref().map(labs::LabRun::state)
     }
 
+    /// One step, then the bounds on its warnings (`admit_warnings`).
+    #[inline]
+    fn step_admitting_warnings(&mut self) -> Result<bool, Diagnostic> {
+        let from = self.warnings.len();
+        let r = self.step();
+        if self.warnings.len() > from {
+            self.admit_warnings(from);
+        }
+        r
+    }
+
+    /// Bounds the warnings a step added (`warnings[from..]`), so that their number — and the
+    /// text a caller prints for them — grows at most linearly with the program:
+    /// * a warning already given (same code and span: a loop passing the line again) is dropped;
+    /// * at most `max_diagnostics_per_line` per line; the last one kept gets a note counting the
+    ///   rest (`and K more on this line`);
+    /// * at most [`MAX_WARNINGS`] in all, the last one noting how many more there were.
+    #[cold]
+    #[inline(never)]
+    fn admit_warnings(&mut self, from: usize) {
+        let added: Vec<Diagnostic> = self.warnings.drain(from..).collect();
+        for w in added {
+            let key = (w.code.to_string(), w.span.start, w.span.end, w.file.clone());
+            if !self.warning_keys.insert(key) {
+                continue;
+            }
+            let line = (w.file.clone(), w.span.line);
+            let count = self.warnings_per_line.entry(line).or_insert(0);
+            *count += 1;
+            let per_line = self.opts.max_diagnostics_per_line.max(1);
+            if *count > per_line || self.warnings.len() >= MAX_WARNINGS {
+                let more = *count - per_line.min(*count);
+                let last = self
+                    .warnings
+                    .iter_mut()
+                    .rev()
+                    .find(|k| k.span.line == w.span.line && k.file == w.file)
+                    .filter(|_| more > 0);
+                match last {
+                    Some(last) => {
+                        note_more(last, more, "on this line (--max-diagnostics-per-line)")
+                    }
+                    None => {
+                        self.dropped_warnings += 1;
+                        let n = self.dropped_warnings;
+                        if let Some(last) = self.warnings.last_mut() {
+                            note_more(last, n, "in the run (at most 1000 warnings are kept)");
+                        }
+                    }
+                }
+                continue;
+            }
+            self.warnings.push(w);
+        }
+    }
+
     fn count_block(&mut self) -> Result<(), Diagnostic> {
         self.stats.blocks_executed += 1;
-        if self.stats.blocks_executed > self.opts.max_blocks {
-            return Err(Diagnostic::error(
-                "interp::too-many-blocks",
-                format!(
-                    "more than {} blocks executed: stopping (endless loop?)",
-                    self.opts.max_blocks
-                ),
-                self.block.span(),
-            ));
-        }
         Ok(())
     }
 
@@ -741,7 +844,7 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
                     let init = self.init_command();
                     self.queue.push_back(Spanned::new(Default::default(), init));
                 }
-                Phase::Running => match self.step() {
+                Phase::Running => match self.step_admitting_warnings() {
                     Ok(true) => self.phase = Phase::Done,
                     Ok(false) => {}
                     Err(d) => {
@@ -759,6 +862,9 @@ impl<R: BufRead + Seek> Iterator for Interpreter<R> {
                                     | stanok_canon::DiagCode::Stanok("io::read")
                                     | stanok_canon::DiagCode::Stanok("io::seek")
                                     | stanok_canon::DiagCode::Stanok("interp::too-many-blocks")
+                                    | stanok_canon::DiagCode::Stanok("hll::loop-limit")
+                                    | stanok_canon::DiagCode::Stanok("hll::nesting-too-deep")
+                                    | stanok_canon::DiagCode::Stanok("syntax::program-too-large")
                             )
                             && !d.code.to_string().starts_with("flow::");
                         if !go_on {

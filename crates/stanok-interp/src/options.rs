@@ -6,6 +6,16 @@ use stanok_canon::setup::ControlData;
 use stanok_canon::{LengthUnits, Pose};
 use stanok_syntax::Dialect;
 
+/// Default of [`InterpOptions::max_blocks`]: 50 million lines, five times a 10-million-block
+/// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
+pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
+/// Default of [`InterpOptions::max_total_loop_iterations`]: 10 million passes per run.
+pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 10_000_000;
+/// Default of [`InterpOptions::max_nesting`].
+pub const DEFAULT_MAX_NESTING: usize = 1000;
+/// Default of [`InterpOptions::max_diagnostics_per_line`].
+pub const DEFAULT_MAX_DIAGNOSTICS_PER_LINE: usize = 10;
+
 /// Settings of one interpreter run.
 #[derive(Debug, Clone)]
 pub struct InterpOptions {
@@ -23,10 +33,25 @@ pub struct InterpOptions {
     pub rs274_arc_tolerance_mm: Option<f64>,
     /// Deepest subroutine nesting (RS274/NGC).
     pub max_call_depth: usize,
-    /// Most iterations of one loop (RS274/NGC while/do/repeat).
+    /// Most iterations of one loop (RS274/NGC while/do/repeat, AxiOMA for/while/do).
     pub max_loop_iterations: u64,
-    /// Most blocks executed in one run (loops included).
+    /// Most loop iterations of one run, all loops together (nested loops multiply: three nested
+    /// `repeat [1000]` are 10⁹ passes, each under the per-loop bound).
+    pub max_total_loop_iterations: u64,
+    /// Most lines one run reads: executed blocks, control-flow lines and lines skipped by a false
+    /// condition alike, each pass of a loop counting its lines again (the work of a run, whatever
+    /// its lines do).
     pub max_blocks: u64,
+    /// Deepest nesting of control structures (RS274/NGC O-word if/while/do/repeat, AxiOMA HLL
+    /// `{ }` blocks and constructs).
+    pub max_nesting: usize,
+    /// Longest line kept, bytes; the rest of a longer line is an error.
+    pub max_line_bytes: usize,
+    /// Most bytes of a program read (main program and each subroutine file).
+    pub max_program_bytes: u64,
+    /// Most diagnostics kept for one line (warnings and, in `check`, errors); the rest are
+    /// counted in a note on the last one.
+    pub max_diagnostics_per_line: usize,
     /// Skip erroneous blocks and go on (for `stanok check`).
     pub continue_after_error: bool,
     /// RS274/NGC user M codes M100–M199: passed to the machine as auxiliary functions when true.
@@ -86,7 +111,12 @@ impl InterpOptions {
             rs274_arc_tolerance_mm: None,
             max_call_depth: 64,
             max_loop_iterations: 1_000_000,
-            max_blocks: 200_000_000,
+            max_total_loop_iterations: DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
+            max_blocks: DEFAULT_MAX_BLOCKS,
+            max_nesting: DEFAULT_MAX_NESTING,
+            max_line_bytes: stanok_syntax::MAX_LINE_BYTES,
+            max_program_bytes: stanok_syntax::MAX_PROGRAM_BYTES,
+            max_diagnostics_per_line: DEFAULT_MAX_DIAGNOSTICS_PER_LINE,
             continue_after_error: false,
             block_delete: false,
             subroutine_path: Vec::new(),

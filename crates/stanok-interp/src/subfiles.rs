@@ -69,6 +69,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             )
         })?;
         let mut reader = BlockReader::new(BufReader::new(file), self.opts.dialect);
+        reader.set_limits(self.opts.max_line_bytes, self.opts.max_program_bytes);
         let mut block = Block::default();
         let mut diags = Vec::new();
         loop {
@@ -126,7 +127,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 self.block.span(),
             ));
         }
-        self.stats.lines_read += 1;
+        self.count_line()?;
         Ok(true)
     }
 }

@@ -271,6 +271,11 @@ impl SCurve {
         self.t_up + self.t_cruise + self.t_down
     }
 
+    /// The cruise at constant speed: (start, end) from the piece start, s.
+    pub fn cruise(&self) -> (f64, f64) {
+        (self.t_up, self.t_up + self.t_cruise)
+    }
+
     /// The state at time `t` from the piece start (clamped).
     pub fn at(&self, t: f64) -> Kinematics {
         let t = t.max(0.0);

@@ -13,6 +13,7 @@
 mod cli;
 mod cutting;
 mod diagnostics;
+mod limits;
 mod machine_show;
 mod perm;
 mod progress;
@@ -194,6 +195,7 @@ fn interpreter(
     if let Some(n) = args.max_loop_iterations {
         opts.max_loop_iterations = n;
     }
+    args.limits.apply(&mut opts);
     opts.strip_fixture_comments = args.strip_fixture_comments;
     opts.labs.correctors.extend(args.corrector.iter().copied());
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
@@ -280,7 +282,17 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
     // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
     // error is listed once.
     let mut seen = std::collections::HashSet::new();
+    // `check` runs no machine, but a feed or dwell that makes one block run for more than an
+    // hour is worth a word (`stanok_machine::time_bound`).
+    let mut long_blocks = Vec::new();
     for item in interp.by_ref() {
+        if let Ok(cmd) = &item {
+            if long_blocks.len() < 100 {
+                long_blocks.extend(stanok_machine::time_bound::long_block(
+                    &machine, &cmd.value, cmd.span,
+                ));
+            }
+        }
         if let Err(d) = item {
             if seen.insert((
                 d.code.to_string(),
@@ -293,6 +305,7 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
         }
     }
     let mut all: Vec<Diagnostic> = interp.take_warnings();
+    all.extend(long_blocks);
     all.extend(errors.iter().cloned());
     all.sort_by_key(|d| (d.span.line, d.span.column));
     for d in &all {
@@ -376,7 +389,7 @@ fn run_program(
     var: &VarArgs,
     motion: &MotionArgs,
 ) -> Result<ExitCode, String> {
-    let options = match sim_options(motion) {
+    let options = match sim_options(motion, &args.limits) {
         Ok(o) => o,
         Err(why) => {
             eprintln!("error: {why}");
@@ -398,7 +411,13 @@ fn run_program(
     };
     let mut sim = SimMachine::with_options(machine, options);
     let progress = progress::Progress::new(file);
-    sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
+    // A trace wants every servo period; the progress display alone does not, and then the
+    // machine skips steady stretches (a long dwell, a slow straight feed) in constant time.
+    if trace.is_some() {
+        sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
+    } else {
+        sim.set_progress_sink(trace::sink(None, progress.clone()));
+    }
     let mut failure: Option<Diagnostic> = None;
     for item in interp.by_ref() {
         let applied = item.and_then(|cmd| {
@@ -411,8 +430,10 @@ fn run_program(
         }
     }
     save_var(var, &interp, units)?;
-    let warnings = interp.take_warnings();
+    let mut warnings = interp.take_warnings();
     let mut rep = sim.finish();
+    warnings.extend(sim.take_warnings());
+    warnings.sort_by_key(|d| (d.span.line, d.span.column));
     progress.done();
     if let Some(t) = &trace {
         t.close()?;
@@ -439,7 +460,7 @@ fn run_program(
 }
 
 /// `stanok run`'s motion options, checked.
-fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
+fn sim_options(m: &MotionArgs, limits: &limits::LimitsArgs) -> Result<SimOptions, String> {
     if !(m.servo_period >= 0.01 && m.servo_period <= 1000.0) {
         return Err(format!(
             "--servo-period must be 0.01 … 1000 ms, not {}",
@@ -489,6 +510,7 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
             cli::ProfileArg::Soft => stanok_canon::AccelerationProfile::Soft,
             cli::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
         }),
+        max_machine_time_s: limits.machine_time_s(),
     })
 }
 

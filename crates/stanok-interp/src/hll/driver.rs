@@ -27,8 +27,8 @@ pub struct OwnerToken(Owner);
 
 impl<R: BufRead + Seek> Interpreter<R> {
     fn hll_state(&mut self) -> &mut Hll {
-        let max = self.opts.max_loop_iterations;
-        self.hll.get_or_insert_with(|| Box::new(Hll::new(max)))
+        let opts = &self.opts;
+        self.hll.get_or_insert_with(|| Box::new(Hll::new(opts)))
     }
 
     /// An AxiOMA line while the HLL is in use (or the line is HLL). `first_error` is the line's

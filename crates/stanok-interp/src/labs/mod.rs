@@ -279,7 +279,7 @@ impl LabRun {
         LabRun {
             front,
             reported: Vec::new(),
-            too_large: text.len() > MAX_PROGRAM_BYTES,
+            too_large: text.len() as u64 > (MAX_PROGRAM_BYTES as u64).min(opts.max_program_bytes),
         }
     }
 

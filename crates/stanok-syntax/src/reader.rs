@@ -152,9 +152,12 @@ impl<R: BufRead + Seek> BlockReader<R> {
             );
             diags.insert(first_diag, d);
         }
+        // The bounds come first: they are why the line's text is cut, so the errors the parser
+        // found in the cut text (an unclosed comment) are their consequence.
         if cut {
             let end = block.text.len();
-            diags.push(
+            diags.insert(
+                first_diag,
                 Diagnostic::error(
                     "syntax::line-too-long",
                     format!(
@@ -168,7 +171,8 @@ impl<R: BufRead + Seek> BlockReader<R> {
         }
         if too_large {
             let end = block.text.len();
-            diags.push(
+            diags.insert(
+                first_diag,
                 Diagnostic::error(
                     "syntax::program-too-large",
                     format!(

@@ -45,9 +45,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             return Err(e);
         }
         let statement = self.block.hll().statement;
-        if statement && !self.hll_state().skipping() {
-            self.count_block()?;
-        }
+        // A statement line counts once it has run (as every block: `Stats::blocks_executed`).
+        let counts = statement && !self.hll_state().skipping();
         self.hll_state();
         let Some(hll) = self.hll.as_deref_mut() else {
             return Ok(HllStep::Done);
@@ -79,6 +78,9 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 IsoAction::Execute(owner) => return Ok(HllStep::Execute(owner.map(OwnerToken))),
             }
         };
+        if counts {
+            self.count_block();
+        }
         if let Some(pos) = jump {
             self.seek_to(pos)?;
         }

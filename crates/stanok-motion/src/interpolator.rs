@@ -363,7 +363,11 @@ impl Interpolator {
         let Some((from, to)) = steady_stretch(phase) else {
             return;
         };
-        let (from, to) = (phase_start + from, (phase_start + to).min(phase_end));
+        // Never past the time limit: the stop must happen at its first instant.
+        let (from, to) = (
+            phase_start + from,
+            (phase_start + to).min(phase_end).min(self.time_limit),
+        );
         if !(t >= from && t < to) {
             return;
         }

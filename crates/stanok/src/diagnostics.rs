@@ -196,8 +196,11 @@ impl SourceCode for Window {
         let inner = self
             .text
             .read_span(span, context_lines_before, context_lines_after)?;
+        // Columns in characters, as the span's (miette counts bytes): the window is one line.
         let column = if inner.line() == 0 {
-            self.col0 + inner.column()
+            let at = inner.span().offset().min(self.text.len());
+            let before = self.text.get(..at).map_or(at, |t| t.chars().count());
+            self.col0 + before
         } else {
             inner.column()
         };

@@ -520,34 +520,35 @@ impl<R: BufRead + Seek> Interpreter<R> {
     #[inline(never)]
     fn admit_warnings(&mut self, from: usize) {
         let added: Vec<Diagnostic> = self.warnings.drain(from..).collect();
+        let per_line = self.opts.max_diagnostics_per_line.max(1);
         for w in added {
+            if self.warnings.len() >= MAX_WARNINGS {
+                // Full: count, remember nothing more (memory stays bounded too).
+                self.dropped_warnings += 1;
+                let n = self.dropped_warnings;
+                if let Some(last) = self.warnings.last_mut() {
+                    note_more(last, n, "in the run (at most 1000 warnings are kept)");
+                }
+                continue;
+            }
             let key = (w.code.to_string(), w.span.start, w.span.end, w.file.clone());
             if !self.warning_keys.insert(key) {
                 continue;
             }
-            let line = (w.file.clone(), w.span.line);
-            let count = self.warnings_per_line.entry(line).or_insert(0);
+            let count = self
+                .warnings_per_line
+                .entry((w.file.clone(), w.span.line))
+                .or_insert(0);
             *count += 1;
-            let per_line = self.opts.max_diagnostics_per_line.max(1);
-            if *count > per_line || self.warnings.len() >= MAX_WARNINGS {
-                let more = *count - per_line.min(*count);
-                let last = self
+            if *count > per_line {
+                let more = *count - per_line;
+                if let Some(last) = self
                     .warnings
                     .iter_mut()
                     .rev()
                     .find(|k| k.span.line == w.span.line && k.file == w.file)
-                    .filter(|_| more > 0);
-                match last {
-                    Some(last) => {
-                        note_more(last, more, "on this line (--max-diagnostics-per-line)")
-                    }
-                    None => {
-                        self.dropped_warnings += 1;
-                        let n = self.dropped_warnings;
-                        if let Some(last) = self.warnings.last_mut() {
-                            note_more(last, n, "in the run (at most 1000 warnings are kept)");
-                        }
-                    }
+                {
+                    note_more(last, more, "on this line (--max-diagnostics-per-line)");
                 }
                 continue;
             }

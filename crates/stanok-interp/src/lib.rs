@@ -142,6 +142,8 @@ pub struct Interpreter<R: BufRead + Seek> {
     lathe_call: Option<rs274::lathe_cycles::LatheCall>,
     /// The lab dialects' front end (None for AxiOMA and RS274/NGC).
     lab: Option<Box<labs::LabRun>>,
+    /// Lab dialects: the span of the last command produced (where a bound is reported).
+    lab_span: stanok_canon::Span,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -255,6 +257,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
             lathe: None,
             lathe_call: None,
             lab,
+            lab_span: stanok_canon::Span::new(0, 0, 1, 1),
             opts,
         }
     }
@@ -486,9 +489,13 @@ impl<R: BufRead + Seek> Interpreter<R> {
         let (done, units) = lab.step(&mut self.queue, &mut self.warnings, &self.opts)?;
         self.stats.lines_read += units;
         self.stats.blocks_executed += units;
+        if let Some(c) = self.queue.back() {
+            self.lab_span = c.span;
+        }
         if self.stats.lines_read > self.opts.max_blocks {
-            let span = self.queue.back().map(|c| c.span).unwrap_or_default();
-            return Err(self.too_many_blocks(span));
+            // Where the last unit that produced a command was (line 1 before any): the lab
+            // front ends keep no block of their own here.
+            return Err(self.too_many_blocks(self.lab_span));
         }
         Ok(done)
     }

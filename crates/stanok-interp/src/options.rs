@@ -9,8 +9,9 @@ use stanok_syntax::Dialect;
 /// Default of [`InterpOptions::max_blocks`]: 50 million lines, five times a 10-million-block
 /// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
 pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
-/// Default of [`InterpOptions::max_total_loop_iterations`]: 10 million passes per run.
-pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 10_000_000;
+/// Default of [`InterpOptions::max_total_loop_iterations`]: 2 million passes per run (three
+/// nested `repeat [1000]` stop after about 2 s of CPU in a release build).
+pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 2_000_000;
 /// Default of [`InterpOptions::max_nesting`].
 pub const DEFAULT_MAX_NESTING: usize = 1000;
 /// Default of [`InterpOptions::max_diagnostics_per_line`].

@@ -9,13 +9,14 @@
 
 use crate::{flow, params, Interpreter};
 use stanok_canon::{Canon, Diagnostic, LogAction};
+use stanok_syntax::SeekBufReader;
 use stanok_syntax::{Block, BlockReader, OKind};
-use std::io::{BufRead, BufReader, Seek};
+use std::io::{BufRead, Seek};
 use std::path::Path;
 
 /// A subroutine file being executed.
 pub(crate) struct SubroutineFile {
-    pub(crate) reader: BlockReader<BufReader<std::fs::File>>,
+    pub(crate) reader: BlockReader<SeekBufReader<std::fs::File>>,
     pub(crate) path: std::path::PathBuf,
 }
 
@@ -68,7 +69,7 @@ impl<R: BufRead + Seek> Interpreter<R> {
                 self.block.span(),
             )
         })?;
-        let mut reader = BlockReader::new(BufReader::new(file), self.opts.dialect);
+        let mut reader = BlockReader::new(SeekBufReader::new(file), self.opts.dialect);
         reader.set_limits(self.opts.max_line_bytes, self.opts.max_program_bytes);
         let mut block = Block::default();
         let mut diags = Vec::new();

@@ -346,3 +346,18 @@ fn the_failing_block_is_not_counted_in_any_dialect() {
         assert_eq!(interp.stats().blocks_executed, 2, "{dialect:?}");
     }
 }
+
+/// The line bound in a lab dialect names a line of the program (it had none).
+#[test]
+fn the_line_bound_in_a_lab_dialect_is_located() {
+    let text = "N1 G1 X1000 F100\nN2 X2000\nN3 X3000\nN4 X4000\nN5 X5000\nN6 M2\n";
+    let mut opts = InterpOptions::new(Dialect::Gost20999);
+    opts.max_blocks = 3;
+    let (_, errors, _) = run(text, opts);
+    assert_eq!(errors[0].code.to_string(), "interp::too-many-blocks");
+    assert!(
+        errors[0].span.line >= 1 && errors[0].span.line <= 4,
+        "{:?}",
+        errors[0]
+    );
+}

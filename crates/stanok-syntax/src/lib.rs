@@ -81,10 +81,12 @@ mod lexer;
 mod number;
 mod reader;
 mod rs274;
+mod seekbuf;
 
 pub use ast::*;
 pub use expr::MAX_EXPR_HEIGHT;
 pub use reader::{BlockReader, SourcePos, MAX_LINE_BYTES, MAX_PROGRAM_BYTES};
+pub use seekbuf::SeekBufReader;
 
 use lexer::Pendings;
 use stanok_canon::{Diagnostic, Severity};

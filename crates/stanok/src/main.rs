@@ -31,9 +31,9 @@ use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
 use stanok_machine::{linuxcnc, MachineData, SimMachine, SimOptions, StoredOffsets};
-use stanok_syntax::Dialect;
+use stanok_syntax::{Dialect, SeekBufReader};
 use std::fs::File;
-use std::io::{BufReader, BufWriter, Write};
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -175,7 +175,7 @@ fn interpreter(
     machine: &MachineData,
     check_mode: bool,
     args: &MachineArgs,
-) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
+) -> Result<(Interpreter<SeekBufReader<File>>, Dialect), String> {
     let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
     let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
     let mut opts = InterpOptions::new(dialect);
@@ -201,7 +201,8 @@ fn interpreter(
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
     opts.five_axis = machine.tcp_kinematics();
     opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
-    Ok((Interpreter::new(BufReader::new(f), opts), dialect))
+    // Seeks within its buffer are free: every loop pass jumps back (`SeekBufReader`).
+    Ok((Interpreter::new(SeekBufReader::new(f), opts), dialect))
 }
 
 /// The machine named by `--machine`, with its tools and offsets replaced by `--tools` and

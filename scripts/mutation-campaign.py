@@ -224,13 +224,14 @@ def main():
             peak_rss = (rss, f"{verb} {dialect} run {n}")
         stderr = open(err_path, "rb").read(1 << 20).decode("utf-8", "replace")
         kind = None
+        sig = os.WTERMSIG(status) if os.WIFSIGNALED(status) else 0
         if hung:
             kind = "hang"
         elif os.WIFSIGNALED(status):
             sig = os.WTERMSIG(status)
             if sig == signal.SIGXFSZ:
                 kind = "output"
-            elif sig in (signal.SIGXCPU, signal.SIGKILL) and dt >= args.timeout - 0.5:
+            elif sig == signal.SIGXCPU:
                 kind = "hang"
             elif "memory allocation" in stderr:
                 kind = "memory"
@@ -266,7 +267,8 @@ def main():
             with open(keep, "wb") as f:
                 f.write(data)
             failures.append({"run": n, "kind": kind, "verb": verb, "dialect": dialect, "seed": name,
-                             "file": keep, "seconds": round(dt, 2), "rss_mib": rss >> 20,
+                             "file": keep, "seconds": round(dt, 2), "wall_s": round(wall, 2), "signal": sig,
+                             "rss_mib": rss >> 20,
                              "stderr_tail": stderr[-600:]})
         if (n + 1) % 500 == 0:
             print(f"{n + 1} runs, {time.time() - t_start:.0f} s: {counts}", flush=True)
@@ -281,7 +283,7 @@ def main():
     print(json.dumps({k: v for k, v in summary.items() if k != "failures"}, indent=1))
     for fl in failures[:30]:
         print(f"{fl['kind']}: run {fl['run']} {fl['verb']} --dialect {fl['dialect']} {fl['file']} "
-              f"({fl['seconds']} s, {fl['rss_mib']} MiB)\n  {fl['stderr_tail'][-300:]!r}")
+              f"({fl['seconds']} s CPU, signal {fl['signal']}, {fl['rss_mib']} MiB)\n  {fl['stderr_tail'][-300:]!r}")
     bad = sum(counts[k] for k in ["panic", "abort", "signal", "hang", "memory", "output", "unlocated"])
     sys.exit(1 if bad else 0)
 

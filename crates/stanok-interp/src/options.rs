@@ -9,9 +9,10 @@ use stanok_syntax::Dialect;
 /// Default of [`InterpOptions::max_blocks`]: 50 million lines, five times a 10-million-block
 /// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
 pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
-/// Default of [`InterpOptions::max_total_loop_iterations`]: 2 million passes per run (three
-/// nested `repeat [1000]` stop after about 2 s of CPU in a release build).
-pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 2_000_000;
+/// Default of [`InterpOptions::max_total_loop_iterations`]: a million passes per run, as many as
+/// one loop may make (three nested `repeat [1000]` stop after about a second of CPU in a release
+/// build; a runaway loop that moves, after a few seconds of `stanok run`).
+pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 1_000_000;
 /// Default of [`InterpOptions::max_nesting`].
 pub const DEFAULT_MAX_NESTING: usize = 1000;
 /// Default of [`InterpOptions::max_diagnostics_per_line`].

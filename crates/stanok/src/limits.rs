@@ -15,7 +15,7 @@ pub struct LimitsArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_blocks: Option<u64>,
     /// Most loop passes of one run, all loops together (nested loops multiply). Default
-    /// 2,000,000.
+    /// 1,000,000.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_total_loop_iterations: Option<u64>,
     /// Most control structures open at once (RS274/NGC O-word if/loops, AxiOMA `{ }` blocks and

@@ -55,7 +55,7 @@ pub use hll::value::HVal;
 pub use labs::{LabMachineParams, LabState};
 pub use options::{
     InterpOptions, DEFAULT_MAX_BLOCKS, DEFAULT_MAX_DIAGNOSTICS_PER_LINE, DEFAULT_MAX_NESTING,
-    DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
+    DEFAULT_MAX_REPEATED_LINES, DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
 };
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub use state::{DistanceMode, LengthComp, ModalState, MotionMode, PathMode, Polar, WorkFrame};
@@ -144,6 +144,10 @@ pub struct Interpreter<R: BufRead + Seek> {
     lab: Option<Box<labs::LabRun>>,
     /// Lab dialects: the span of the last command produced (where a bound is reported).
     lab_span: stanok_canon::Span,
+    /// One past the offset of the furthest line start read in the program (`count_line`).
+    high_water: u64,
+    /// Lines read again (`count_line`).
+    repeated_lines: u64,
 }
 
 impl<'a> Interpreter<std::io::Cursor<&'a [u8]>> {
@@ -258,6 +262,8 @@ impl<R: BufRead + Seek> Interpreter<R> {
             lathe_call: None,
             lab,
             lab_span: stanok_canon::Span::new(0, 0, 1, 1),
+            high_water: 0,
+            repeated_lines: 0,
             opts,
         }
     }
@@ -320,12 +326,40 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// One more line read (executed, control flow or skipped): the run's work bound
     /// `max_blocks` counts them all, so a loop whose body is skipped or only control flow still
     /// ends.
+    ///
+    /// A line read *again* — below the furthest point read in the program (a loop pass, a call,
+    /// a jump back), or in a subroutine file — also counts against `max_repeated_lines`: a long
+    /// program read once may have tens of millions of lines, but a runaway loop is work done
+    /// again, and that bound stops it within seconds.
+    #[inline]
     fn count_line(&mut self) -> Result<(), Diagnostic> {
         self.stats.lines_read += 1;
         if self.stats.lines_read > self.opts.max_blocks {
             return Err(self.too_many_blocks(self.block.span()));
         }
+        if !self.files.is_empty() || self.block.offset < self.high_water {
+            self.repeated_lines += 1;
+            if self.repeated_lines > self.opts.max_repeated_lines {
+                return Err(self.too_many_repeated_lines());
+            }
+        } else {
+            self.high_water = self.block.offset + 1;
+        }
         Ok(())
+    }
+
+    #[cold]
+    fn too_many_repeated_lines(&self) -> Diagnostic {
+        Diagnostic::error(
+            "interp::too-many-blocks",
+            format!(
+                "more than {} lines read again (loop passes, calls, jumps back): stopping \
+                 (endless loop?)",
+                self.opts.max_repeated_lines
+            ),
+            self.block.span(),
+        )
+        .with_note("the bound is the option --max-repeated-lines")
     }
 
     #[cold]

@@ -9,6 +9,9 @@ use stanok_syntax::Dialect;
 /// Default of [`InterpOptions::max_blocks`]: 50 million lines, five times a 10-million-block
 /// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
 pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
+/// Default of [`InterpOptions::max_repeated_lines`]: 2 million lines read again (a runaway loop
+/// stops after a few seconds of CPU in a release build, whatever the size of its body).
+pub const DEFAULT_MAX_REPEATED_LINES: u64 = 2_000_000;
 /// Default of [`InterpOptions::max_total_loop_iterations`]: a million passes per run, as many as
 /// one loop may make (three nested `repeat [1000]` stop after about a second of CPU in a release
 /// build; a runaway loop that moves, after a few seconds of `stanok run`).
@@ -44,6 +47,9 @@ pub struct InterpOptions {
     /// condition alike, each pass of a loop counting its lines again (the work of a run, whatever
     /// its lines do).
     pub max_blocks: u64,
+    /// Most lines one run reads *again*: loop passes, subroutine calls, jumps back (every line
+    /// below the furthest point read, and every line of a subroutine file).
+    pub max_repeated_lines: u64,
     /// Deepest nesting of control structures (RS274/NGC O-word if/while/do/repeat, AxiOMA HLL
     /// `{ }` blocks and constructs).
     pub max_nesting: usize,
@@ -115,6 +121,7 @@ impl InterpOptions {
             max_loop_iterations: 1_000_000,
             max_total_loop_iterations: DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
             max_blocks: DEFAULT_MAX_BLOCKS,
+            max_repeated_lines: DEFAULT_MAX_REPEATED_LINES,
             max_nesting: DEFAULT_MAX_NESTING,
             max_line_bytes: stanok_syntax::MAX_LINE_BYTES,
             max_program_bytes: stanok_syntax::MAX_PROGRAM_BYTES,

@@ -361,3 +361,27 @@ fn the_line_bound_in_a_lab_dialect_is_located() {
         errors[0]
     );
 }
+
+/// Lines read again (loop passes) have their own, lower bound; a long program read once does not
+/// touch it.
+#[test]
+fn lines_read_again_have_their_own_bound() {
+    let mut text = String::from("o1 while [1]\n");
+    text.push_str(&"G1 X1 F100\nG1 X0\n".repeat(50));
+    text.push_str("o1 endwhile\nM2\n");
+    let mut opts = InterpOptions::new(Dialect::Rs274ngc);
+    opts.max_repeated_lines = 10_000;
+    let (_, errors, interp) = run(&text, opts);
+    assert_eq!(errors[0].code.to_string(), "interp::too-many-blocks");
+    assert!(errors[0]
+        .notes
+        .iter()
+        .any(|n| n.contains("--max-repeated-lines")));
+    assert!(interp.stats().lines_read < 10_200);
+
+    let straight = format!("G1 F100\n{}M2\n", "G1 X1\nG1 X0\n".repeat(20_000));
+    let mut opts = InterpOptions::new(Dialect::Rs274ngc);
+    opts.max_repeated_lines = 10;
+    let (_, errors, _) = run(&straight, opts);
+    assert!(errors.is_empty(), "{errors:?}");
+}

@@ -14,6 +14,10 @@ pub struct LimitsArgs {
     /// program; a runaway loop reaches it in seconds).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_blocks: Option<u64>,
+    /// Most lines one run reads again: loop passes, subroutine calls, jumps back (a program read
+    /// once is bounded by --max-blocks alone). Default 2,000,000.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_repeated_lines: Option<u64>,
     /// Most loop passes of one run, all loops together (nested loops multiply). Default
     /// 1,000,000.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
@@ -59,6 +63,9 @@ impl LimitsArgs {
     pub fn apply(&self, opts: &mut InterpOptions) {
         if let Some(n) = self.max_blocks {
             opts.max_blocks = n;
+        }
+        if let Some(n) = self.max_repeated_lines {
+            opts.max_repeated_lines = n;
         }
         if let Some(n) = self.max_total_loop_iterations {
             opts.max_total_loop_iterations = n;

@@ -61,9 +61,9 @@ def mutate(rng, data, dialect):
     lines = data.split(b"\n")
     for _ in range(rng.randint(1, 4)):
         kind = rng.randrange(14)
-        if kind == 0 and data:  # byte flips
+        if kind == 0:  # byte flips
             b = bytearray(b"\n".join(lines))
-            for _ in range(rng.randint(1, 8)):
+            for _ in range(rng.randint(1, 8) if b else 0):
                 i = rng.randrange(len(b))
                 b[i] = rng.randrange(256)
             lines = bytes(b).split(b"\n")

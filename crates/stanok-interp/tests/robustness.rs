@@ -5,15 +5,15 @@ use stanok_canon::{Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
 
-/// Every command and diagnostic of a run (check mode: goes on after errors when `check`).
-fn run(
-    text: &str,
-    opts: InterpOptions,
-) -> (
+/// A finished run: its commands, its errors, and the interpreter (for its stats and warnings).
+type Run<'a> = (
     Vec<Spanned<Canon>>,
     Vec<Diagnostic>,
-    Interpreter<std::io::Cursor<&[u8]>>,
-) {
+    Interpreter<std::io::Cursor<&'a [u8]>>,
+);
+
+/// Every command and diagnostic of a run (check mode: goes on after errors when `check`).
+fn run(text: &str, opts: InterpOptions) -> Run<'_> {
     let check = opts.continue_after_error;
     let mut interp = Interpreter::from_text(text, opts);
     let mut cmds = Vec::new();

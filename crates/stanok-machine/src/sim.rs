@@ -313,7 +313,7 @@ impl SimMachine {
         let seconds = time_bound::nominal_seconds(&self.machine, &cmd.value);
         if seconds > 0.0 {
             let at = self.report.nominal_time_s + seconds;
-            if !(at <= self.max_machine_time_s) {
+            if at.is_nan() || at > self.max_machine_time_s {
                 return Err(time_bound::time_limit(
                     self.max_machine_time_s,
                     at,

@@ -123,12 +123,12 @@ enum Mutation {
 fn mutation() -> impl Strategy<Value = Mutation> {
     let at = any::<usize>();
     prop_oneof![
-        (at.clone(), any::<u8>()).prop_map(|(at, to)| Mutation::FlipByte { at, to }),
-        (at.clone(), prop_oneof![Just(1usize), Just(10), Just(300)])
+        (at, any::<u8>()).prop_map(|(at, to)| Mutation::FlipByte { at, to }),
+        (at, prop_oneof![Just(1usize), Just(10), Just(300)])
             .prop_map(|(at, times)| Mutation::DuplicateLine { at, times }),
-        (at.clone(), 1usize..5).prop_map(|(at, count)| Mutation::DeleteLines { at, count }),
+        (at, 1usize..5).prop_map(|(at, count)| Mutation::DeleteLines { at, count }),
         (
-            at.clone(),
+            at,
             prop::sample::select(vec![
                 "1e308",
                 "99999999999999999999",
@@ -142,23 +142,16 @@ fn mutation() -> impl Strategy<Value = Mutation> {
         )
             .prop_map(|(at, value)| Mutation::Number { at, value }),
         (
-            at.clone(),
+            at,
             prop::sample::select(vec![" ", "X1 ", "G1 X1 ", "(", "a"]),
             prop_oneof![Just(100usize), Just(70_000)]
         )
             .prop_map(|(at, piece, times)| Mutation::LongLine { at, piece, times }),
-        (
-            at.clone(),
-            prop_oneof![Just(100usize), Just(5_000)],
-            0usize..3
-        )
+        (at, prop_oneof![Just(100usize), Just(5_000)], 0usize..3)
             .prop_map(|(at, terms, op)| Mutation::LongExpression { at, terms, op }),
-        (
-            at.clone(),
-            prop_oneof![Just(10usize), Just(70), Just(2_000)]
-        )
+        (at, prop_oneof![Just(10usize), Just(70), Just(2_000)])
             .prop_map(|(at, depth)| Mutation::DeepExpression { at, depth }),
-        (at.clone(), 0usize..3).prop_map(|(at, kind)| Mutation::RunawayLoop { at, kind }),
+        (at, 0usize..3).prop_map(|(at, kind)| Mutation::RunawayLoop { at, kind }),
         (
             at,
             prop::sample::select(vec![

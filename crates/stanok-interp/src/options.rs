@@ -9,9 +9,9 @@ use stanok_syntax::Dialect;
 /// Default of [`InterpOptions::max_blocks`]: 50 million lines, five times a 10-million-block
 /// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
 pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
-/// Default of [`InterpOptions::max_repeated_lines`]: 2 million lines read again (a runaway loop
-/// stops after a few seconds of CPU in a release build, whatever the size of its body).
-pub const DEFAULT_MAX_REPEATED_LINES: u64 = 2_000_000;
+/// Default of [`InterpOptions::max_repeated_lines`]: a million lines read again (a runaway loop
+/// stops after one to two seconds of CPU in a release build, whatever the size of its body).
+pub const DEFAULT_MAX_REPEATED_LINES: u64 = 1_000_000;
 /// Default of [`InterpOptions::max_total_loop_iterations`]: a million passes per run, as many as
 /// one loop may make (three nested `repeat [1000]` stop after about a second of CPU in a release
 /// build; a runaway loop that moves, after a few seconds of `stanok run`).

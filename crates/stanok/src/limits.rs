@@ -15,7 +15,7 @@ pub struct LimitsArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_blocks: Option<u64>,
     /// Most lines one run reads again: loop passes, subroutine calls, jumps back (a program read
-    /// once is bounded by --max-blocks alone). Default 2,000,000.
+    /// once is bounded by --max-blocks alone). Default 1,000,000.
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_repeated_lines: Option<u64>,
     /// Most loop passes of one run, all loops together (nested loops multiply). Default

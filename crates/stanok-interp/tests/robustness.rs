@@ -165,7 +165,7 @@ fn nested_repeats_stop_at_the_total_loop_bound() {
     assert!(d.message.contains("20000"), "{}", d.message);
     assert!(d.span.line >= 5, "{d:?}");
     // It stopped at the bound: 20,001 passes of o3's body at most.
-    assert!(interp.parameters().get(1) <= 20_001.0);
+    assert!(interp.parameters().expect("RS274/NGC parameters").get(1) <= 20_001.0);
 }
 
 /// AxiOMA's nested `for` loops share the same run-wide bound.

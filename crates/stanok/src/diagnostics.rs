@@ -1,24 +1,40 @@
 //! Renders diagnostics like rustc, with miette: `file:line:column`, the code, the message, the
-//! offending text underlined, and the notes.
+//! offending text underlined with a label that says what is wrong, and the notes; or as one JSON
+//! object per line (`check --json`).
+//!
+//! Colour: `--color always|never` decides; `auto` (the default) colours when stderr is a terminal,
+//! unless `NO_COLOR` is set to anything but the empty string, and also when it is not a terminal if
+//! `CLICOLOR_FORCE` is set to anything but `0` (the conventions of no-color.org and bixense.com).
+//!
+//! The source text is read again only to render (and only up to 64 MiB; beyond that the line and
+//! column are printed without a snippet), so interpretation itself stays streaming; a file's text
+//! is kept once read, so a thousand diagnostics do not read it a thousand times.
 //!
 //! ## Bounded echo
-//! The source shown is a window of the offending line around the span, read from the file by
-//! seeking to it: at most [`max_echo_bytes`] bytes (a quarter before the span, up to half of the
-//! span itself, the rest after it), cut at the line's ends, with `…` where the line goes on. So
-//! one diagnostic costs the same whatever the size of the program or the length of its line (a
-//! 1 MB comment is not echoed whole, a warning on each of 4,000 words of one line does not print
-//! the line 4,000 times), and the columns miette lays out stay small (a column above 65,535
-//! made its formatter panic). Messages and notes are clipped to the same budget times four.
-//! The header's `line:column` are the span's own, whatever part of the line is shown.
+//! The source shown is a window of the offending line around the span: at most
+//! [`max_echo_bytes`] bytes of it (a quarter before the span, up to half of the span itself, the
+//! rest after it), cut at the line's ends, with `…` where the line goes on. So one diagnostic
+//! costs the same whatever the size of the program or the length of its line (a 1 MB comment is
+//! not echoed whole, a warning on each of 4,000 words of one line does not print the line 4,000
+//! times), and the columns miette lays out stay small (a column above 65,535 made its formatter
+//! panic). Messages and notes are clipped to the same budget times four. The header's
+//! `line:column` are the span's own, whatever part of the line is shown.
 
+use crate::cli::ColorWhen;
+use crate::source::{read_limited, Program};
 use miette::{
     GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic, MietteError,
     MietteSpanContents, SourceCode, SourceSpan, SpanContents,
 };
+use serde::Serialize;
 use stanok_canon::{Diagnostic, Severity};
-use std::io::{IsTerminal, Read, Seek, SeekFrom};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::io::IsTerminal;
 use std::path::Path;
+use std::rc::Rc;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::OnceLock;
 
 /// Default of [`max_echo_bytes`].
 pub const DEFAULT_MAX_ECHO_BYTES: usize = 240;
@@ -35,11 +51,6 @@ pub fn set_max_echo_bytes(n: usize) {
     MAX_ECHO.store(n.max(16), Ordering::Relaxed);
 }
 
-/// Prints one diagnostic to stderr.
-pub fn render(file: &Path, d: &Diagnostic) {
-    eprint!("{}", to_string(file, d, std::io::stderr().is_terminal()));
-}
-
 /// `text` cut to at most `max` bytes (at a character boundary) with `…` when cut.
 fn clip(text: &str, max: usize) -> std::borrow::Cow<'_, str> {
     if text.len() <= max {
@@ -52,42 +63,141 @@ fn clip(text: &str, max: usize) -> std::borrow::Cow<'_, str> {
     format!("{}… ({} bytes in all)", &text[..end], text.len()).into()
 }
 
-/// The rendered text (no colour unless `colour`).
-pub fn to_string(file: &Path, d: &Diagnostic, colour: bool) -> String {
-    // A diagnostic about a subroutine file names it; its line and column are in that file.
-    let file = d.file.as_deref().map(Path::new).unwrap_or(file);
-    let name = file.display().to_string();
-    let echo = max_echo_bytes();
-    let message = clip(&d.message, 4 * echo);
-    let notes: Vec<_> = d.notes.iter().map(|n| clip(n, 4 * echo)).collect();
+const MAX_SNIPPET_FILE: u64 = 64 * 1024 * 1024;
+
+static COLOUR: OnceLock<bool> = OnceLock::new();
+
+/// Whether to colour, from the option and the environment (see the module doc).
+pub fn colour_wanted(
+    when: Option<ColorWhen>,
+    no_color: Option<&str>,
+    clicolor_force: Option<&str>,
+    terminal: bool,
+) -> bool {
+    match when.unwrap_or(ColorWhen::Auto) {
+        ColorWhen::Always => true,
+        ColorWhen::Never => false,
+        ColorWhen::Auto => {
+            if no_color.is_some_and(|v| !v.is_empty()) {
+                false
+            } else if clicolor_force.is_some_and(|v| v != "0") {
+                true
+            } else {
+                terminal
+            }
+        }
+    }
+}
+
+/// Decides colour for this process (first call wins).
+pub fn set_colour(when: Option<ColorWhen>) {
+    let no_color = std::env::var("NO_COLOR").ok();
+    let force = std::env::var("CLICOLOR_FORCE").ok();
+    let _ = COLOUR.set(colour_wanted(
+        when,
+        no_color.as_deref(),
+        force.as_deref(),
+        std::io::stderr().is_terminal(),
+    ));
+}
+
+/// True when stderr output is coloured.
+pub fn colour() -> bool {
+    *COLOUR.get().unwrap_or(&false)
+}
+
+thread_local! {
+    /// Source texts read for snippets, by file name.
+    static TEXTS: RefCell<HashMap<String, Option<Rc<str>>>> = RefCell::new(HashMap::new());
+}
+
+/// A file's text for snippets (cached).
+fn text_of(name: &str, read: impl FnOnce() -> Option<String>) -> Option<Rc<str>> {
+    TEXTS.with(|t| {
+        t.borrow_mut()
+            .entry(name.to_string())
+            .or_insert_with(|| read().map(Rc::from))
+            .clone()
+    })
+}
+
+/// Where a diagnostic is: its file's name for people and the file's text (for the snippet).
+fn source_of(program: &Program, d: &Diagnostic) -> (String, Option<Rc<str>>) {
+    match &d.file {
+        Some(f) => (
+            f.clone(),
+            text_of(f, || read_limited(Path::new(f), MAX_SNIPPET_FILE)),
+        ),
+        None => {
+            let name = program.display();
+            let text = text_of(&name, || program.snippet_text(MAX_SNIPPET_FILE));
+            (name, text)
+        }
+    }
+}
+
+/// Prints one diagnostic about the program to stderr.
+pub fn render(program: &Program, d: &Diagnostic) {
+    let (name, text) = source_of(program, d);
+    eprint!("{}", to_string(&name, text.as_deref(), d, colour()));
+}
+
+/// Prints one diagnostic about a data file (machine data, a tool table …) to stderr.
+pub fn render_path(path: &Path, d: &Diagnostic) {
+    let name = path.display().to_string();
+    let text = text_of(&name, || read_limited(path, MAX_SNIPPET_FILE));
+    eprint!("{}", to_string(&name, text.as_deref(), d, colour()));
+}
+
+/// What the underline says: the message when it is short, else its first clause.
+pub fn label(message: &str) -> String {
+    const MAX: usize = 64;
+    if message.chars().count() <= MAX {
+        return message.to_string();
+    }
+    let cut = [": ", "; ", " (", " — "]
+        .iter()
+        .filter_map(|s| message.find(s))
+        .filter(|&i| i >= 12)
+        .min();
+    match cut {
+        Some(i) if message[..i].chars().count() <= MAX => message[..i].to_string(),
+        _ => message.chars().take(MAX - 1).collect::<String>() + "…",
+    }
+}
+
+/// The rendered text of a diagnostic in file `name` whose text is `text` (no colour unless
+/// `colour`).
+pub fn to_string(name: &str, text: Option<&str>, d: &Diagnostic, colour: bool) -> String {
     let severity = match d.severity {
         Severity::Error => miette::Severity::Error,
         Severity::Warning => miette::Severity::Warning,
     };
     let sev = if d.is_error() { "error" } else { "warning" };
-    let window = (d.span.line > 0)
-        .then(|| Window::read(file, d, echo, name.clone()))
-        .flatten();
-    let Some(window) = window else {
+    let Some(text) = text.filter(|t| d.span.line > 0 && (d.span.end as usize) <= t.len()) else {
         // Line 0: about the file as a whole (cannot read it, wrong kind), no position to give.
         let at = if d.span.line == 0 {
-            name
+            name.to_string()
         } else {
             format!("{name}:{}:{}", d.span.line, d.span.column)
         };
-        let mut s = format!("{at}: {sev}[{}]: {message}\n", d.code);
-        for n in &notes {
+        let mut s = format!("{at}: {sev}[{}]: {}\n", d.code, d.message);
+        for n in &d.notes {
             s.push_str(&format!("  = note: {n}\n"));
         }
         return s;
     };
+    let echo = max_echo_bytes();
+    let message = clip(&d.message, 4 * echo);
+    let notes: Vec<_> = d.notes.iter().map(|n| clip(n, 4 * echo)).collect();
+    let window = Window::of(text, d, echo, name.to_string());
     let mut md = MietteDiagnostic::new(message.into_owned())
         .with_code(format!("{sev}[{}]", d.code))
         .with_severity(severity);
     if !notes.is_empty() {
         md = md.with_help(notes.join("\n"));
     }
-    md = md.with_label(LabeledSpan::at(window.label.clone(), "here"));
+    md = md.with_label(LabeledSpan::at(window.label.clone(), label(&d.message)));
     let report = miette::Report::new(md).with_source_code(window);
     let theme = if colour {
         GraphicalTheme::unicode()
@@ -99,6 +209,101 @@ pub fn to_string(file: &Path, d: &Diagnostic, colour: bool) -> String {
         .with_width(110)
         .render_report(&mut out, report.as_ref());
     out
+}
+
+/// One diagnostic as a JSON object (`check --json`): the stable fields documented in docs/cli.md.
+#[derive(Serialize)]
+struct JsonDiagnostic<'a> {
+    file: String,
+    line: u32,
+    column: u32,
+    start: u64,
+    end: u64,
+    severity: &'static str,
+    code: String,
+    message: &'a str,
+    label: String,
+    notes: &'a [String],
+}
+
+/// A diagnostic about `program` as one line of JSON (with its newline).
+pub fn json_line(program: &Program, d: &Diagnostic) -> String {
+    let j = JsonDiagnostic {
+        file: d.file.clone().unwrap_or_else(|| program.display()),
+        line: d.span.line,
+        column: d.span.column,
+        start: d.span.start,
+        end: d.span.end,
+        severity: if d.is_error() { "error" } else { "warning" },
+        code: d.code.to_string(),
+        message: &d.message,
+        label: label(&d.message),
+        notes: &d.notes,
+    };
+    let mut s = serde_json::to_string(&j).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use stanok_canon::Span;
+
+    #[test]
+    fn colour_follows_the_option_then_no_color_then_clicolor_force_then_the_terminal() {
+        use ColorWhen::*;
+        assert!(colour_wanted(Some(Always), Some("1"), None, false));
+        assert!(!colour_wanted(Some(Never), None, Some("1"), true));
+        assert!(!colour_wanted(None, Some("1"), None, true));
+        assert!(
+            colour_wanted(None, Some(""), None, true),
+            "an empty NO_COLOR does not count"
+        );
+        assert!(colour_wanted(Some(Auto), None, Some("1"), false));
+        assert!(!colour_wanted(Some(Auto), None, Some("0"), false));
+        assert!(
+            !colour_wanted(None, Some("1"), Some("1"), true),
+            "NO_COLOR wins"
+        );
+        assert!(colour_wanted(None, None, None, true));
+        assert!(!colour_wanted(None, None, None, false));
+    }
+
+    #[test]
+    fn labels_say_what_is_wrong() {
+        assert_eq!(
+            label("A axis is not configured on this machine"),
+            "A axis is not configured on this machine"
+        );
+        let long = "radius at the start 28.7220 mm differs from the radius at the end 83.7655 mm: \
+                    the end point is not on the circle";
+        assert_eq!(
+            label(long),
+            "radius at the start 28.7220 mm differs from the radius at the end 83.7655 mm"
+                .chars()
+                .take(63)
+                .collect::<String>()
+                + "…"
+        );
+        assert_eq!(
+            label("a subroutine of this program is not defined anywhere: o<x> (searched here)"),
+            "a subroutine of this program is not defined anywhere"
+        );
+    }
+
+    #[test]
+    fn the_underline_carries_the_label_not_here() {
+        let d = Diagnostic::error(
+            "x::y",
+            "A axis is not configured on this machine",
+            Span::new(6, 9, 1, 7),
+        );
+        let s = to_string("p.nc", Some("G0 X1 A10\n"), &d, false);
+        assert!(s.contains("╰── A axis is not configured"), "{s}");
+        assert!(!s.contains("here"), "{s}");
+        assert!(s.contains("p.nc:1:7"), "{s}");
+    }
 }
 
 /// The part of the span's line that a diagnostic shows (module doc), as miette's source: its
@@ -116,22 +321,17 @@ struct Window {
 }
 
 impl Window {
-    /// Reads the window of `d.span` from `file`; None when the file cannot be read there.
-    fn read(file: &Path, d: &Diagnostic, echo: usize, name: String) -> Option<Window> {
+    /// The window of `d.span` in the program's `text` (the caller checked the span is inside).
+    fn of(text: &str, d: &Diagnostic, echo: usize, name: String) -> Window {
         let span = d.span;
         let before_max = (echo / 4) as u64;
         let shown_max = (echo / 2) as u64;
         let lo = span.start.saturating_sub(before_max);
         let shown_len = span.len().min(shown_max);
         let hi = span.start + shown_len + (echo as u64 - shown_len.min(echo as u64)) + 4;
-        let mut f = std::fs::File::open(file).ok()?;
-        f.seek(SeekFrom::Start(lo)).ok()?;
-        let mut bytes = Vec::new();
-        f.take(hi - lo).read_to_end(&mut bytes).ok()?;
-        let at = usize::try_from(span.start - lo).ok()?;
-        if at > bytes.len() {
-            return None;
-        }
+        let all = text.as_bytes();
+        let bytes = &all[(lo as usize).min(all.len())..(hi as usize).min(all.len())];
+        let at = ((span.start - lo) as usize).min(bytes.len());
         // Before: from the line start (the last LF before the span), else `…`.
         let line_start = bytes[..at].iter().rposition(|&b| b == b'\n').map(|i| i + 1);
         let mut b0 = line_start.unwrap_or(0);
@@ -154,8 +354,7 @@ impl Window {
         while a1 > s1 && a1 < bytes.len() && is_continuation(bytes[a1]) {
             a1 -= 1;
         }
-        let elided_after =
-            a1 < line_end || (line_end == bytes.len() && hi - lo == bytes.len() as u64);
+        let elided_after = a1 < line_end || (line_end == bytes.len() && (hi as usize) < all.len());
         let before = String::from_utf8_lossy(&bytes[b0..at]);
         let shown = String::from_utf8_lossy(&bytes[at..s1]);
         let after = String::from_utf8_lossy(&bytes[s1..a1]);
@@ -172,13 +371,13 @@ impl Window {
             text.push('…');
         }
         let chars_before = text[..label_start].chars().count();
-        Some(Window {
+        Window {
             name,
             text,
             label,
             line0: span.line.saturating_sub(1) as usize,
             col0: (span.column as usize).saturating_sub(1 + chars_before),
-        })
+        }
     }
 }
 

@@ -50,7 +50,7 @@ fn diagnostics_past_column_65535_render_in_every_verb_and_dialect() {
     let error = temp("column.nc", &format!("G1 X1 F100{pad}G999\nM30\n"));
     // An AxiOMA warning far out on the line: a word repeated.
     let warning = temp("column-warn.nc", &format!("G1 F100 X1{pad}G1 X1\nM30\n"));
-    let out = temp("column-out.txt", "");
+    let out = temp("column-out.svg", "");
     for dialect in DIALECTS {
         for verb in verbs(&out) {
             let (code, _, err) = stanok_on(&verb, &error, dialect);
@@ -187,7 +187,7 @@ fn a_20000_term_chain_is_a_diagnostic() {
     let hll = temp("chain.nc", &format!("double aa = {chain};\nM30\n"));
     let iso = temp("chain-iso.nc", &format!("G0 X={chain}\nM30\n"));
     let ngc = temp("chain.ngc", &format!("G0 X[{chain}]\nM2\n"));
-    let out = temp("chain-out.txt", "");
+    let out = temp("chain-out.svg", "");
     for (file, dialect) in [(&hll, "axioma"), (&iso, "axioma"), (&ngc, "rs274ngc")] {
         for verb in verbs(&out) {
             let (code, _, err) = stanok_on(&verb, file, dialect);

@@ -163,7 +163,6 @@ impl Axioma {
         match self.hll_step(core, here, first_error)? {
             HllStep::Done => Ok(Unit::Skip),
             HllStep::Execute(owner) => {
-                core.count_block()?;
                 self.prepare(core)?;
                 self.owner = owner;
                 Ok(Unit::Execute)
@@ -202,7 +201,6 @@ impl FrontEnd for Axioma {
         if let Some(e) = first_error {
             return Err(e);
         }
-        core.count_block()?;
         self.prepare(core)?;
         Ok(Unit::Execute)
     }
@@ -245,6 +243,8 @@ impl FrontEnd for Axioma {
         core: &mut Core<R>,
         outcome: Outcome,
     ) -> Result<(), Diagnostic> {
+        // A block counts once it has run (`Core::count_block`).
+        core.count_block();
         self.part.ext.release(&mut core.staging, &mut core.queue);
         if self.hll_block {
             self.hll_block = false;
@@ -269,5 +269,14 @@ impl FrontEnd for Axioma {
             &mut self.part.reported_spline,
         )?;
         self.hll_end_of_input(core)
+    }
+
+    fn is_fatal(&self, d: &Diagnostic) -> bool {
+        // The HLL's run-wide bounds: the program cannot be followed past them.
+        matches!(
+            d.code,
+            stanok_canon::DiagCode::Stanok("hll::loop-limit")
+                | stanok_canon::DiagCode::Stanok("hll::nesting-too-deep")
+        )
     }
 }

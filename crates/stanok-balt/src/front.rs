@@ -64,7 +64,6 @@ impl FrontEnd for Balt {
         if let Some(e) = core.take_syntax(false) {
             return Err(e);
         }
-        core.count_block()?;
         Ok(Unit::Execute)
     }
 
@@ -89,11 +88,14 @@ impl FrontEnd for Balt {
         self.part.spline = undo;
     }
 
+    #[inline(always)]
     fn commit<R: BufRead + Seek>(
         &mut self,
-        _core: &mut Core<R>,
+        core: &mut Core<R>,
         _outcome: Outcome,
     ) -> Result<(), Diagnostic> {
+        // A block counts once it has run (`Core::count_block`).
+        core.count_block();
         Ok(())
     }
 

@@ -196,7 +196,10 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             _ => {
                 return Err(cx.err(
                     "interp::unsupported",
-                    format!("({name} …) is not supported (CVU splines are not built)"),
+                    format!(
+                        "({} …) is not supported (CVU splines are not built)",
+                        clipped(&name, 32)
+                    ),
                     c.text,
                 ))
             }
@@ -219,7 +222,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             _ => {
                 return Err(cx.err(
                     "interp::unsupported",
-                    format!("{} is not supported", cx.block.slice(span)),
+                    format!("{} is not supported", clipped(cx.block.slice(span), 32)),
                     span,
                 ))
             }
@@ -432,6 +435,15 @@ fn switch(cx: &mut Ctx<'_>, v: f64, span: ColSpan) -> Result<(), Diagnostic> {
         }
     }
     Ok(())
+}
+
+/// At most `max` characters of `text` (with `…` when cut): a message names what it refuses, and
+/// a 1 MB comment must not become a 1 MB message.
+fn clipped(text: &str, max: usize) -> std::borrow::Cow<'_, str> {
+    match text.char_indices().nth(max) {
+        Some((i, _)) => format!("{}…", &text[..i]).into(),
+        None => text.into(),
+    }
 }
 
 /// A G0/G1 block: X Y Z (G91: incremental, XYZ only in CVU=1) with A B C or I J K.

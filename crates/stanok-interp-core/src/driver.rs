@@ -12,6 +12,12 @@
 //!
 //! Generic over the front end, so every call into it is static and inlined: the per-block path
 //! costs what a driver written for one dialect would.
+//!
+//! The bounds that keep any input from hanging a run live here, so that every front end has
+//! them: [`Core::read_line`] counts every line read against `max_blocks` (the work of the run)
+//! and every line read *again* against `max_repeated_lines` (the work a loop, call or jump back
+//! repeats); `Source` bounds line length and program size; `warnings.rs` bounds the warnings
+//! of a line and of the run. Blocks are counted once they have run ([`Core::count_block`]).
 
 use crate::ctx::{Emitter, Parts};
 use crate::frontend::{FrontEnd, Outcome, Unit};
@@ -29,7 +35,8 @@ use std::io::{BufRead, Seek};
 pub struct Stats {
     /// Lines read (including skipped ones).
     pub lines_read: u64,
-    /// Blocks executed (loop bodies count every time).
+    /// Blocks executed to completion (loop bodies count every time; a block that fails is not
+    /// counted, in every dialect).
     pub blocks_executed: u64,
 }
 
@@ -63,19 +70,66 @@ pub struct Core<R: BufRead + Seek> {
     pub warnings: Vec<Diagnostic>,
     /// Counters.
     pub stats: Stats,
+    /// One past the offset of the furthest line start read in the program (`count_line`).
+    high_water: u64,
+    /// Lines read again (`count_line`).
+    repeated_lines: u64,
+    /// What `warnings.rs` remembers to bound the warnings.
+    pub(crate) admitted: crate::warnings::Admitted,
 }
 
 impl<R: BufRead + Seek> Core<R> {
-    /// Reads the next line into `block` (counting it); Ok(Read::Line(start)) with the position
-    /// the line started at.
+    /// Reads the next line into `block` (counting it against the run's bounds, see
+    /// [`Core::count_line`]); Ok(Read::Line(start)) with the position the line started at.
     #[inline(always)]
     pub fn read_line(&mut self) -> Result<Read, Diagnostic> {
         self.syntax.clear();
         let r = self.source.read(&mut self.block, &mut self.syntax)?;
         if let Read::Line(_) = r {
-            self.stats.lines_read += 1;
+            self.count_line()?;
         }
         Ok(r)
+    }
+
+    /// One more line read (executed, control flow or skipped): the run's work bound
+    /// `max_blocks` counts them all, so a loop whose body is skipped or only control flow still
+    /// ends.
+    ///
+    /// A line read *again* — below the furthest point read in the program (a loop pass, a call,
+    /// a jump back), or in a file a call opened — also counts against `max_repeated_lines`: a
+    /// long program read once may have tens of millions of lines, but a runaway loop is work
+    /// done again, and that bound stops it within seconds.
+    #[inline(always)]
+    fn count_line(&mut self) -> Result<(), Diagnostic> {
+        self.stats.lines_read += 1;
+        if self.stats.lines_read > self.opts.max_blocks {
+            return Err(self.too_many_blocks(self.block.span()));
+        }
+        if self.source.depth() > 0 || self.block.offset < self.high_water {
+            self.count_repeated()
+        } else {
+            self.high_water = self.block.offset + 1;
+            Ok(())
+        }
+    }
+
+    /// A line a front end scanned again outside [`Core::read_line`] (RS274/NGC reads a called
+    /// file up to its `sub` line each call): counted as read again.
+    pub fn count_scanned_line(&mut self) -> Result<(), Diagnostic> {
+        self.stats.lines_read += 1;
+        if self.stats.lines_read > self.opts.max_blocks {
+            return Err(self.too_many_blocks(self.block.span()));
+        }
+        self.count_repeated()
+    }
+
+    #[inline(always)]
+    fn count_repeated(&mut self) -> Result<(), Diagnostic> {
+        self.repeated_lines += 1;
+        if self.repeated_lines > self.opts.max_repeated_lines {
+            return Err(self.too_many_repeated_lines());
+        }
+        Ok(())
     }
 
     /// Sorts the current line's syntax diagnostics: warnings are kept (unless `skipping`: the
@@ -102,23 +156,23 @@ impl<R: BufRead + Seek> Core<R> {
         first_error
     }
 
-    /// Counts one executed block against `max_blocks`.
+    /// One more block completed: [`Stats::blocks_executed`] counts a block once it has run, so
+    /// a block that fails is not among them, in every dialect. Front ends call it when they keep
+    /// a unit (`commit`) and for the control-flow lines they act on; the work bound is
+    /// [`Core::read_line`]'s.
     #[inline(always)]
-    pub fn count_block(&mut self) -> Result<(), Diagnostic> {
+    pub fn count_block(&mut self) {
         self.stats.blocks_executed += 1;
-        if self.stats.blocks_executed > self.opts.max_blocks {
-            return Err(self.too_many_blocks(self.block.span()));
-        }
-        Ok(())
     }
 
-    /// Counts `n` units a front end executed at once (read from its own program): lines and
-    /// blocks, against `max_blocks`.
-    pub fn count_units(&mut self, n: u64) -> Result<(), Diagnostic> {
+    /// Counts `n` units a front end completed at once (read from its own program, not through
+    /// [`Core::read_line`]): lines and blocks, the lines against `max_blocks`. `at`: where to
+    /// report the bound (the last command the units produced).
+    pub fn count_units(&mut self, n: u64, at: Span) -> Result<(), Diagnostic> {
         self.stats.lines_read += n;
         self.stats.blocks_executed += n;
-        if self.stats.blocks_executed > self.opts.max_blocks {
-            return Err(self.too_many_blocks(Span::default()));
+        if self.stats.lines_read > self.opts.max_blocks {
+            return Err(self.too_many_blocks(at));
         }
         Ok(())
     }
@@ -128,11 +182,29 @@ impl<R: BufRead + Seek> Core<R> {
         Diagnostic::error(
             "interp::too-many-blocks",
             format!(
-                "more than {} blocks executed: stopping (endless loop?)",
+                "more than {} lines read: stopping (endless loop?)",
                 self.opts.max_blocks
             ),
             at,
         )
+        .with_note(
+            "the bound counts every line read, loops and skipped lines included: the option \
+             --max-blocks",
+        )
+    }
+
+    #[cold]
+    fn too_many_repeated_lines(&self) -> Diagnostic {
+        Diagnostic::error(
+            "interp::too-many-blocks",
+            format!(
+                "more than {} lines read again (loop passes, calls, jumps back): stopping \
+                 (endless loop?)",
+                self.opts.max_repeated_lines
+            ),
+            self.block.span(),
+        )
+        .with_note("the bound is the option --max-repeated-lines")
     }
 
     /// Continues reading at `pos` (an error is located at the current block).
@@ -173,7 +245,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
     pub fn new(source: R, opts: CoreOptions, state: ModalState, fe: F) -> Self {
         Driver {
             core: Core {
-                source: Source::new(source, opts.dialect),
+                source: Source::new(source, &opts),
                 block: Block::default(),
                 words: Words::default(),
                 syntax: Vec::new(),
@@ -182,6 +254,9 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
                 staging: VecDeque::new(),
                 warnings: Vec::new(),
                 stats: Stats::default(),
+                high_water: 0,
+                repeated_lines: 0,
+                admitted: Default::default(),
                 opts,
             },
             fe,
@@ -222,7 +297,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
                 .queue
                 .push_back(Spanned::new(Default::default(), init));
         }
-        self.step()
+        self.step_admitting_warnings()
     }
 
     fn init_command(&self) -> Canon {
@@ -292,6 +367,17 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
         }
     }
 
+    /// One step, then the bounds on its warnings (`warnings.rs`).
+    #[inline(always)]
+    fn step_admitting_warnings(&mut self) -> Result<bool, Diagnostic> {
+        let from = self.core.warnings.len();
+        let r = self.step();
+        if self.core.warnings.len() > from {
+            self.core.admit_warnings(from);
+        }
+        r
+    }
+
     /// How many commands at the back of the queue are held back.
     #[inline(always)]
     fn held(&self) -> usize {
@@ -311,6 +397,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
             DiagCode::Stanok("io::read")
                 | DiagCode::Stanok("io::seek")
                 | DiagCode::Stanok("interp::too-many-blocks")
+                | DiagCode::Stanok("syntax::program-too-large")
         ) || self.fe.is_fatal(&d);
         let go_on = self.core.opts.continue_after_error
             && self.errors < self.core.opts.max_errors
@@ -347,7 +434,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
                         .queue
                         .push_back(Spanned::new(Default::default(), init));
                 }
-                Phase::Running => match self.step() {
+                Phase::Running => match self.step_admitting_warnings() {
                     Ok(true) => self.phase = Phase::Done,
                     Ok(false) => {}
                     Err(d) => return Some(Err(self.fail(d))),

@@ -59,8 +59,10 @@ pub trait FrontEnd: Sized {
     /// blocks later). Monomorphised: costs nothing for the front ends that write directly.
     const STAGES_OUTPUT: bool = false;
 
-    /// Reads the next unit. Line-based front ends read a line with [`Core::read_line`], act on
-    /// their control flow, and count what they execute with [`Core::count_block`].
+    /// Reads the next unit. Line-based front ends read a line with [`Core::read_line`] (which
+    /// counts it against the run's bounds) and act on their control flow; the control-flow lines
+    /// they act on, and in `commit` the units they keep, they count with [`Core::count_block`]
+    /// (a failing unit is not counted).
     fn next_unit<R: BufRead + Seek>(&mut self, core: &mut Core<R>) -> Result<Unit, Diagnostic>;
 
     /// Starts a unit: clears journals, copies what cannot be journalled. The queue (and

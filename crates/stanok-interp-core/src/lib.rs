@@ -24,14 +24,19 @@
 //! * `state.rs` — the common [`ModalState`] and [`Journalled`], the per-block undo of large parts;
 //! * `frame.rs` — the work frame `origin + R·(F(p) + shift) + tlo` and its inverse;
 //! * `arc.rs` — arcs in the programming plane ([`arc::PlanarArc`], [`arc::ArcError`]);
-//! * `options.rs` — [`CoreOptions`], the settings every front end reads.
+//! * `options.rs` — [`CoreOptions`], the settings every front end reads, and the defaults of
+//!   the run's bounds;
+//! * `warnings.rs` — the bounds on warnings (per line, per run, repeats).
 //!
 //! Architecture invariants (each has a test in the registry's suite):
 //! * a unit commits all of its modal changes and commands, or none;
 //! * every command carries its block's span and N label;
 //! * after the first error nothing more is produced (unless `continue_after_error` is set, which
 //!   `stanok check` uses to list every error: the bad unit is skipped, the state is unchanged);
-//! * loops, calls and the number of executed blocks are bounded, so no input hangs.
+//! * loops, calls and the number of executed blocks are bounded, so no input hangs: the core
+//!   bounds what every front end shares (lines read and read again, line length and program
+//!   size, warnings), the front ends their own constructs (loop passes, nesting, call depth),
+//!   with the limits of [`CoreOptions`].
 #![deny(missing_docs)]
 
 pub mod arc;
@@ -42,14 +47,19 @@ pub mod frontend;
 pub mod options;
 pub mod source;
 pub mod state;
+mod warnings;
 pub mod words;
 
 pub use ctx::{is_linear, Ctx, Emitter, Hooks, Parts, AXIS_WORDS};
 pub use driver::{Core, Driver, Stats};
 pub use frontend::{FrontEnd, Outcome, Unit};
-pub use options::CoreOptions;
+pub use options::{
+    CoreOptions, DEFAULT_MAX_BLOCKS, DEFAULT_MAX_DIAGNOSTICS_PER_LINE, DEFAULT_MAX_NESTING,
+    DEFAULT_MAX_REPEATED_LINES, DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
+};
 pub use source::{OpenFile, Read, Source};
 pub use state::{
     DistanceMode, Journalled, ModalSnapshot, ModalState, MotionMode, PathMode, WorkFrame,
 };
+pub use warnings::MAX_WARNINGS;
 pub use words::{NoExpressions, Repeated, Val, WordRules, WordValues, Words};

@@ -7,6 +7,21 @@ use stanok_canon::setup::ControlData;
 use stanok_canon::{LengthUnits, Pose};
 use stanok_syntax::Dialect;
 
+/// Default of [`CoreOptions::max_blocks`]: 50 million lines, five times a 10-million-block
+/// CAM program; a runaway program reaches it in seconds (see `docs/robustness.md`).
+pub const DEFAULT_MAX_BLOCKS: u64 = 50_000_000;
+/// Default of [`CoreOptions::max_repeated_lines`]: a million lines read again (a runaway loop
+/// stops after one to two seconds of CPU in a release build, whatever the size of its body).
+pub const DEFAULT_MAX_REPEATED_LINES: u64 = 1_000_000;
+/// Default of [`CoreOptions::max_total_loop_iterations`]: a million passes per run, as many as
+/// one loop may make (three nested `repeat [1000]` stop after about a second of CPU in a release
+/// build; a runaway loop that moves, after a few seconds of `stanok run`).
+pub const DEFAULT_MAX_TOTAL_LOOP_ITERATIONS: u64 = 1_000_000;
+/// Default of [`CoreOptions::max_nesting`].
+pub const DEFAULT_MAX_NESTING: usize = 1000;
+/// Default of [`CoreOptions::max_diagnostics_per_line`].
+pub const DEFAULT_MAX_DIAGNOSTICS_PER_LINE: usize = 10;
+
 /// Settings of one interpreter run common to all front ends.
 #[derive(Debug, Clone)]
 pub struct CoreOptions {
@@ -27,8 +42,27 @@ pub struct CoreOptions {
     pub max_call_depth: usize,
     /// Most iterations of one loop of the program's control flow.
     pub max_loop_iterations: u64,
-    /// Most blocks executed in one run (loops included).
+    /// Most loop iterations of one run, all loops together (nested loops multiply: three nested
+    /// `repeat [1000]` are 10⁹ passes, each under the per-loop bound). Front ends with loops
+    /// count their passes against it.
+    pub max_total_loop_iterations: u64,
+    /// Most lines one run reads: executed blocks, control-flow lines and lines skipped by a false
+    /// condition alike, each pass of a loop counting its lines again (the work of a run, whatever
+    /// its lines do). Counted by [`crate::Core::read_line`].
     pub max_blocks: u64,
+    /// Most lines one run reads *again*: loop passes, subroutine calls, jumps back (every line
+    /// below the furthest point read, and every line of a file a call opened).
+    pub max_repeated_lines: u64,
+    /// Deepest nesting of the program's control structures (front ends with nested constructs
+    /// bound them by it).
+    pub max_nesting: usize,
+    /// Longest line kept, bytes; the rest of a longer line is an error ([`crate::Source`]).
+    pub max_line_bytes: usize,
+    /// Most bytes of a program read (the program and each file a call opens).
+    pub max_program_bytes: u64,
+    /// Most diagnostics kept for one line (warnings and, in `check`, errors); the rest are
+    /// counted in a note on the last one.
+    pub max_diagnostics_per_line: usize,
     /// Skip erroneous blocks and go on (for `stanok check`).
     pub continue_after_error: bool,
     /// Directories searched, in order, for subroutine files (RS274/NGC `name.ngc` when `o<name>
@@ -66,7 +100,13 @@ impl CoreOptions {
             arc_tolerance_mm: 0.01,
             max_call_depth: 64,
             max_loop_iterations: 1_000_000,
-            max_blocks: 200_000_000,
+            max_total_loop_iterations: DEFAULT_MAX_TOTAL_LOOP_ITERATIONS,
+            max_blocks: DEFAULT_MAX_BLOCKS,
+            max_repeated_lines: DEFAULT_MAX_REPEATED_LINES,
+            max_nesting: DEFAULT_MAX_NESTING,
+            max_line_bytes: stanok_syntax::MAX_LINE_BYTES,
+            max_program_bytes: stanok_syntax::MAX_PROGRAM_BYTES,
+            max_diagnostics_per_line: DEFAULT_MAX_DIAGNOSTICS_PER_LINE,
             continue_after_error: false,
             block_delete: false,
             subroutine_path: Vec::new(),

@@ -2,16 +2,21 @@
 //! (RS274/NGC `o<name> call` of `name.ngc` on the subroutine path). While a file is open every line,
 //! position and seek refer to it; closing it goes back to the reader below. Which file to open and
 //! when is the front end's decision (its control flow); the stack only reads.
+//!
+//! Every reader here is bounded the same way (`CoreOptions::max_line_bytes`,
+//! `max_program_bytes`): a longer line is cut with `syntax::line-too-long`, a larger program
+//! stops with `syntax::program-too-large`, so `/dev/zero` ends instead of being read forever.
 
+use crate::options::CoreOptions;
 use stanok_canon::{Diagnostic, Span};
-use stanok_syntax::{Block, BlockReader, Dialect, SourcePos};
-use std::io::{BufRead, BufReader, Seek};
+use stanok_syntax::{Block, BlockReader, Dialect, SeekBufReader, SourcePos};
+use std::io::{BufRead, Seek};
 use std::path::{Path, PathBuf};
 
 /// A file opened by a call, read by a reader of its own.
 pub struct OpenFile {
     /// Its reader.
-    pub reader: BlockReader<BufReader<std::fs::File>>,
+    pub reader: BlockReader<SeekBufReader<std::fs::File>>,
     /// Its path (diagnostics inside it are located there).
     pub path: PathBuf,
 }
@@ -32,15 +37,23 @@ pub struct Source<R: BufRead + Seek> {
     reader: BlockReader<R>,
     files: Vec<OpenFile>,
     dialect: Dialect,
+    /// Longest line kept and most bytes read, of the program and of each file.
+    max_line_bytes: usize,
+    max_program_bytes: u64,
 }
 
 impl<R: BufRead + Seek> Source<R> {
-    /// The program `source`, read with the line parser of `dialect`.
-    pub fn new(source: R, dialect: Dialect) -> Self {
+    /// The program `source`, read with the line parser of `opts.dialect`, within the size
+    /// bounds of `opts`.
+    pub fn new(source: R, opts: &CoreOptions) -> Self {
+        let mut reader = BlockReader::new(source, opts.dialect);
+        reader.set_limits(opts.max_line_bytes, opts.max_program_bytes);
         Source {
-            reader: BlockReader::new(source, dialect),
+            reader,
             files: Vec::new(),
-            dialect,
+            dialect: opts.dialect,
+            max_line_bytes: opts.max_line_bytes,
+            max_program_bytes: opts.max_program_bytes,
         }
     }
 
@@ -117,7 +130,7 @@ impl<R: BufRead + Seek> Source<R> {
         &self,
         path: &Path,
         at: Span,
-    ) -> Result<BlockReader<BufReader<std::fs::File>>, Diagnostic> {
+    ) -> Result<BlockReader<SeekBufReader<std::fs::File>>, Diagnostic> {
         let file = std::fs::File::open(path).map_err(|e| {
             Diagnostic::error(
                 "io::read",
@@ -125,7 +138,10 @@ impl<R: BufRead + Seek> Source<R> {
                 at,
             )
         })?;
-        Ok(BlockReader::new(BufReader::new(file), self.dialect))
+        // Seeks inside the buffer are free: a loop in a called file jumps back every pass.
+        let mut reader = BlockReader::new(SeekBufReader::new(file), self.dialect);
+        reader.set_limits(self.max_line_bytes, self.max_program_bytes);
+        Ok(reader)
     }
 
     /// Makes `file` the current one: lines come from it until [`Source::pop`].

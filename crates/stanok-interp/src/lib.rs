@@ -39,6 +39,10 @@ pub use stanok_axioma::{
     css_rpm, AxiomaChain, AxiomaMachineParams, AxiomaModes, HVal, LengthComp, Polar, ProbeLatch,
 };
 pub use stanok_interp_core::{DistanceMode, ModalState, MotionMode, PathMode, Stats, WorkFrame};
+pub use stanok_interp_core::{
+    DEFAULT_MAX_BLOCKS, DEFAULT_MAX_DIAGNOSTICS_PER_LINE, DEFAULT_MAX_NESTING,
+    DEFAULT_MAX_REPEATED_LINES, DEFAULT_MAX_TOTAL_LOOP_ITERATIONS, MAX_WARNINGS,
+};
 pub use stanok_labs::{LabMachineParams, LabState};
 pub use stanok_rs274::{normalise_name, Parameters, MAX_PARAMETERS};
 
@@ -143,9 +147,12 @@ fn balt<R: BufRead + Seek>(source: R, opts: InterpOptions) -> Driver<R, Balt> {
 }
 
 fn labs<R: BufRead + Seek>(mut source: R, opts: InterpOptions) -> Driver<R, Labs> {
-    // The lab dialects hold their (short) program in memory: see `stanok_labs`.
+    // The lab dialects hold their (short) program in memory: see `stanok_labs`. Read one byte
+    // past the bound so that the front end sees the program is too large; never more
+    // (`/dev/zero` has no end).
+    let bound = (stanok_labs::MAX_PROGRAM_BYTES as u64).min(opts.max_program_bytes) + 1;
     let mut bytes = Vec::new();
-    let _ = std::io::Read::read_to_end(&mut source, &mut bytes);
+    let _ = std::io::Read::read_to_end(&mut std::io::Read::take(&mut source, bound), &mut bytes);
     let fe = Labs::new(&String::from_utf8_lossy(&bytes), opts.lab());
     let core = opts.core();
     let state = State::power_on(&core);

@@ -28,10 +28,28 @@ pub struct InterpOptions {
     pub rs274_arc_tolerance_mm: Option<f64>,
     /// Deepest subroutine nesting (RS274/NGC).
     pub max_call_depth: usize,
-    /// Most iterations of one loop (RS274/NGC while/do/repeat).
+    /// Most iterations of one loop (RS274/NGC while/do/repeat, AxiOMA for/while/do).
     pub max_loop_iterations: u64,
-    /// Most blocks executed in one run (loops included).
+    /// Most loop iterations of one run, all loops together (nested loops multiply: three nested
+    /// `repeat [1000]` are 10⁹ passes, each under the per-loop bound).
+    pub max_total_loop_iterations: u64,
+    /// Most lines one run reads: executed blocks, control-flow lines and lines skipped by a false
+    /// condition alike, each pass of a loop counting its lines again (the work of a run, whatever
+    /// its lines do).
     pub max_blocks: u64,
+    /// Most lines one run reads *again*: loop passes, subroutine calls, jumps back (every line
+    /// below the furthest point read, and every line of a subroutine file).
+    pub max_repeated_lines: u64,
+    /// Deepest nesting of control structures (RS274/NGC O-word if/while/do/repeat, AxiOMA HLL
+    /// `{ }` blocks and constructs).
+    pub max_nesting: usize,
+    /// Longest line kept, bytes; the rest of a longer line is an error.
+    pub max_line_bytes: usize,
+    /// Most bytes of a program read (main program and each subroutine file).
+    pub max_program_bytes: u64,
+    /// Most diagnostics kept for one line (warnings and, in `check`, errors); the rest are
+    /// counted in a note on the last one.
+    pub max_diagnostics_per_line: usize,
     /// Skip erroneous blocks and go on (for `stanok check`).
     pub continue_after_error: bool,
     /// RS274/NGC user M codes M100–M199: passed to the machine as auxiliary functions when true.
@@ -93,7 +111,13 @@ impl InterpOptions {
             rs274_arc_tolerance_mm: rs274.arc_tolerance_mm,
             max_call_depth: core.max_call_depth,
             max_loop_iterations: core.max_loop_iterations,
+            max_total_loop_iterations: core.max_total_loop_iterations,
             max_blocks: core.max_blocks,
+            max_repeated_lines: core.max_repeated_lines,
+            max_nesting: core.max_nesting,
+            max_line_bytes: core.max_line_bytes,
+            max_program_bytes: core.max_program_bytes,
+            max_diagnostics_per_line: core.max_diagnostics_per_line,
             continue_after_error: core.continue_after_error,
             block_delete: core.block_delete,
             subroutine_path: core.subroutine_path,
@@ -123,7 +147,13 @@ impl InterpOptions {
             arc_tolerance_mm: self.arc_tolerance_mm,
             max_call_depth: self.max_call_depth,
             max_loop_iterations: self.max_loop_iterations,
+            max_total_loop_iterations: self.max_total_loop_iterations,
             max_blocks: self.max_blocks,
+            max_repeated_lines: self.max_repeated_lines,
+            max_nesting: self.max_nesting,
+            max_line_bytes: self.max_line_bytes,
+            max_program_bytes: self.max_program_bytes,
+            max_diagnostics_per_line: self.max_diagnostics_per_line,
             continue_after_error: self.continue_after_error,
             subroutine_path: self.subroutine_path.clone(),
             block_delete: self.block_delete,

@@ -74,6 +74,8 @@ pub struct Labs {
     opts: LabOptions,
     /// Units the last step executed (counted when it commits).
     units: u64,
+    /// The span of the last command produced (where the work bound is reported).
+    last_span: stanok_canon::Span,
 }
 
 /// Its state: the lab control's modes (the read position in the program, which moves past a
@@ -93,6 +95,7 @@ impl Labs {
             run: LabRun::new(text, &opts),
             opts,
             units: 0,
+            last_span: stanok_canon::Span::new(0, 0, 1, 1),
         }
     }
 
@@ -130,7 +133,12 @@ impl FrontEnd for Labs {
         core: &mut Core<R>,
         _outcome: Outcome,
     ) -> Result<(), Diagnostic> {
-        core.count_units(std::mem::take(&mut self.units))
+        // Where the last command the units produced was (line 1 before any): the lab front
+        // end keeps no block of its own in the core.
+        if let Some(c) = core.queue.back() {
+            self.last_span = c.span;
+        }
+        core.count_units(std::mem::take(&mut self.units), self.last_span)
     }
 
     fn finish<R: BufRead + Seek>(&mut self, _core: &mut Core<R>) -> Result<(), Diagnostic> {
@@ -374,7 +382,7 @@ impl LabRun {
         LabRun {
             front,
             reported: Vec::new(),
-            too_large: text.len() > MAX_PROGRAM_BYTES,
+            too_large: text.len() as u64 > (MAX_PROGRAM_BYTES as u64).min(opts.max_program_bytes),
         }
     }
 

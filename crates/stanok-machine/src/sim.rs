@@ -33,6 +33,7 @@
 
 use crate::data::{AxisData, AxisKind, MachineData};
 use crate::sim_motion::{AxisMotion, MotionRun, SetpointSink, SimOptions};
+use crate::time_bound;
 use serde::Serialize;
 use stanok_canon::{
     ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
@@ -161,7 +162,14 @@ pub struct SimMachine {
     /// The kinematics with the active tool while tool-centre-point control is on: motion
     /// positions are then tool poses, and the travel limits are checked on their joints.
     tcp: Option<FiveAxis>,
+    /// Bound on simulated machine time, s (`time_bound.rs`).
+    max_machine_time_s: f64,
+    /// `machine::long-block` warnings (at most [`MAX_WARNINGS`]).
+    warnings: Vec<Diagnostic>,
 }
+
+/// Most warnings a run keeps.
+const MAX_WARNINGS: usize = 100;
 
 /// How the log names a spindle: the main one (Canon's 0) plainly, the others by their number
 /// counted from 1 (AxiOMA's S2…S4, LinuxCNC's `$1`… are spindles 2…).
@@ -258,12 +266,21 @@ impl SimMachine {
             report,
             motion,
             tcp: None,
+            max_machine_time_s: options.max_machine_time_s,
+            warnings: Vec::new(),
         }
     }
 
-    /// Every setpoint also goes to `sink` (a trace writer, a progress display).
+    /// Every setpoint also goes to `sink` (a trace writer, the panel's machine): every servo
+    /// period is then stepped.
     pub fn set_setpoint_sink(&mut self, sink: SetpointSink) {
         self.motion.set_observer(sink);
+    }
+
+    /// A progress display: sees the setpoints, but not necessarily every one (steady stretches
+    /// — dwells, straight cruises — are skipped, so a long dwell costs no work).
+    pub fn set_progress_sink(&mut self, sink: SetpointSink) {
+        self.motion.set_sparse_observer(sink);
     }
 
     /// Runs everything the planner holds to its end, so that the machine stands at the last
@@ -318,9 +335,46 @@ impl SimMachine {
     /// Applies one command. Returns `Err(Diagnostic)` if it cannot run (an axis the machine lacks, a
     /// travel-limit violation); the state is then unchanged and the run stops there.
     pub fn apply(&mut self, cmd: &Spanned<Canon>) -> Result<(), Diagnostic> {
+        if let Some(at) = self.motion.stopped_at() {
+            return Err(time_bound::time_limit(
+                self.max_machine_time_s,
+                at,
+                cmd.span,
+            ));
+        }
+        // Guard 1 of `time_bound.rs`: the nominal time, before anything of the command runs.
+        let seconds = time_bound::nominal_seconds(&self.machine, &cmd.value);
+        if seconds > 0.0 {
+            let at = self.report.nominal_time_s + seconds;
+            if at.is_nan() || at > self.max_machine_time_s {
+                return Err(time_bound::time_limit(
+                    self.max_machine_time_s,
+                    at,
+                    cmd.span,
+                ));
+            }
+            if let Some(w) = time_bound::long_block(&self.machine, &cmd.value, cmd.span) {
+                if self.warnings.len() < MAX_WARNINGS {
+                    self.warnings.push(w);
+                }
+            }
+        }
         self.check_and_log(cmd)?;
         self.motion.apply(&cmd.value, cmd.span.line);
+        // Guard 2: the interpolator stopped at the bound while this command's motion ran.
+        if let Some(at) = self.motion.stopped_at() {
+            return Err(time_bound::time_limit(
+                self.max_machine_time_s,
+                at,
+                cmd.span,
+            ));
+        }
         Ok(())
+    }
+
+    /// The machine's warnings so far (`machine::long-block`), emptied.
+    pub fn take_warnings(&mut self) -> Vec<Diagnostic> {
+        std::mem::take(&mut self.warnings)
     }
 
     /// Checks a command and updates the counters and logs (module doc, steps 1–3).

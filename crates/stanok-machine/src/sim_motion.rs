@@ -43,6 +43,8 @@ pub struct SimOptions {
     /// Override changes at machine times (`stanok run --override-at`), acting on the motion being
     /// executed and everything planned ([`stanok_motion::overrides`]).
     pub override_changes: Vec<stanok_motion::overrides::OverrideChange>,
+    /// Bound on simulated machine time, s (default 100 h; see `time_bound.rs`).
+    pub max_machine_time_s: f64,
 }
 
 impl Default for SimOptions {
@@ -55,6 +57,7 @@ impl Default for SimOptions {
             feed_hold: None,
             profile: None,
             override_changes: Vec::new(),
+            max_machine_time_s: crate::time_bound::DEFAULT_MAX_MACHINE_TIME_S,
         }
     }
 }
@@ -224,6 +227,9 @@ impl MotionRun {
         config.forced_profile = options.profile;
         let config = config.sanitised();
         let mut stage = MotionStage::new(&config);
+        stage.set_time_limit(options.max_machine_time_s);
+        // Nobody needs every setpoint until an observer that does is set (`set_observer`).
+        stage.set_skip_steady(true);
         if let Some((at, standstill)) = options.feed_hold {
             stage.feed_hold(at, standstill);
         }
@@ -245,8 +251,22 @@ impl MotionRun {
         }
     }
 
+    /// An observer of every setpoint (a trace writer, the panel's machine).
     pub(crate) fn set_observer(&mut self, sink: SetpointSink) {
         self.checks.observer = Some(sink);
+        self.stage.set_skip_steady(false);
+    }
+
+    /// An observer that does not need every setpoint (a progress display): steady stretches
+    /// may be skipped (see `stanok_motion::interpolator`).
+    pub(crate) fn set_sparse_observer(&mut self, sink: SetpointSink) {
+        self.checks.observer = Some(sink);
+        self.stage.set_skip_steady(true);
+    }
+
+    /// The time at which the bound on machine time stopped the motion.
+    pub(crate) fn stopped_at(&self) -> Option<f64> {
+        self.stage.stopped_at()
     }
 
     /// Runs one accepted command.
@@ -375,9 +395,20 @@ impl MotionRun {
                 ),
             });
         }
+        if let Some(t) = self.stage.stopped_at() {
+            v.push(LoggedEvent {
+                line: 0,
+                text: format!(
+                    "t = {t:.4} s: the bound on simulated machine time stopped the motion; the \
+                     rest was not simulated (--max-machine-time)"
+                ),
+            });
+        }
         r.violations = v;
-        r.violation_count =
-            c.travel_violation_count + c.monitor.violation_count + stats.tolerance_violations;
+        r.violation_count = c.travel_violation_count
+            + c.monitor.violation_count
+            + stats.tolerance_violations
+            + u64::from(self.stage.stopped_at().is_some());
     }
 }
 

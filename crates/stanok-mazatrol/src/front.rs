@@ -65,7 +65,6 @@ impl FrontEnd for Mazatrol {
         if let Some(e) = core.take_syntax(false) {
             return Err(e);
         }
-        core.count_block()?;
         Ok(Unit::Execute)
     }
 
@@ -97,11 +96,14 @@ impl FrontEnd for Mazatrol {
         self.part.modes.rollback();
     }
 
+    #[inline(always)]
     fn commit<R: BufRead + Seek>(
         &mut self,
-        _core: &mut Core<R>,
+        core: &mut Core<R>,
         _outcome: Outcome,
     ) -> Result<(), Diagnostic> {
+        // A block counts once it has run (`Core::count_block`).
+        core.count_block();
         Ok(())
     }
 

@@ -284,6 +284,11 @@ fn run_from(piece: &PlannedPiece, s0: f64, v_in: f64) -> Phase {
 }
 
 impl FeedHold {
+    /// No hold is requested or under way (the interpolator may then skip steady phases).
+    pub(crate) fn is_idle(&self) -> bool {
+        matches!(self.state, State::Idle)
+    }
+
     /// A hold from `at` (s) with `standstill` seconds at rest.
     pub fn request(&mut self, at: f64, standstill: f64) {
         let standstill = if standstill.is_finite() && standstill > 0.0 {

@@ -19,6 +19,18 @@
 //! of the last piece, exactly at that piece's end point and at rest. So the trace starts at t = 0,
 //! has one setpoint per period, and its duration is the planned time rounded up to a whole period.
 //!
+//! ## Bounded work for long steady phases (optional)
+//! With [`Interpolator::set_skip_steady`] (the simulated machine turns it on when no observer
+//! needs every setpoint), a stretch where nothing changes but the position along a straight line
+//! — a dwell, a standstill, the constant-speed cruise of a line — is not stepped one period at a
+//! time: after emitting a setpoint inside it, the grid jumps to four instants before its end and
+//! goes on from there. Every emitted setpoint is still exact for its time; a consumer sees a gap
+//! in `t` (the monitor restarts its finite differences after one), and the work of a 1,000,000 s
+//! dwell is a handful of setpoints instead of 10⁹. Arcs, blends and a pending feed hold are
+//! always stepped, and so is everything while an override can change (a connected switch, a
+//! scheduled change ahead). With [`Interpolator::set_time_limit`] the interpolator stops at the first grid
+//! instant past the limit and emits nothing more ([`Interpolator::stopped_at`]).
+//!
 //! ## Invariants
 //! * Per setpoint: a fixed amount of arithmetic, no allocation, no loop that depends on the input
 //!   (the caller's sink decides what to do with it).
@@ -197,6 +209,32 @@ pub struct Interpolator {
     /// A zero override stalled the machine and nothing can raise it again: the rest of the run
     /// is not executed (the machine stands where it stopped).
     stalled_for_good: bool,
+    /// Skip steady stretches (module doc).
+    skip_steady: bool,
+    /// Stop at the first grid instant past this time, s.
+    time_limit: f64,
+    /// The time it stopped at, once it has.
+    stopped_at: Option<f64>,
+}
+
+/// The stretch of a phase, from its start, where the path speed is constant, s.
+fn steady_stretch(phase: &Phase) -> Option<(f64, f64)> {
+    match phase {
+        Phase::Run {
+            profile: Profile::Trapezoid(p),
+            ..
+        } => Some(p.cruise()),
+        Phase::Run {
+            profile: Profile::SCurve(p),
+            ..
+        } => Some(p.cruise()),
+        Phase::Run {
+            profile: Profile::Dwell(d),
+            ..
+        } => Some((0.0, *d)),
+        Phase::Stand { seconds, .. } => Some((0.0, *seconds)),
+        Phase::Brake { .. } | Phase::Stall { .. } | Phase::Reset { .. } => None,
+    }
 }
 
 impl Interpolator {
@@ -214,7 +252,25 @@ impl Interpolator {
             switch: None,
             overrides: OverrideInput::default(),
             stalled_for_good: false,
+            skip_steady: false,
+            time_limit: f64::INFINITY,
+            stopped_at: None,
         }
+    }
+
+    /// Skips steady stretches (module doc): for a consumer that does not need every setpoint.
+    pub fn set_skip_steady(&mut self, on: bool) {
+        self.skip_steady = on;
+    }
+
+    /// Stops at the first grid instant past `seconds` of simulated time (module doc).
+    pub fn set_time_limit(&mut self, seconds: f64) {
+        self.time_limit = seconds;
+    }
+
+    /// The time at which the limit stopped it.
+    pub fn stopped_at(&self) -> Option<f64> {
+        self.stopped_at
     }
 
     /// Where the machine stands once every piece received so far has run.
@@ -366,9 +422,10 @@ impl Interpolator {
     ) -> PieceRun {
         let started = self.piece_start;
         let mut run = PieceRun::default();
-        if self.stalled_for_good {
+        if self.stalled_for_good || self.stopped_at.is_some() {
             return run;
         }
+        let straight = matches!(piece.piece.shape, Shape::Line { .. } | Shape::Dwell { .. });
         let mut phase = self.hold.first_phase(&piece);
         let mut phase_start = self.piece_start;
         loop {
@@ -438,8 +495,26 @@ impl Interpolator {
                 if spindle != 1.0 {
                     sp.spindle_rpm = sp.spindle_rpm.map(|n| n * spindle);
                 }
+                if t > self.time_limit {
+                    // Stand where the limit caught the machine: `finish` ends the trace there.
+                    self.stopped_at = Some(t);
+                    self.end = sp.position;
+                    self.line = piece.piece.line;
+                    self.seq = piece.piece.seq;
+                    self.spindles = piece.piece.spindles;
+                    self.piece_start = t;
+                    run.duration = t - started;
+                    return run;
+                }
                 out(&sp);
                 self.tick += 1;
+                if self.skip_steady
+                    && self.switch.is_none()
+                    && self.hold.is_idle()
+                    && !self.overrides.can_change(planner.overrides())
+                {
+                    self.skip_within(&phase, phase_start, phase_end, straight, t);
+                }
             }
             match switched {
                 Some((next, t)) => {
@@ -475,6 +550,49 @@ impl Interpolator {
         self.spindles = piece.piece.spindles;
         run.duration = self.piece_start - started;
         run
+    }
+
+    /// After a setpoint at `t` inside a steady stretch of `phase`, moves the grid to four instants
+    /// before the stretch ends (module doc). Positions move only along a straight line there (or
+    /// not at all), so no limit can be reached in the instants skipped that the emitted ones do
+    /// not show.
+    fn skip_within(
+        &mut self,
+        phase: &Phase,
+        phase_start: f64,
+        phase_end: f64,
+        straight: bool,
+        t: f64,
+    ) {
+        let standing = matches!(phase, Phase::Stand { .. })
+            || matches!(
+                phase,
+                Phase::Run {
+                    profile: Profile::Dwell(_),
+                    ..
+                }
+            );
+        if !(straight || standing) {
+            return;
+        }
+        let Some((from, to)) = steady_stretch(phase) else {
+            return;
+        };
+        // Never past the time limit: the stop must happen at its first instant.
+        let (from, to) = (
+            phase_start + from,
+            (phase_start + to).min(phase_end).min(self.time_limit),
+        );
+        if !(t >= from && t < to) {
+            return;
+        }
+        // The last grid instant strictly inside the stretch, minus three: four consecutive
+        // setpoints lead out of it, so the finite differences are whole again at its end.
+        let last = (to / self.period).ceil() - 1.0;
+        let resume = last - 3.0;
+        if resume.is_finite() && resume > self.tick as f64 + 8.0 && resume < u64::MAX as f64 {
+            self.tick = resume as u64;
+        }
     }
 
     /// The last setpoint: at the end point, at rest, on the first grid instant at or after the

@@ -26,6 +26,11 @@
 //! the centripetal acceleration step by v²/r, a spike of about v²/(r·T); that is why SOFT no longer
 //! uses them.)
 //!
+//! Gaps: a setpoint more than 1.5 periods after the previous one follows a stretch the
+//! interpolator skipped (a dwell, a straight cruise: see `interpolator.rs`). The finite differences
+//! then start again from it (they would divide a gap's displacement by one period), and the count
+//! of setpoints includes the instants skipped, so it stays one per period.
+//!
 //! Known limit: a BRISK piece shorter than one servo period between two SOFT ones would put its
 //! acceleration steps inside a window of four SOFT setpoints; a program would have to switch to
 //! BRISK for a sub-millisecond move at speed under G64 for that to happen.
@@ -82,6 +87,8 @@ pub struct TraceMonitor {
     history: [Point9; 3],
     soft_history: [bool; 3],
     seen: u64,
+    /// Consecutive setpoints in the history (at most 3 are used).
+    run: u64,
     /// Peaks per axis.
     pub peaks: [AxisPeaks; 9],
     /// The first violations (at most 100).
@@ -103,6 +110,7 @@ impl TraceMonitor {
             history: [[0.0; 9]; 3],
             soft_history: [false; 3],
             seen: 0,
+            run: 0,
             peaks: [AxisPeaks::default(); 9],
             violations: Vec::new(),
             violation_count: 0,
@@ -144,6 +152,14 @@ impl TraceMonitor {
     pub fn observe(&mut self, sp: &Setpoint) {
         let p = sp.position;
         let t = self.period;
+        if self.seen >= 1 && sp.t - self.last_t > 1.5 * t {
+            // A skipped stretch (module doc): count its instants, restart the differences.
+            let skipped = ((sp.t - self.last_t) / t).round() - 1.0;
+            if skipped.is_finite() && skipped > 0.0 {
+                self.seen = self.seen.saturating_add(skipped as u64);
+            }
+            self.run = 0;
+        }
         let scale = p
             .iter()
             .chain(self.history[0].iter())
@@ -171,7 +187,7 @@ impl TraceMonitor {
                 self.flag(sp, i, "jerk", j, lim.jerk, 0.0);
             }
             let h = &self.history;
-            if self.seen >= 1 {
+            if self.run >= 1 {
                 let fv = ((p[i] - h[0][i]) / t).abs();
                 self.peaks[i].fd_velocity = self.peaks[i].fd_velocity.max(fv);
                 self.flag(
@@ -184,7 +200,7 @@ impl TraceMonitor {
                 );
             }
             let h = &self.history;
-            if self.seen >= 2 {
+            if self.run >= 2 {
                 let fa = ((p[i] - 2.0 * h[0][i] + h[1][i]) / (t * t)).abs();
                 self.peaks[i].fd_acceleration = self.peaks[i].fd_acceleration.max(fa);
                 self.flag(
@@ -197,7 +213,7 @@ impl TraceMonitor {
                 );
             }
             let h = &self.history;
-            if self.seen >= 3 {
+            if self.run >= 3 {
                 let fj = ((p[i] - 3.0 * h[0][i] + 3.0 * h[1][i] - h[2][i]) / (t * t * t)).abs();
                 self.peaks[i].fd_jerk = self.peaks[i].fd_jerk.max(fj);
                 if all_soft {
@@ -215,6 +231,7 @@ impl TraceMonitor {
         self.history = [p, self.history[0], self.history[1]];
         self.soft_history = [sp.soft, self.soft_history[0], self.soft_history[1]];
         self.seen += 1;
+        self.run += 1;
         self.last_t = sp.t;
         self.last_position = p;
     }

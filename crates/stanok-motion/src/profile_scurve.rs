@@ -297,6 +297,11 @@ impl SCurve {
         self.t_up + self.t_cruise + self.t_down
     }
 
+    /// The cruise at constant speed: (start, end) from the piece start, s.
+    pub fn cruise(&self) -> (f64, f64) {
+        (self.t_up, self.t_up + self.t_cruise)
+    }
+
     /// Arc length at the end of the profile: the piece's length, or less when it comes to rest
     /// before the end (v_max = 0: a stall, see [`crate::profile_trapezoid::Trapezoid::new`]).
     pub fn reached(&self) -> f64 {

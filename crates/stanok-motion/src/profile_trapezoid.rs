@@ -123,6 +123,11 @@ impl Trapezoid {
         self.t1 + self.t2 + self.t3
     }
 
+    /// The cruise at constant speed: (start, end) from the piece start, s.
+    pub fn cruise(&self) -> (f64, f64) {
+        (self.t1, self.t1 + self.t2)
+    }
+
     /// Peak speed.
     pub fn peak_speed(&self) -> f64 {
         self.vp

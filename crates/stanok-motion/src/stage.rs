@@ -60,6 +60,8 @@ pub struct MotionStage {
     /// The reference points of the spline command being adapted (a fine tessellation of its
     /// curve), for the contour measurement of its segments.
     spline_reference: Option<std::sync::Arc<Vec<[f64; 3]>>>,
+    /// The caller allows skipping steady stretches (`set_skip_steady`).
+    skip_steady: bool,
 }
 
 /// The sink as the machine sees it: setpoints through the kin stage when one is active.
@@ -122,6 +124,7 @@ impl MotionStage {
             contour: ContourMonitor::default(),
             timer: BlockTimer::default(),
             spline_reference: None,
+            skip_steady: false,
         }
     }
 
@@ -187,6 +190,23 @@ impl MotionStage {
     /// Connects the operator's feed-hold button (see [`crate::hold::HoldSwitch`]).
     pub fn set_hold_switch(&mut self, switch: std::sync::Arc<crate::hold::HoldSwitch>) {
         self.interpolator.set_hold_switch(switch);
+    }
+
+    /// Skips steady stretches when `on` and no kin stage maps the setpoints (joints of a straight
+    /// tool move are not straight): see `interpolator.rs`.
+    pub fn set_skip_steady(&mut self, on: bool) {
+        self.skip_steady = on;
+        self.interpolator.set_skip_steady(on && self.tcp.is_none());
+    }
+
+    /// Stops the motion at the first servo instant past `seconds` of simulated time.
+    pub fn set_time_limit(&mut self, seconds: f64) {
+        self.interpolator.set_time_limit(seconds);
+    }
+
+    /// The time at which the limit of [`MotionStage::set_time_limit`] stopped the motion.
+    pub fn stopped_at(&self) -> Option<f64> {
+        self.interpolator.stopped_at()
     }
 
     /// Pieces released so far, deviation statistics.
@@ -321,6 +341,8 @@ impl MotionStage {
             None => joints,
         };
         self.tcp = next;
+        self.interpolator
+            .set_skip_steady(self.skip_steady && self.tcp.is_none());
         self.set_position(pose, out);
     }
 

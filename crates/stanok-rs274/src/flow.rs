@@ -128,6 +128,8 @@ pub struct Flow {
     /// Which file lines come from: 0 = the program, n = the n-th nested subroutine file. Keys of
     /// `subs` carry it, so positions of one file are never used in another.
     source: usize,
+    /// Loop passes of the run, all loops together (`max_total_loop_iterations`).
+    total_iterations: u64,
 }
 
 /// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
@@ -335,6 +337,7 @@ impl Flow {
             }
             OKind::If(c) => {
                 let cond = eval.eval(*c)? != 0.0;
+                self.check_nesting(block, opts)?;
                 self.ifs.push(label.clone());
                 if !cond {
                     self.skip = Some(Skip::IfBranch(label));
@@ -379,7 +382,7 @@ impl Flow {
                     Some(f) if f.label == label && f.kind == LoopKind::Do => {
                         if cond {
                             f.iterations += 1;
-                            check_iterations(block, f, opts)?;
+                            check_iterations(block, f, &mut self.total_iterations, opts)?;
                             Ok(FlowAction::Seek(f.target))
                         } else {
                             self.loops.pop();
@@ -391,7 +394,7 @@ impl Flow {
                     {
                         if cond {
                             f.iterations += 1;
-                            check_iterations(block, f, opts)?;
+                            check_iterations(block, f, &mut self.total_iterations, opts)?;
                         } else {
                             self.loops.pop();
                             self.skip = Some(Skip::LoopEnd(label));
@@ -400,6 +403,7 @@ impl Flow {
                     }
                     _ => {
                         if cond {
+                            self.check_nesting(block, opts)?;
                             self.loops.push(LoopFrame {
                                 label,
                                 kind: LoopKind::While,
@@ -424,6 +428,7 @@ impl Flow {
                 )),
             },
             OKind::Do => {
+                self.check_nesting(block, opts)?;
                 self.loops.push(LoopFrame {
                     label,
                     kind: LoopKind::Do,
@@ -437,6 +442,7 @@ impl Flow {
                 if n < 1.0 {
                     self.skip = Some(Skip::LoopEnd(label));
                 } else {
+                    self.check_nesting(block, opts)?;
                     self.loops.push(LoopFrame {
                         label,
                         kind: LoopKind::Repeat(n.min(u64::MAX as f64) as u64),
@@ -468,7 +474,7 @@ impl Flow {
                 Some(_) if self.loops.last().map(|f| &f.label) == Some(&label) => {
                     let f = self.loops.last_mut().expect("checked");
                     f.iterations += 1;
-                    check_iterations(block, f, opts)?;
+                    check_iterations(block, f, &mut self.total_iterations, opts)?;
                     Ok(FlowAction::Seek(f.target))
                 }
                 _ => Err(flow_err(
@@ -478,6 +484,22 @@ impl Flow {
                 )),
             },
         }
+    }
+
+    /// The nesting bound: open if and loop constructs (calls have their own, `max_call_depth`).
+    fn check_nesting(&self, block: &Block, opts: &InterpOptions) -> Result<(), Diagnostic> {
+        if self.ifs.len() + self.loops.len() >= opts.max_nesting {
+            return Err(flow_err(
+                block,
+                "flow::too-deep",
+                format!(
+                    "more than {} if/loop constructs open at once",
+                    opts.max_nesting
+                ),
+            )
+            .with_note("the bound is the option --max-nesting"));
+        }
+        Ok(())
     }
 
     fn end_repeat(
@@ -499,7 +521,7 @@ impl Flow {
                 if remaining > 1 {
                     f.kind = LoopKind::Repeat(remaining - 1);
                     f.iterations += 1;
-                    check_iterations(block, f, opts)?;
+                    check_iterations(block, f, &mut self.total_iterations, opts)?;
                     Ok(FlowAction::Seek(f.target))
                 } else {
                     self.loops.pop();
@@ -690,7 +712,25 @@ impl Flow {
     }
 }
 
-fn check_iterations(block: &Block, f: &LoopFrame, opts: &InterpOptions) -> Result<(), Diagnostic> {
+fn check_iterations(
+    block: &Block,
+    f: &LoopFrame,
+    total: &mut u64,
+    opts: &InterpOptions,
+) -> Result<(), Diagnostic> {
+    *total += 1;
+    if *total > opts.max_total_loop_iterations {
+        return Err(flow_err(
+            block,
+            "flow::too-many-iterations",
+            format!(
+                "the loops of this run passed more than {} times in all: stopping (runaway \
+                 nested loops?)",
+                opts.max_total_loop_iterations
+            ),
+        )
+        .with_note("the bound is the option --max-total-loop-iterations"));
+    }
     if f.iterations > opts.max_loop_iterations {
         return Err(flow_err(
             block,

@@ -337,7 +337,6 @@ impl FrontEnd for Rs274 {
         if core.block.block_delete && core.opts.block_delete {
             return Ok(Unit::Skip);
         }
-        core.count_block()?;
         Ok(Unit::Execute)
     }
 
@@ -404,6 +403,8 @@ impl FrontEnd for Rs274 {
         core: &mut Core<R>,
         _outcome: Outcome,
     ) -> Result<(), Diagnostic> {
+        // A block counts once it has run (`Core::count_block`).
+        core.count_block();
         self.params.commit();
         if let Some((mark, held)) = self.held_at_begin.take() {
             if held > 0 {
@@ -475,25 +476,25 @@ impl Rs274 {
         match action {
             FlowAction::Seek(pos) => {
                 core.seek(pos)?;
-                core.count_block()?;
+                core.count_block();
                 self.apply_flow_params(core);
                 self.finish_lathe_capture(core)?;
             }
             FlowAction::CallFile { path, label } => {
                 self.open_subroutine_file(core, &path, &label)?;
-                core.count_block()?;
+                core.count_block();
                 self.apply_flow_params(core);
             }
             FlowAction::ReturnFromFile(pos) => {
                 core.source.pop();
                 self.flow.set_source(core.source.depth());
                 core.seek(pos)?;
-                core.count_block()?;
+                core.count_block();
                 self.apply_flow_params(core);
                 self.finish_lathe_capture(core)?;
             }
             FlowAction::Handled => {
-                core.count_block()?;
+                core.count_block();
                 self.apply_flow_params(core);
             }
             FlowAction::Execute | FlowAction::Skip => {}

@@ -69,7 +69,10 @@ impl Rs274 {
                     at,
                 )
             })?;
-            if !more {
+            if more {
+                // Every call scans the file again up to its `sub` line: work done again.
+                core.count_scanned_line()?;
+            } else {
                 return Err(Diagnostic::error(
                     "flow::sub-not-found",
                     format!("EOF in file:{} seeking o-word: o{label}", path.display()),

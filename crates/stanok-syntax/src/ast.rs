@@ -426,6 +426,10 @@ pub struct Block {
     pub oword: Option<OWord>,
     /// Expression arena: nodes and the text each came from.
     pub exprs: Vec<(ExprNode, ColSpan)>,
+    /// The height of each node of `exprs` (a leaf is 1): the parser keeps it at most
+    /// [`crate::MAX_EXPR_HEIGHT`], so that a recursive evaluator's depth is bounded whatever the
+    /// length of a left-associative chain such as `[1+1+1…]`.
+    pub expr_heights: Vec<u16>,
     /// AxiOMA high-level language: the statements of an HLL line, the expressions of ISO words
     /// and of `MSG(expr)`. Read it with [`Block::hll`], write it with [`Block::hll_mut`].
     ///
@@ -453,6 +457,7 @@ impl Block {
         self.assignments.clear();
         self.oword = None;
         self.exprs.clear();
+        self.expr_heights.clear();
         if let Some(hll) = self.hll.0.as_deref_mut() {
             hll.clear();
         }

@@ -26,6 +26,13 @@
 //! bracketed expression is widened to include its brackets. A plain literal that is a word's whole
 //! value never gets a node (`X1.5` is `Value::Number`): [`Operand`] defers that decision.
 //!
+//! Height: a left-associative chain (`[1+1+1…]`, `[1 AND 1 AND …]`) is read by the loop in
+//! [`Rs::binary`], not by recursion, but it builds a tree as deep as the chain is long, and the
+//! interpreter evaluates the tree recursively. Every node records its height
+//! (`Block::expr_heights`, a leaf is 1); a chain node higher than [`MAX_EXPR_HEIGHT`] stops the
+//! line with `syntax::expression-too-long`. Together with the depth bound below, no expression of
+//! any length makes a consumer recurse more than a few hundred levels.
+//!
 //! Depth: every nested real value (bracket, sign, function, parameter) counts one level; beyond
 //! [`MAX_DEPTH`] the line is rejected with `syntax::expression-too-deep`, so `[[[[…` of any length
 //! cannot overflow the stack (each level costs a bounded number of frames: at most five
@@ -38,6 +45,11 @@ use crate::rs274::{Operand, Rs, R};
 
 /// Maximum nesting of real values (brackets, signs, functions, parameters).
 pub(crate) const MAX_DEPTH: u32 = 64;
+
+/// Highest expression tree a line may hold (RS274/NGC and AxiOMA HLL): a chain of at most this
+/// many operands. Evaluators recurse on the tree, so this bounds their stack (see
+/// `docs/robustness.md`: the limit is fixed, not an option, because it protects the stack).
+pub const MAX_EXPR_HEIGHT: u16 = 256;
 
 /// What a function name introduces.
 #[derive(Debug, Clone, Copy)]
@@ -93,8 +105,21 @@ impl Rs<'_> {
     /// Pushes a node and returns its id.
     fn node(&mut self, node: ExprNode, start: usize, end: usize) -> ExprId {
         let id = ExprId(self.out.exprs.len() as u32);
+        let below = match node {
+            ExprNode::Number(_) | ExprNode::Exists(_) | ExprNode::Param(ParamRef::Named { .. }) => {
+                0
+            }
+            ExprNode::Param(ParamRef::Numbered(a)) | ExprNode::Unary(_, a) => self.height(a),
+            ExprNode::Atan(a, b) | ExprNode::Binary(_, a, b) => self.height(a).max(self.height(b)),
+        };
         self.out.exprs.push((node, ColSpan::new(start, end)));
+        self.out.expr_heights.push(below.saturating_add(1));
         id
+    }
+
+    /// The height of a node (a leaf is 1).
+    fn height(&self, id: ExprId) -> u16 {
+        self.out.expr_heights[id.0 as usize]
     }
 
     /// The operand as an arena node (a literal gets its node now).
@@ -243,8 +268,25 @@ impl Rs<'_> {
             let rhs = self.binary(prec + 1, depth)?;
             let r = self.operand_expr(rhs);
             let end = self.pos;
-            lhs = Operand::Expr(self.node(ExprNode::Binary(op, l, r), start, end));
+            let id = self.node(ExprNode::Binary(op, l, r), start, end);
+            if self.height(id) > MAX_EXPR_HEIGHT {
+                return self.too_long(start, end);
+            }
+            lhs = Operand::Expr(id);
         }
+    }
+
+    #[cold]
+    fn too_long<T>(&mut self, start: usize, end: usize) -> R<T> {
+        self.fail(
+            "syntax::expression-too-long",
+            format!(
+                "expression more than {MAX_EXPR_HEIGHT} operations deep (a chain of more than \
+                 {MAX_EXPR_HEIGHT} operands): split it over several parameters"
+            ),
+            start,
+            end,
+        )
     }
 
     /// A binary operator at the cursor (consumed), or `None`.

@@ -232,6 +232,9 @@ pub struct HllLine {
     pub items: Vec<(HItem, ColSpan)>,
     /// Expression arena.
     pub exprs: Vec<(HExpr, ColSpan)>,
+    /// The height of each node of `exprs` (a leaf is 1), kept at most
+    /// [`crate::MAX_EXPR_HEIGHT`] by the parser so that the recursive evaluator's depth is bounded.
+    pub heights: Vec<u16>,
     /// `MSG(expr)`: the message is the value of this (string) expression.
     pub message: Option<HExprId>,
 }
@@ -264,6 +267,7 @@ impl HllLine {
         statement: false,
         items: Vec::new(),
         exprs: Vec::new(),
+        heights: Vec::new(),
         message: None,
     };
 
@@ -285,6 +289,7 @@ impl HllLine {
         self.statement = false;
         self.items.clear();
         self.exprs.clear();
+        self.heights.clear();
         self.message = None;
     }
 
@@ -298,7 +303,26 @@ impl HllLine {
         self.exprs[id.0 as usize].1
     }
 
+    /// The height of a node (a leaf is 1).
+    pub fn height(&self, id: HExprId) -> u16 {
+        self.heights[id.0 as usize]
+    }
+
     pub(crate) fn push(&mut self, e: HExpr, span: ColSpan) -> HExprId {
+        let h = |id: &HExprId| self.heights[id.0 as usize];
+        let below = match &e {
+            HExpr::Int(_)
+            | HExpr::Float(_)
+            | HExpr::Bool(_)
+            | HExpr::Str(_)
+            | HExpr::Var(_)
+            | HExpr::System(_) => 0,
+            HExpr::Unary(_, a) | HExpr::IncDec { target: a, .. } => h(a),
+            HExpr::Index(a, b) | HExpr::Binary(_, a, b) | HExpr::Assign(_, a, b) => h(a).max(h(b)),
+            HExpr::Cond(a, b, c) => h(a).max(h(b)).max(h(c)),
+            HExpr::Call(_, args) => args.iter().map(h).max().unwrap_or(0),
+        };
+        self.heights.push(below.saturating_add(1));
         self.exprs.push((e, span));
         HExprId(self.exprs.len() as u32 - 1)
     }

@@ -364,8 +364,29 @@ impl<'a> Parser<'a> {
             };
             self.advance();
             let rhs = self.binary(level + 1)?;
-            lhs = self.node(HExpr::Binary(op, lhs, rhs), start);
+            lhs = self.chain_node(HExpr::Binary(op, lhs, rhs), start)?;
         }
+    }
+
+    /// A node built by a loop (a binary chain, `a[i][j]…`): the loop reads a chain of any
+    /// length, and the tree it builds is as deep, so a chain too deep for the evaluator (see
+    /// `MAX_EXPR_HEIGHT`) stops here.
+    fn chain_node(&mut self, e: HExpr, start: usize) -> R<HExprId> {
+        let id = self.node(e, start);
+        if self.out.hll().height(id) <= crate::MAX_EXPR_HEIGHT {
+            return Ok(id);
+        }
+        let span = self.out.hll().expr_span(id);
+        let max = crate::MAX_EXPR_HEIGHT;
+        self.error(
+            "hll::too-long",
+            format!(
+                "expression more than {max} operations deep (a chain of more than {max} \
+                 operands): split it over several variables"
+            ),
+            span,
+        );
+        Err(())
     }
 
     fn unary(&mut self) -> R<HExprId> {
@@ -441,7 +462,7 @@ impl<'a> Parser<'a> {
                     self.advance();
                     let i = self.expr()?;
                     self.eat("]")?;
-                    e = self.node(HExpr::Index(e, i), start);
+                    e = self.chain_node(HExpr::Index(e, i), start)?;
                 }
                 Tok::Punct(p @ ("++" | "--")) => {
                     self.advance();

@@ -59,16 +59,19 @@
 //! | `hll::unsupported` | error | AxiOMA HLL keywords Stanok does not offer (`switch`, `goto`, …) |
 //! | `hll::not-assignable` | error | assignment or `++`/`--` to something not a variable |
 //! | `hll::too-deep` | error | an HLL expression nested deeper than 64 levels |
+//! | `hll::too-long` | error | an HLL expression more than [`MAX_EXPR_HEIGHT`] operations deep (a long chain) |
 //! | `syntax::unexpected-character` | error | a character that cannot start an item there |
 //! | `syntax::unbalanced-brackets` | error | `[` without `]`, stray `]`, `MSG(` without `)` |
 //! | `syntax::expression-too-deep` | error | RS274/NGC expression nested deeper than 64 levels |
+//! | `syntax::expression-too-long` | error | RS274/NGC expression more than [`MAX_EXPR_HEIGHT`] operations deep (a long chain) |
 //! | `syntax::bad-function` | error | RS274/NGC function without `[`, `ATAN` without `/[x]`, bad `EXISTS` |
 //! | `syntax::bad-parameter` | error | RS274/NGC `#<` without `>`, empty name |
 //! | `syntax::bad-assignment` | error | RS274/NGC `#…` item without `=` |
 //! | `syntax::bad-oword` | error | malformed O-word line, or an O-word that is not first |
 //! | `syntax::block-skip-ignored` | warning | AxiOMA `/` block skip (not supported, block runs) |
 //! | `syntax::invalid-utf8` | error | [`BlockReader`]: bytes that are not UTF-8 (replaced) |
-//! | `syntax::line-too-long` | error | [`BlockReader`]: line longer than [`MAX_LINE_BYTES`] |
+//! | `syntax::line-too-long` | error | [`BlockReader`]: line longer than [`MAX_LINE_BYTES`] (or the bound set) |
+//! | `syntax::program-too-large` | error | [`BlockReader`]: program longer than [`MAX_PROGRAM_BYTES`] (or the bound set) |
 #![deny(missing_docs)]
 
 mod ast;
@@ -82,9 +85,12 @@ mod lexer;
 mod number;
 mod reader;
 mod rs274;
+mod seekbuf;
 
 pub use ast::*;
-pub use reader::{BlockReader, SourcePos, MAX_LINE_BYTES};
+pub use expr::MAX_EXPR_HEIGHT;
+pub use reader::{BlockReader, SourcePos, MAX_LINE_BYTES, MAX_PROGRAM_BYTES};
+pub use seekbuf::SeekBufReader;
 
 use lexer::Pendings;
 use stanok_canon::{Diagnostic, Severity};

@@ -19,8 +19,13 @@ use crate::BlockParser;
 use stanok_canon::Diagnostic;
 use std::io::{BufRead, ErrorKind, Seek, SeekFrom};
 
-/// Longest line kept (1 MiB); the rest of a longer line is skipped with an error.
+/// Longest line kept by default (1 MiB); the rest of a longer line is skipped with an error.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// Most bytes of a program read by default (1 GiB: a 10-million-block CAM program is about
+/// 300 MB). Past it the reader stops with `syntax::program-too-large`: `/dev/zero` or a runaway
+/// generator ends in about a second instead of never.
+pub const MAX_PROGRAM_BYTES: u64 = 1 << 30;
 
 /// Where a line starts, plus the parser's cross-line state there (AxiOMA `/* */` open across
 /// lines), so that the interpreter can jump back to a line (RS274/NGC loops and subroutine calls).
@@ -53,6 +58,12 @@ pub struct BlockReader<R: BufRead + Seek> {
     buf: Vec<u8>,
     offset: u64,
     line: u32,
+    /// Longest line kept (`MAX_LINE_BYTES` unless set).
+    max_line: usize,
+    /// Most bytes read (`MAX_PROGRAM_BYTES` unless set).
+    max_bytes: u64,
+    /// The size bound was reached: everything after it is not read.
+    exhausted: bool,
 }
 
 impl<R: BufRead + Seek> BlockReader<R> {
@@ -65,7 +76,16 @@ impl<R: BufRead + Seek> BlockReader<R> {
             buf: Vec::new(),
             offset: 0,
             line: 1,
+            max_line: MAX_LINE_BYTES,
+            max_bytes: MAX_PROGRAM_BYTES,
+            exhausted: false,
         }
+    }
+
+    /// Sets the longest line kept (at least 1 byte) and the most bytes of the program read.
+    pub fn set_limits(&mut self, max_line_bytes: usize, max_program_bytes: u64) {
+        self.max_line = max_line_bytes.max(1);
+        self.max_bytes = max_program_bytes;
     }
 
     /// The dialect being read.
@@ -80,9 +100,16 @@ impl<R: BufRead + Seek> BlockReader<R> {
         block: &mut Block,
         diags: &mut Vec<Diagnostic>,
     ) -> std::io::Result<bool> {
+        if self.exhausted {
+            return Ok(false);
+        }
         let (consumed, cut) = self.read_line()?;
         if consumed == 0 {
             return Ok(false);
+        }
+        let too_large = self.offset + consumed as u64 >= self.max_bytes && !self.at_end()?;
+        if too_large {
+            self.exhausted = true;
         }
         let line = self.line;
         let offset = self.offset;
@@ -125,13 +152,37 @@ impl<R: BufRead + Seek> BlockReader<R> {
             );
             diags.insert(first_diag, d);
         }
+        // The bounds come first: they are why the line's text is cut, so the errors the parser
+        // found in the cut text (an unclosed comment) are their consequence.
         if cut {
             let end = block.text.len();
-            diags.push(Diagnostic::error(
-                "syntax::line-too-long",
-                format!("line longer than {MAX_LINE_BYTES} bytes: the rest of it is ignored"),
-                block.span_of(ColSpan::new(end, end)),
-            ));
+            diags.insert(
+                first_diag,
+                Diagnostic::error(
+                    "syntax::line-too-long",
+                    format!(
+                        "line longer than {} bytes: the rest of it is ignored",
+                        self.max_line
+                    ),
+                    block.span_of(ColSpan::new(end, end)),
+                )
+                .with_note("the bound is the option --max-line-length (bytes)"),
+            );
+        }
+        if too_large {
+            let end = block.text.len();
+            diags.insert(
+                first_diag,
+                Diagnostic::error(
+                    "syntax::program-too-large",
+                    format!(
+                        "the program is larger than {} bytes: nothing after this point is read",
+                        self.max_bytes
+                    ),
+                    block.span_of(ColSpan::new(end, end)),
+                )
+                .with_note("the bound is the option --max-program-size (bytes)"),
+            );
         }
         Ok(true)
     }
@@ -148,19 +199,36 @@ impl<R: BufRead + Seek> BlockReader<R> {
     /// Moves to `pos` (got from [`BlockReader::position`] on this same input).
     pub fn seek(&mut self, pos: SourcePos) -> std::io::Result<()> {
         self.reader.seek(SeekFrom::Start(pos.offset))?;
+        self.exhausted = false;
         self.offset = pos.offset;
         self.line = pos.line;
         self.parser.set_in_block_comment(pos.in_comment);
         Ok(())
     }
 
-    /// Reads one line (with its LF, if any) into `buf`, keeping at most `MAX_LINE_BYTES` of it.
-    /// Returns the bytes consumed from the input and whether the line was cut.
+    /// True when the input has nothing more.
+    fn at_end(&mut self) -> std::io::Result<bool> {
+        loop {
+            match self.reader.fill_buf() {
+                Ok(a) => return Ok(a.is_empty()),
+                Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Reads one line (with its LF, if any) into `buf`, keeping at most `max_line` bytes of it
+    /// and reading no further than `max_bytes` into the program. Returns the bytes consumed from
+    /// the input and whether the line was cut.
     fn read_line(&mut self) -> std::io::Result<(usize, bool)> {
         self.buf.clear();
         let mut consumed = 0;
         let mut cut = false;
         loop {
+            let budget = self.max_bytes.saturating_sub(self.offset + consumed as u64);
+            if budget == 0 {
+                break;
+            }
             let available = match self.reader.fill_buf() {
                 Ok(a) => a,
                 Err(e) if e.kind() == ErrorKind::Interrupted => continue,
@@ -169,11 +237,14 @@ impl<R: BufRead + Seek> BlockReader<R> {
             if available.is_empty() {
                 break;
             }
+            let available = &available[..available
+                .len()
+                .min(usize::try_from(budget).unwrap_or(usize::MAX))];
             let (chunk, done) = match find_lf(available) {
                 Some(i) => (&available[..=i], true),
                 None => (available, false),
             };
-            let room = MAX_LINE_BYTES.saturating_sub(self.buf.len());
+            let room = self.max_line.saturating_sub(self.buf.len());
             let take = room.min(chunk.len());
             self.buf.extend_from_slice(&chunk[..take]);
             if take < chunk.len() {

@@ -39,7 +39,17 @@ fn diagnose(
     // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
     // error is listed once.
     let mut seen = HashSet::new();
+    // `check` runs no machine, but a feed or dwell that makes one block run for more than an
+    // hour is worth a word (`stanok_machine::time_bound`).
+    let mut long_blocks = Vec::new();
     for item in interp.by_ref() {
+        if let Ok(cmd) = &item {
+            if long_blocks.len() < 100 {
+                long_blocks.extend(stanok_machine::time_bound::long_block(
+                    machine, &cmd.value, cmd.span,
+                ));
+            }
+        }
         if let Err(d) = item {
             if seen.insert((
                 d.code.to_string(),
@@ -53,6 +63,7 @@ fn diagnose(
     }
     let count = errors.len();
     let mut all: Vec<Diagnostic> = interp.take_warnings();
+    all.extend(long_blocks);
     all.extend(errors);
     all.sort_by_key(|d| (d.file.is_some(), d.span.line, d.span.column));
     Ok((all, count))

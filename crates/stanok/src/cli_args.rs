@@ -76,6 +76,9 @@ pub struct ProgramArgs {
     /// several). Correctors not given hold 0.
     #[arg(long, value_name = "N=MM", value_parser = parse_corrector)]
     pub corrector: Vec<(u32, f64)>,
+    /// The bounds of a run (`limits.rs`, docs/robustness.md).
+    #[command(flatten, next_help_heading = "Bounds")]
+    pub limits: crate::limits::LimitsArgs,
 }
 
 /// `16=42`: a lab corrector number and its value in mm.

@@ -20,6 +20,7 @@ mod cutting;
 mod diagnostics;
 mod dialect;
 mod hints;
+mod limits;
 mod machine_list;
 mod machine_show;
 mod perm;
@@ -365,7 +366,7 @@ fn run_program(
     var: &VarArgs,
     motion: &MotionArgs,
 ) -> Result<ExitCode, String> {
-    let options = match sim_options(motion) {
+    let options = match sim_options(motion, &program_args.limits) {
         Ok(o) => o,
         Err(why) => return Ok(program::refuse(why)),
     };
@@ -394,7 +395,13 @@ fn run_program(
     let machine_for_hints = machine.clone();
     let mut sim = SimMachine::with_options(machine, options);
     let progress = progress::Progress::new(program.len());
-    sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
+    // A trace wants every servo period; the progress display alone does not, and then the
+    // machine skips steady stretches (a long dwell, a slow straight feed) in constant time.
+    if trace.is_some() {
+        sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
+    } else {
+        sim.set_progress_sink(trace::sink(None, progress.clone()));
+    }
     let mut failure: Option<Diagnostic> = None;
     for item in interp.by_ref() {
         let applied = item.and_then(|cmd| {
@@ -409,6 +416,8 @@ fn run_program(
     save_var(var, &interp, units)?;
     let mut warnings = interp.take_warnings();
     let mut rep = sim.finish();
+    warnings.extend(sim.take_warnings());
+    warnings.sort_by_key(|d| (d.span.line, d.span.column));
     progress.done();
     if let Some(t) = &trace {
         t.close()?;
@@ -442,7 +451,7 @@ fn run_program(
 }
 
 /// `stanok run`'s motion options, checked.
-fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
+fn sim_options(m: &MotionArgs, limits: &limits::LimitsArgs) -> Result<SimOptions, String> {
     if !(m.servo_period >= 0.01 && m.servo_period <= 1000.0) {
         return Err(format!(
             "--servo-period must be 0.01 … 1000 ms, not {}",
@@ -516,6 +525,7 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
             cli_args::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
         }),
         override_changes,
+        max_machine_time_s: limits.machine_time_s(),
     })
 }
 

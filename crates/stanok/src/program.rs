@@ -138,6 +138,7 @@ pub fn options(
     if let Some(n) = args.max_loop_iterations {
         opts.max_loop_iterations = n;
     }
+    args.limits.apply(&mut opts);
     opts.strip_fixture_comments = args.strip_fixture_comments;
     opts.labs.correctors.extend(args.corrector.iter().copied());
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.

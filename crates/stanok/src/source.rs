@@ -5,8 +5,9 @@
 //! the path is, so that a missing file, a directory or an unreadable file are all the same kind of
 //! failure (exit status 2), before any program text is read.
 
+use stanok_syntax::SeekBufReader;
 use std::fs::File;
-use std::io::{BufRead, BufReader, Cursor, Read, Seek, SeekFrom};
+use std::io::{BufRead, Cursor, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -89,7 +90,8 @@ impl Program {
         match (&self.memory, &self.path) {
             (Some(m), _) => Ok(ProgramReader::Memory(Cursor::new(SharedBytes(m.clone())))),
             (None, Some(p)) => File::open(p)
-                .map(|f| ProgramReader::File(BufReader::new(f)))
+                // Seeks within its buffer are free: every loop pass jumps back.
+                .map(|f| ProgramReader::File(SeekBufReader::new(f)))
                 .map_err(|e| format!("cannot open {}: {}", p.display(), plain(&e))),
             (None, None) => Err("no program".into()),
         }
@@ -163,7 +165,7 @@ impl AsRef<[u8]> for SharedBytes {
 #[derive(Debug)]
 pub enum ProgramReader {
     /// A file.
-    File(BufReader<File>),
+    File(SeekBufReader<File>),
     /// Standard input, read before.
     Memory(Cursor<SharedBytes>),
 }

@@ -9,7 +9,7 @@ use super::value::HVal;
 use super::{Hll, IsoAction, Owner};
 use crate::Axioma;
 use stanok_canon::Diagnostic;
-use stanok_interp_core::Core;
+use stanok_interp_core::{Core, CoreOptions};
 use stanok_syntax::{SourcePos, Value};
 use std::io::{BufRead, Seek};
 
@@ -27,9 +27,8 @@ pub enum HllStep {
 pub struct OwnerToken(Owner);
 
 impl Axioma {
-    fn hll_state(&mut self, max_iterations: u64) -> &mut Hll {
-        self.hll
-            .get_or_insert_with(|| Box::new(Hll::new(max_iterations)))
+    fn hll_state(&mut self, opts: &CoreOptions) -> &mut Hll {
+        self.hll.get_or_insert_with(|| Box::new(Hll::new(opts)))
     }
 
     /// An AxiOMA line while the HLL is in use (or the line is HLL). `first_error` is the line's
@@ -40,18 +39,15 @@ impl Axioma {
         here: SourcePos,
         first_error: Option<Diagnostic>,
     ) -> Result<HllStep, Diagnostic> {
-        let max = core.opts.max_loop_iterations;
         if let Some(e) = first_error {
-            if self.hll_state(max).skipping() {
+            if self.hll_state(&core.opts).skipping() {
                 return Ok(HllStep::Done);
             }
             return Err(e);
         }
         let statement = core.block.hll().statement;
-        if statement && !self.hll_state(max).skipping() {
-            core.count_block()?;
-        }
-        self.hll_state(max);
+        // A statement line counts once it has run (as every block: `Stats::blocks_executed`).
+        let counts = statement && !self.hll_state(&core.opts).skipping();
         let Some(hll) = self.hll.as_deref_mut() else {
             return Ok(HllStep::Done);
         };
@@ -82,6 +78,9 @@ impl Axioma {
                 IsoAction::Execute(owner) => return Ok(HllStep::Execute(owner.map(OwnerToken))),
             }
         };
+        if counts {
+            core.count_block();
+        }
         if let Some(pos) = jump {
             core.seek(pos)?;
         }
@@ -118,7 +117,7 @@ impl Axioma {
         &mut self,
         core: &mut Core<R>,
     ) -> Result<(), Diagnostic> {
-        self.hll_state(core.opts.max_loop_iterations);
+        self.hll_state(&core.opts);
         self.hll_values.clear();
         let Some(hll) = self.hll.as_deref_mut() else {
             return Ok(());

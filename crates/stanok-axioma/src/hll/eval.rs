@@ -285,7 +285,41 @@ impl Env<'_> {
     }
 
     /// Evaluates an expression.
+    ///
+    /// The recursion is bounded by the tree's height (`MAX_EXPR_HEIGHT`, checked by the parser),
+    /// and each level's frame is kept small: only the arms that recurse on operands (unary,
+    /// binary, conditional) are here, the rest is in `eval_leaf` (not inlined), so that a
+    /// debug build too evaluates the highest allowed tree on a 2 MiB thread (the panel's).
     pub fn eval(&mut self, e: HExprId) -> R<HVal> {
+        match *self.block.hll().expr(e) {
+            HExpr::Unary(op, a) => {
+                let v = self.eval(a)?;
+                unary(op, v).map_err(|m| self.err("hll::type-mismatch", m, self.span(e)))
+            }
+            HExpr::Binary(op @ (HBinOp::And | HBinOp::Or), a, b) => {
+                let x = self.truth(a)?;
+                if x == (op == HBinOp::Or) {
+                    return Ok(HVal::Bool(x));
+                }
+                Ok(HVal::Bool(self.truth(b)?))
+            }
+            HExpr::Binary(op, a, b) => {
+                let x = self.eval(a)?;
+                let y = self.eval(b)?;
+                binary(op, x, y).map_err(|m| self.arith_err(m, self.span(e)))
+            }
+            HExpr::Cond(c, a, b) => {
+                let branch = if self.truth(c)? { a } else { b };
+                self.eval(branch)
+            }
+            _ => self.eval_leaf(e),
+        }
+    }
+
+    /// The arms of `eval` that do not recurse on operands directly: literals, places,
+    /// assignments, increments and calls.
+    #[inline(never)]
+    fn eval_leaf(&mut self, e: HExprId) -> R<HVal> {
         let at = self.span(e);
         match self.block.hll().expr(e) {
             HExpr::Int(i) => Ok(HVal::Int(*i)),
@@ -295,22 +329,6 @@ impl Env<'_> {
             HExpr::Var(_) | HExpr::Index(..) | HExpr::System(_) => {
                 let place = self.place(e)?;
                 Ok(self.read(&place))
-            }
-            &HExpr::Unary(op, a) => {
-                let v = self.eval(a)?;
-                unary(op, v).map_err(|m| self.err("hll::type-mismatch", m, at))
-            }
-            &HExpr::Binary(op @ (HBinOp::And | HBinOp::Or), a, b) => {
-                let x = self.truth(a)?;
-                if x == (op == HBinOp::Or) {
-                    return Ok(HVal::Bool(x));
-                }
-                Ok(HVal::Bool(self.truth(b)?))
-            }
-            &HExpr::Binary(op, a, b) => {
-                let x = self.eval(a)?;
-                let y = self.eval(b)?;
-                binary(op, x, y).map_err(|m| self.arith_err(m, at))
             }
             &HExpr::Assign(op, target, value) => {
                 let place = self.place(target)?;
@@ -337,18 +355,12 @@ impl Env<'_> {
                 let stored = self.write(&place, new, at)?;
                 Ok(if prefix { stored } else { old })
             }
-            &HExpr::Cond(c, a, b) => {
-                if self.truth(c)? {
-                    self.eval(a)
-                } else {
-                    self.eval(b)
-                }
-            }
             HExpr::Call(name, args) => {
                 let name = *name;
                 let args = args.clone();
                 self.call(name, &args, at)
             }
+            HExpr::Unary(..) | HExpr::Binary(..) | HExpr::Cond(..) => self.eval(e),
         }
     }
 

@@ -126,6 +126,11 @@ struct Control {
     /// The seek goes back to a loop header to run its step and condition.
     reenter: bool,
     max_iterations: u64,
+    /// Loop passes of the run, all loops together, and their bound.
+    total_passes: u64,
+    max_total_passes: u64,
+    /// Most frames open at once (`max_nesting`).
+    max_nesting: usize,
 }
 
 /// What an item asks of the driver.
@@ -134,7 +139,7 @@ type Jump = Option<SourcePos>;
 type R<T> = Result<T, Diagnostic>;
 
 impl Hll {
-    fn new(max_iterations: u64) -> Self {
+    fn new(opts: &stanok_interp_core::CoreOptions) -> Self {
         Hll {
             vars: Vars::default(),
             control: Control {
@@ -143,7 +148,10 @@ impl Hll {
                 skip: None,
                 resume: None,
                 reenter: false,
-                max_iterations,
+                max_iterations: opts.max_loop_iterations,
+                total_passes: 0,
+                max_total_passes: opts.max_total_loop_iterations,
+                max_nesting: opts.max_nesting,
             },
         }
     }
@@ -232,6 +240,7 @@ impl Control {
             }
             Expect::Body { run, owner, header } => match item {
                 HItem::Open if run => {
+                    self.check_nesting(span)?;
                     self.frames.push(Frame::Body { owner, open: span });
                     env.vars.push_scope();
                     return Ok(None);
@@ -279,6 +288,7 @@ impl Control {
                 Ok(None)
             }
             HItem::Open => {
+                self.check_nesting(span)?;
                 self.frames.push(Frame::Body {
                     owner: Owner::Plain,
                     open: span,
@@ -430,6 +440,7 @@ impl Control {
             }
             return Ok(false);
         }
+        self.check_nesting(span)?;
         let scoped = kind == LoopKind::For;
         if scoped {
             env.vars.push_scope();
@@ -453,9 +464,43 @@ impl Control {
         };
     }
 
+    /// The nesting bound: `{ }` blocks and loops open at once (an `if(1){` 100,000 deep would
+    /// otherwise cost time and memory in proportion).
+    fn check_nesting(&self, span: Span) -> R<()> {
+        if self.frames.len() >= self.max_nesting {
+            return Err(Diagnostic::error(
+                "hll::nesting-too-deep",
+                format!(
+                    "more than {} blocks and loops open at once",
+                    self.max_nesting
+                ),
+                span,
+            )
+            .with_note("the bound is the option --max-nesting"));
+        }
+        Ok(())
+    }
+
     /// Counts one more pass of the innermost loop against the limit; returns its header.
     fn count_pass(&mut self) -> R<(SourcePos, usize)> {
         let max = self.max_iterations;
+        self.total_passes += 1;
+        if self.total_passes > self.max_total_passes {
+            let span = match self.frames.last() {
+                Some(Frame::Loop(l)) => l.span,
+                _ => Span::default(),
+            };
+            return Err(Diagnostic::error(
+                "hll::loop-limit",
+                format!(
+                    "the loops of this run passed more than {} times in all: stopped (runaway \
+                     nested loops?)",
+                    self.max_total_passes
+                ),
+                span,
+            )
+            .with_note("the bound is the option --max-total-loop-iterations"));
+        }
         let Some(Frame::Loop(l)) = self.frames.last_mut() else {
             return Err(Diagnostic::error(
                 "hll::internal",
@@ -471,7 +516,7 @@ impl Control {
                 format!("the loop ran more than {max} times: stopped (endless loop?)"),
                 l.span,
             )
-            .with_note("the limit is the interpreter option `max_loop_iterations`"));
+            .with_note("the bound is the option --max-loop-iterations"));
         }
         Ok((l.header, l.item))
     }

@@ -167,6 +167,7 @@ impl SplineState {
             knots,
             plane: self.plane,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         };
         self.push(&b, Canon::SplineFeed(mv));
     }
@@ -344,6 +345,7 @@ impl SplineState {
                     knots: bk.clone(),
                     plane: self.plane,
                     feed,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 };
                 self.push(&owner, Canon::SplineFeed(mv));
             } else {
@@ -357,6 +359,7 @@ impl SplineState {
                             start: prev,
                             end,
                             feed,
+                            law: stanok_canon::FeedLaw::PerMinute,
                         }),
                     );
                 }
@@ -526,6 +529,7 @@ pub(super) fn point(cx: &mut Ctx<'_>, span: ColSpan, w: &SplineWords) -> Result<
                     start,
                     end: end_m,
                     feed,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 }),
             );
         } else {

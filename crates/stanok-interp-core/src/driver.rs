@@ -5,7 +5,8 @@
 //!  Phase::Start ─▶ Canon::Init from the power-on state
 //!  Phase::Running: while the queue has nothing releasable, step():
 //!      fe.next_unit ─▶ Execute ─▶ run_unit: begin ─▶ execute ─▶ commit | rollback
-//!  the queue releases everything but the front end's held tail (look-ahead)
+//!  the queue releases everything but the front end's held tail (look-ahead); each released
+//!      motion gets its feed law (`feed_law.rs`)
 //!  an error: yielded; the run stops there (nothing of the unit or after it), unless
 //!      continue_after_error and the error is not fatal — then the unit is skipped, state unchanged
 //! ```
@@ -14,6 +15,7 @@
 //! costs what a driver written for one dialect would.
 
 use crate::ctx::{Emitter, Parts};
+use crate::feed_law::FeedLaws;
 use crate::frontend::{FrontEnd, Outcome, Unit};
 use crate::options::CoreOptions;
 use crate::source::{Read, Source};
@@ -165,6 +167,8 @@ pub struct Driver<R: BufRead + Seek, F: FrontEnd> {
     fe: F,
     phase: Phase,
     errors: usize,
+    /// Completes every released motion with its feed law (`feed_law.rs`).
+    laws: FeedLaws,
 }
 
 impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
@@ -187,6 +191,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
             fe,
             phase: Phase::Start,
             errors: 0,
+            laws: FeedLaws::default(),
         }
     }
 
@@ -334,7 +339,8 @@ impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
                 // return, the command moves straight into the result (no extra copy of the
                 // 260-byte Spanned<Canon> per command, measured with callgrind).
                 self.fe.released();
-                if let Some(c) = self.core.queue.pop_front() {
+                if let Some(mut c) = self.core.queue.pop_front() {
+                    self.laws.stamp(&mut c.value);
                     return Some(Ok(c));
                 }
             }

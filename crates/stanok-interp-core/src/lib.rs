@@ -24,6 +24,7 @@
 //! * `state.rs` — the common [`ModalState`] and [`Journalled`], the per-block undo of large parts;
 //! * `frame.rs` — the work frame `origin + R·(F(p) + shift) + tlo` and its inverse;
 //! * `arc.rs` — arcs in the programming plane ([`arc::PlanarArc`], [`arc::ArcError`]);
+//! * `feed_law.rs` — [`FeedLaws`]: every released motion completed with its feed law;
 //! * `options.rs` — [`CoreOptions`], the settings every front end reads.
 //!
 //! Architecture invariants (each has a test in the registry's suite):
@@ -37,6 +38,7 @@
 pub mod arc;
 pub mod ctx;
 pub mod driver;
+pub mod feed_law;
 pub mod frame;
 pub mod frontend;
 pub mod options;
@@ -46,6 +48,7 @@ pub mod words;
 
 pub use ctx::{is_linear, Ctx, Emitter, Hooks, Parts, AXIS_WORDS};
 pub use driver::{Core, Driver, Stats};
+pub use feed_law::FeedLaws;
 pub use frontend::{FrontEnd, Outcome, Unit};
 pub use options::CoreOptions;
 pub use source::{OpenFile, Read, Source};

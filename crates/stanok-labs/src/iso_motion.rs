@@ -221,6 +221,7 @@ impl Exec<'_> {
                     start: self.st.position,
                     end,
                     feed: f,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 }));
                 self.st.position = end;
             }
@@ -295,6 +296,7 @@ impl Exec<'_> {
             turns: out.turns,
             plane,
             feed: f,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end;
         Ok(())
@@ -305,6 +307,7 @@ impl Exec<'_> {
             start: self.st.position,
             end,
             feed: 0.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end;
     }

@@ -27,6 +27,7 @@ fn rapid(a: Pose, b: Pose) -> Spanned<Canon> {
         start: a,
         end: b,
         feed: 0.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -35,6 +36,7 @@ fn feed(a: Pose, b: Pose) -> Spanned<Canon> {
         start: a,
         end: b,
         feed: 500.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -47,6 +49,7 @@ fn arc(a: Pose, b: Pose, centre: [f64; 3], axis: [f64; 3], turns: u32) -> Spanne
         turns,
         plane: Plane::XY,
         feed: 500.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -375,6 +378,7 @@ fn nurbs_circle_program() -> Vec<Spanned<Canon>> {
             ],
             plane: Plane::XY,
             feed: 1000.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         })),
     ]
 }

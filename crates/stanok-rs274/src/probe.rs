@@ -132,6 +132,7 @@ pub(super) fn straight_probe(
             start: start_m,
             end: end_m,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: kind,
         contact: trip,

@@ -106,6 +106,7 @@ fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64
         knots,
         plane: Plane::XY,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     cx.st.position = end;
 }

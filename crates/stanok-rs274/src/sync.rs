@@ -96,6 +96,7 @@ pub(super) fn g33_1(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         start,
         end: end_m,
         scale: 1.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     });
     cx.out.push(Canon::StopSpindleSync);
     cx.fe.modes.motion_code = Some(331);

@@ -21,7 +21,7 @@ use crate::options::CoreOptions;
 use crate::source::{Read, Source};
 use crate::state::ModalState;
 use crate::words::Words;
-use stanok_canon::{Canon, DiagCode, Diagnostic, Span, Spanned};
+use stanok_canon::{Canon, Diagnostic, Span, Spanned};
 use stanok_syntax::{Block, SourcePos};
 use std::collections::VecDeque;
 use std::io::{BufRead, Seek};
@@ -135,6 +135,7 @@ impl<R: BufRead + Seek> Core<R> {
             ),
             at,
         )
+        .fatal()
     }
 
     /// Continues reading at `pos` (an error is located at the current block).
@@ -311,15 +312,9 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
             None => d,
         };
         self.errors += 1;
-        let fatal = matches!(
-            d.code,
-            DiagCode::Stanok("io::read")
-                | DiagCode::Stanok("io::seek")
-                | DiagCode::Stanok("interp::too-many-blocks")
-        ) || self.fe.is_fatal(&d);
         let go_on = self.core.opts.continue_after_error
             && self.errors < self.core.opts.max_errors
-            && !fatal;
+            && !d.fatal;
         if !go_on {
             self.phase = Phase::Done;
             self.core.queue.clear();

@@ -59,7 +59,9 @@ impl<R: BufRead + Seek> Source<R> {
             Some(f) => f.reader.seek(pos),
             None => self.reader.seek(pos),
         };
-        r.map_err(|e| Diagnostic::error("io::seek", format!("cannot seek in the program: {e}"), at))
+        r.map_err(|e| {
+            Diagnostic::error("io::seek", format!("cannot seek in the program: {e}"), at).fatal()
+        })
     }
 
     /// Reads the next line into `block` (its syntax diagnostics into `syntax`).
@@ -79,6 +81,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot read the program: {e}"),
                 Span::default(),
             )
+            .fatal()
         })?;
         Ok(if more {
             Read::Line(here)
@@ -103,6 +106,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot read {}: {e}", f.path.display()),
                 Span::default(),
             )
+            .fatal()
         })?;
         Ok(if more {
             Read::Line(here)
@@ -124,6 +128,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot open subroutine file {}: {e}", path.display()),
                 at,
             )
+            .fatal()
         })?;
         Ok(BlockReader::new(BufReader::new(file), self.dialect))
     }

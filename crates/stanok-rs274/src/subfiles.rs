@@ -56,7 +56,8 @@ impl Rs274 {
                     core.opts.max_call_depth
                 ),
                 at,
-            ));
+            )
+            .fatal());
         }
         let mut reader = core.source.open(path, at)?;
         let mut block = Block::default();
@@ -68,13 +69,15 @@ impl Rs274 {
                     format!("cannot read {}: {e}", path.display()),
                     at,
                 )
+                .fatal()
             })?;
             if !more {
                 return Err(Diagnostic::error(
                     "flow::sub-not-found",
                     format!("EOF in file:{} seeking o-word: o{label}", path.display()),
                     at,
-                ));
+                )
+                .fatal());
             }
             if let Some(o) = &block.oword {
                 if matches!(o.kind, OKind::Sub) && flow::label_text(&block, &o.label) == label {
@@ -103,5 +106,6 @@ impl Rs274 {
             format!("subroutine file {path} ended without its endsub"),
             core.block.span(),
         )
+        .fatal()
     }
 }

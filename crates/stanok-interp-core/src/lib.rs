@@ -23,6 +23,7 @@
 //! * `words.rs` — STEP 2: a block's words evaluated and sorted ([`Words`], [`WordRules`]);
 //! * `state.rs` — the common [`ModalState`] and [`Journalled`], the per-block undo of large parts;
 //! * `frame.rs` — the work frame `origin + R·(F(p) + shift) + tlo` and its inverse;
+//! * `codes.rs` — [`code_table!`]: a dialect's codes (value, name, group, handler) in one table;
 //! * `arc.rs` — arcs in the programming plane ([`arc::PlanarArc`], [`arc::ArcError`]);
 //! * `feed_law.rs` — [`FeedLaws`]: every released motion completed with its feed law;
 //! * `options.rs` — [`CoreOptions`], the settings every front end reads.
@@ -36,6 +37,7 @@
 #![deny(missing_docs)]
 
 pub mod arc;
+pub mod codes;
 pub mod ctx;
 pub mod driver;
 pub mod feed_law;

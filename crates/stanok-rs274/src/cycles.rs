@@ -39,6 +39,7 @@
 //! the block is refused with a diagnostic instead of hanging.
 
 use super::Rs274State;
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::state::{DistanceMode, PathMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, SpindleDirection};
@@ -70,7 +71,7 @@ fn plane_name(plane: Plane) -> &'static str {
     }
 }
 
-/// Executes a canned-cycle block (motion code ×10: 730, 740, 810…890).
+/// Executes a canned-cycle block (G73, G74, G81…G89).
 pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
     let plane = cx.st.plane;
     let (a, b, n) = plane.axes();
@@ -220,21 +221,21 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     let words = CycleWords::read(cx, code, &g, same_series, incremental, bottom, span)?;
     let direction = cx.fe.modes.spindle_direction;
     match code {
-        840 if direction != Some(SpindleDirection::Clockwise) => {
+        G84 if direction != Some(SpindleDirection::Clockwise) => {
             return Err(cx.err(
                 "rs274::g84-spindle",
                 "Spindle not turning clockwise in g84 canned cycle",
                 span,
             ))
         }
-        740 if direction != Some(SpindleDirection::CounterClockwise) => {
+        G74 if direction != Some(SpindleDirection::CounterClockwise) => {
             return Err(cx.err(
                 "rs274::g74-spindle",
                 "Spindle not turning counterclockwise in g74 canned cycle",
                 span,
             ))
         }
-        860 | 870 | 880 if direction.is_none() || !cx.st.spindle_on[0] => {
+        G86 | G87 | G88 if direction.is_none() || !cx.st.spindle_on[0] => {
             return Err(cx.err(
                 "rs274::cycle-spindle",
                 format!("Spindle not turning in {g} canned cycle"),
@@ -348,8 +349,8 @@ impl CycleWords {
             offset: [0.0; 2],
             middle: 0.0,
         };
-        let needs_p = matches!(code, 820 | 860 | 880 | 890);
-        let takes_p = needs_p || matches!(code, 740 | 840);
+        let needs_p = matches!(code, G82 | G86 | G88 | G89);
+        let takes_p = needs_p || matches!(code, G74 | G84);
         if takes_p {
             w.p = match cx.words.take(b'P') {
                 Some(p) => Some(p.v),
@@ -364,7 +365,7 @@ impl CycleWords {
                 None => Some(0.0),
             };
         }
-        if matches!(code, 730 | 830) {
+        if matches!(code, G73 | G83) {
             let q = match cx.words.take(b'Q') {
                 Some(q) => cx.mm(q.v),
                 None if same_series => cx.fe.modes.cycle_q,
@@ -385,7 +386,7 @@ impl CycleWords {
             }
             w.q = Some(q);
         }
-        if code == 870 {
+        if code == G87 {
             let (a, b, _) = cx.st.plane.axes();
             let letters = [b'I', b'J', b'K'];
             let (la, lb) = (letters[a], letters[b]);
@@ -486,22 +487,22 @@ fn hole(
     let dwell = w.p.unwrap_or(0.0);
     let dir = direction.unwrap_or(SpindleDirection::Clockwise);
     match code {
-        810 => {
+        G81 => {
             feed(cx, f, aa, bb, f.bottom);
             traverse(cx, f, aa, bb, f.clear);
         }
-        820 => {
+        G82 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             traverse(cx, f, aa, bb, f.clear);
         }
-        730 | 830 => {
+        G73 | G83 => {
             let q = w.q.unwrap_or(f.r - f.bottom);
             let up = peck_clearance(cx);
             let mut depth = f.r - q;
             while depth > f.bottom {
                 feed(cx, f, aa, bb, depth);
-                if code == 830 {
+                if code == G83 {
                     traverse(cx, f, aa, bb, f.r);
                 }
                 traverse(cx, f, aa, bb, depth + up);
@@ -510,7 +511,7 @@ fn hole(
             feed(cx, f, aa, bb, f.bottom);
             traverse(cx, f, aa, bb, f.clear);
         }
-        740 | 840 => {
+        G74 | G84 => {
             let reverse = match dir {
                 SpindleDirection::Clockwise => SpindleDirection::CounterClockwise,
                 SpindleDirection::CounterClockwise => SpindleDirection::Clockwise,
@@ -525,21 +526,21 @@ fn hole(
             spindle(cx, dir);
             overrides(cx, true);
         }
-        850 => {
+        G85 => {
             feed(cx, f, aa, bb, f.bottom);
             feed(cx, f, aa, bb, f.r);
             if f.clear != f.r {
                 traverse(cx, f, aa, bb, f.clear);
             }
         }
-        860 => {
+        G86 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             stop_spindle(cx);
             traverse(cx, f, aa, bb, f.clear);
             spindle(cx, dir);
         }
-        870 => {
+        G87 => {
             let (oa, ob) = (aa + w.offset[0], bb + w.offset[1]);
             let orient = Canon::OrientSpindle {
                 spindle: 0,
@@ -562,14 +563,14 @@ fn hole(
             traverse(cx, f, aa, bb, f.clear);
             spindle(cx, dir);
         }
-        880 => {
+        G88 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             stop_spindle(cx);
             cx.out.push(Canon::ProgramStop { optional: false });
             spindle(cx, dir);
         }
-        890 => {
+        G89 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             feed(cx, f, aa, bb, f.clear);

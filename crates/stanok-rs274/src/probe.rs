@@ -17,6 +17,7 @@
 //! Checks before anything moves (LinuxCNC's): feed not zero, cutter compensation off, the target at
 //! least 0.01 in (0.254 mm) away, the probe not already in the requested state.
 
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use stanok_canon::{Canon, Diagnostic, FeedMode, LineMove, Pose, ProbeKind};
@@ -25,7 +26,7 @@ use stanok_syntax::ColSpan;
 /// LinuxCNC's minimum probe distance: 0.01 in.
 const MIN_PROBE_DISTANCE_MM: f64 = 0.254;
 
-/// Executes G38.2 (382) … G38.5 (385).
+/// Executes G38.2 … G38.5.
 pub(super) fn straight_probe(
     cx: &mut Ctx<'_>,
     params: &mut Parameters,
@@ -74,9 +75,9 @@ pub(super) fn straight_probe(
         ));
     }
     let kind = match code {
-        382 => ProbeKind::TowardErrorIfNone,
-        383 => ProbeKind::Toward,
-        384 => ProbeKind::AwayErrorIfNone,
+        G38_2 => ProbeKind::TowardErrorIfNone,
+        G38_3 => ProbeKind::Toward,
+        G38_4 => ProbeKind::AwayErrorIfNone,
         _ => ProbeKind::Away,
     };
     let want_contact = matches!(kind, ProbeKind::TowardErrorIfNone | ProbeKind::Toward);

@@ -18,6 +18,7 @@
 //! mapped to the machine through the work frame point by point (the frame is affine, and a
 //! rational B-spline maps exactly under affine maps by mapping its control points).
 
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use crate::state::DistanceMode;
@@ -128,7 +129,7 @@ fn pair(cx: &mut Ctx<'_>, a: u8, b: u8) -> (Option<f64>, Option<f64>) {
 /// G5.
 pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5", span)?;
-    let continuing = cx.fe.modes.motion_code == Some(50);
+    let continuing = cx.fe.modes.motion_code == Some(G5);
     let (i, j) = pair(cx, b'I', b'J');
     let (p, q) = pair(cx, b'P', b'Q');
     let (Some(p), Some(q)) = (p, q) else {
@@ -160,7 +161,7 @@ pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result
     let pts = [[s.x, s.y], [s.x + i, s.y + j], [e[0] + p, e[1] + q], e];
     emit(cx, &pts, vec![1.0; 4], stanok_geom::bezier_knots(3), f);
     cx.fe.modes.g5_pq = [p, q];
-    cx.fe.modes.motion_code = Some(50);
+    cx.fe.modes.motion_code = Some(G5);
     Ok(())
 }
 
@@ -188,7 +189,7 @@ pub(super) fn quadratic(
         e,
     ];
     emit(cx, &pts, vec![1.0; 3], stanok_geom::bezier_knots(2), f);
-    cx.fe.modes.motion_code = Some(51);
+    cx.fe.modes.motion_code = Some(G5_1);
     Ok(())
 }
 
@@ -200,7 +201,7 @@ pub(super) fn nurbs_point(
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.2", span)?;
-    let opening = explicit || cx.fe.modes.motion_code != Some(52);
+    let opening = explicit || cx.fe.modes.motion_code != Some(G5_2);
     let weight = match cx.words.take(b'P') {
         Some(p) if p.v > 0.0 => p.v,
         Some(p) => {
@@ -271,7 +272,7 @@ pub(super) fn nurbs_point(
         }
         buf.points.push(([x, y, here.z], weight));
     }
-    cx.fe.modes.motion_code = Some(52);
+    cx.fe.modes.motion_code = Some(G5_2);
     Ok(())
 }
 
@@ -282,7 +283,7 @@ pub(super) fn nurbs_end(
     f_in_block: bool,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
-    if cx.fe.modes.motion_code != Some(52) {
+    if cx.fe.modes.motion_code != Some(G5_2) {
         return Err(cx.err(
             "rs274::g5-3-without-g5-2",
             "G5.3 without a G5.2 block to close",

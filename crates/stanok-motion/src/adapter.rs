@@ -18,11 +18,13 @@
 //! G93 inverse time and G95 per-revolution feeds at the commanded spindle speed into mm/min), or
 //! under `FeedLaw::SpindleSync` pitch × spindle rpm, or under `FeedLaw::SurfaceSpeed` (G95 with
 //! G96) pieces that follow the law, each at mm/rev × its lowest spindle speed ([`crate::css`]).
-//! Then: mm/min → mm/s, clamp to the machine's maximum feed, times the feed override
-//! (0.1 %…200 %, not in spindle sync), times (9-D length / feed length) — see
-//! [`crate::segment`]. A feed that is zero, negative or not a number (the interpreter never emits
-//! one; a spindle-synchronised move with the spindle at rest could) runs at the maximum feed, so
-//! that nothing waits for ever. Rapids use the rapid rate times the rapid override (0.1 %…100 %).
+//! Then: mm/min → mm/s, clamp to the machine's maximum feed, times (9-D length / feed length) —
+//! see [`crate::segment`]. A feed that is zero, negative or not a number (the interpreter never
+//! emits one; a spindle-synchronised move with the spindle at rest could) runs at the maximum
+//! feed, so that nothing waits for ever. Rapids use the rapid rate. No override is applied here:
+//! every segment says which override scales it ([`SpeedClass`]: feed, rapid, spindle for
+//! synchronised moves, none where the program disabled it), and the planner and the
+//! interpolator apply the factors in force at each servo instant ([`crate::overrides`]).
 //!
 //! ## Stops (spec axioma-2 §3.4, rs274 §4.30)
 //! Exact stops are forced by M0/M1, tool changes, the tool-change start, program end, pallet
@@ -41,7 +43,7 @@
 
 use crate::limits::MotionConfig;
 use crate::segment::{
-    PathSegment, PlannerInput, Point9, SegmentGeometry, SpindleSpeed, Spindles,
+    PathSegment, PlannerInput, Point9, SegmentGeometry, SpeedClass, SpindleSpeed, Spindles,
     SPLINE_CHORD_TOLERANCE,
 };
 use stanok_canon::{
@@ -50,9 +52,6 @@ use stanok_canon::{
 };
 use stanok_geom::{Helix, Nurbs};
 use stanok_kin::FiveAxis;
-
-/// The slowest override the planner accepts (a 0 % override is a feed hold, not a speed).
-const MIN_OVERRIDE: f64 = 1e-3;
 
 /// Modal motion state between Canon commands (see the module doc).
 #[derive(Debug, Clone)]
@@ -152,6 +151,7 @@ impl CanonAdapter {
                     if straight > 0.0 && omega > 0.0 {
                         // path_speed = F·(straight/straight) now; want length / (Ω / F).
                         seg.path_speed *= length / omega;
+                        seg.velocity_cap *= length / omega;
                     }
                 }
                 seg.geometry = g;
@@ -161,20 +161,9 @@ impl CanonAdapter {
         PlannerInput::Segment(seg)
     }
 
-    /// Changes the feed override (fraction, 0…2) for the segments adapted from now on.
-    pub fn set_feed_override(&mut self, fraction: f64) {
-        self.config.feed_override = fraction;
-        self.config = self.config.clone().sanitised();
-    }
-
-    /// Changes the rapid override (fraction, 0…1) for the segments adapted from now on.
-    pub fn set_rapid_override(&mut self, fraction: f64) {
-        self.config.rapid_override = fraction;
-        self.config = self.config.clone().sanitised();
-    }
-
-    /// Path speed (unit/s along the 9-D path) of a feed move at `feed_per_min` under `law`.
-    fn feed_speed(&self, feed_per_min: f64, law: &FeedLaw, ratio: f64) -> f64 {
+    /// Path speed (unit/s along the 9-D path) of a feed move at `feed_per_min` under `law`,
+    /// before any override, and the override that will scale it.
+    fn feed_speed(&self, feed_per_min: f64, law: &FeedLaw, ratio: f64) -> (f64, SpeedClass) {
         let (mut f, synchronised) = match law {
             FeedLaw::SpindleSync { pitch, rpm } => (pitch * rpm / 60.0, true),
             _ => (feed_per_min / 60.0, false),
@@ -183,10 +172,14 @@ impl CanonAdapter {
             f = self.config.max_feed;
         }
         f = f.min(self.config.max_feed);
-        if self.override_enabled && !synchronised {
-            f *= self.config.feed_override.max(MIN_OVERRIDE);
-        }
-        f * ratio
+        let class = if synchronised {
+            SpeedClass::Spindle
+        } else if self.override_enabled {
+            SpeedClass::Feed
+        } else {
+            SpeedClass::Fixed
+        };
+        (f * ratio, class)
     }
 
     /// An exact stop before a motion whose feed law is of another mode than the last one's.
@@ -204,8 +197,8 @@ impl CanonAdapter {
         }
     }
 
-    fn rapid_speed(&self, ratio: f64) -> f64 {
-        self.config.rapid_rate * self.config.rapid_override.max(MIN_OVERRIDE) * ratio
+    fn rapid_speed(&self, ratio: f64) -> (f64, SpeedClass) {
+        (self.config.rapid_rate * ratio, SpeedClass::Rapid)
     }
 
     fn segment(
@@ -213,12 +206,14 @@ impl CanonAdapter {
         start: Pose,
         end: Pose,
         geometry: SegmentGeometry,
-        speed: f64,
+        (speed, speed_class): (f64, SpeedClass),
         rapid: bool,
         line: u32,
     ) -> PathSegment {
         PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class,
             start: start.to_array(),
             end: end.to_array(),
             geometry,
@@ -257,7 +252,8 @@ impl CanonAdapter {
         };
         for piece in crate::css::split(seg, law) {
             let mut s = piece.segment;
-            s.path_speed = self.feed_speed(mm_per_rev * piece.min_rpm, &FeedLaw::PerMinute, ratio);
+            (s.path_speed, s.speed_class) =
+                self.feed_speed(mm_per_rev * piece.min_rpm, &FeedLaw::PerMinute, ratio);
             out(PlannerInput::Segment(s));
         }
     }
@@ -530,11 +526,33 @@ mod tests {
         assert_eq!(got[0], Some(20.0));
         assert!((got[1].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
         assert!((got[2].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
-        // 150 % override.
-        a.set_feed_override(1.5);
-        assert_eq!(speeds(&collect(&mut a, &[feed(1200.0)])), vec![Some(30.0)]);
-        // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, no override, whatever
-        // the move's nominal feed; stops before and after. The move states its law itself.
+        // The override is not applied here: the class says which one scales the speed.
+        let classes = |inputs: &[PlannerInput]| -> Vec<SpeedClass> {
+            inputs
+                .iter()
+                .filter_map(|i| match i {
+                    PlannerInput::Segment(s) => Some(s.speed_class),
+                    PlannerInput::Stop { .. } => None,
+                })
+                .collect()
+        };
+        assert_eq!(
+            classes(&collect(&mut a, &[feed(1200.0)])),
+            [SpeedClass::Feed]
+        );
+        let off = Canon::SetFeedOverrideEnabled { enabled: false };
+        assert_eq!(
+            classes(&collect(&mut a, &[off, feed(1200.0)])),
+            [SpeedClass::Fixed]
+        );
+        a.adapt(
+            &Canon::SetFeedOverrideEnabled { enabled: true },
+            1,
+            &mut |_| {},
+        );
+        // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, scaled by the spindle
+        // override, whatever the move's nominal feed; stops before and after. The move states
+        // its law itself.
         let synchronised = Canon::StraightFeed(LineMove {
             start: x(0.0),
             end: x(10.0),
@@ -567,7 +585,7 @@ mod tests {
                 feed(1200.0),
             ],
         ));
-        assert_eq!(got, vec![Some(30.0)]);
+        assert_eq!(got, vec![Some(20.0)]);
     }
 
     #[test]
@@ -604,7 +622,7 @@ mod tests {
                 }),
                 Canon::Dwell { seconds: 2.0 },
                 Canon::ProgramStop { optional: true },
-                Canon::ChangeTool { tool: 3 },
+                Canon::ChangeTool { tool: 3, slot: 3 },
                 Canon::ProgramEnd,
             ],
         );

@@ -330,12 +330,15 @@ impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
     fn next(&mut self) -> Option<Self::Item> {
         loop {
             if self.core.queue.len() > self.held() {
-                // The front end's bookkeeping first: with nothing between pop_front and the
-                // return, the command moves straight into the result (no extra copy of the
-                // 260-byte Spanned<Canon> per command, measured with callgrind).
+                // The front end's bookkeeping and the feed law first, the law stamped in place
+                // at the front of the queue: with nothing between pop_front and the return, the
+                // command moves straight into the result (no extra copy of the ~330-byte
+                // Spanned<Canon> per command, measured with callgrind).
                 self.fe.released();
-                if let Some(mut c) = self.core.queue.pop_front() {
-                    self.laws.stamp(&mut c.value);
+                if let Some(front) = self.core.queue.front_mut() {
+                    self.laws.stamp(&mut front.value);
+                }
+                if let Some(c) = self.core.queue.pop_front() {
                     return Some(Ok(c));
                 }
             }

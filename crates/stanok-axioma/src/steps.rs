@@ -178,7 +178,7 @@ pub(crate) fn sort_g_codes(cx: &mut Ctx<'_>) -> Result<Actions, Diagnostic> {
     Ok(actions)
 }
 
-/// 1. The block's message (`MSG`), or one an HLL statement left for it.
+/// Step 1: The block's message (`MSG`), or one an HLL statement left for it.
 pub(crate) fn message(cx: &mut Ctx<'_>) {
     if let Some(text) = cx.block.message {
         let text = cx.block.slice(text).to_string();
@@ -188,7 +188,7 @@ pub(crate) fn message(cx: &mut Ctx<'_>) {
     }
 }
 
-/// 2. Modal G codes: planes, units, distance modes, feed type, path mode, CSS, retract,
+/// Step 2: Modal G codes: planes, units, distance modes, feed type, path mode, CSS, retract,
 /// compensation selection, cycle activation; frame codes are refused under compensation.
 pub(crate) fn modal_codes(
     cx: &mut Ctx<'_>,
@@ -348,7 +348,7 @@ pub(crate) fn cycle_and_outputs(
     Ok(output)
 }
 
-/// 2b. Frames and offsets, in the manual's fixed order whatever the order of the words. A block
+/// Step 2b: Frames and offsets, in the manual's fixed order whatever the order of the words. A block
 /// that programs mirror, scale, rotation, a shift or G10 takes its X/Y/Z as parameters: no
 /// motion (returns whether it is such a parameter block).
 pub(crate) fn frames_and_offsets(cx: &mut Ctx<'_>, actions: &Actions) -> Result<bool, Diagnostic> {
@@ -412,7 +412,7 @@ pub(crate) fn frames_and_offsets(cx: &mut Ctx<'_>, actions: &Actions) -> Result<
     Ok(parameter_block)
 }
 
-/// 3. F (a constant, an expression or FTABLE(i), §3.1).
+/// Step 3: F (a constant, an expression or FTABLE(i), §3.1).
 pub(crate) fn feed(cx: &mut Ctx<'_>, tech: &TechWords) -> Result<(), Diagnostic> {
     if let Some(f) = cx.words.take(b'F').or(tech.feed) {
         if f.v < 0.0 {
@@ -428,7 +428,7 @@ pub(crate) fn feed(cx: &mut Ctx<'_>, tech: &TechWords) -> Result<(), Diagnostic>
     Ok(())
 }
 
-/// 4./5. S and T without an M function, then the prefix M functions by group order (spindle
+/// Steps 4/5: S and T without an M function, then the prefix M functions by group order (spindle
 /// with its S, coolant, tool with its T, the other groups), then the other spindles' tools.
 pub(crate) fn prefix_aux(
     cx: &mut Ctx<'_>,
@@ -512,7 +512,7 @@ pub(crate) fn prefix_aux(
         ));
     }
 
-    technology::limits(cx, &tech)?;
+    technology::limits(cx, tech)?;
     // An S whose spindle has no spindle function in this block is stored now (§3.7).
     for spindle in 0..4u8 {
         let with_m = ms.iter().any(|(f, _)| f.spindle() == Some(spindle));
@@ -547,7 +547,7 @@ pub(crate) fn prefix_aux(
     Ok(Aux { ms, mw })
 }
 
-/// 6. G04 dwell, a cycle call, G28/G29, or the block's motion (orientation, spline point, probe
+/// Step 6: G04 dwell, a cycle call, G28/G29, or the block's motion (orientation, spline point, probe
 /// move, line or arc); a parameter block only takes its motion code.
 pub(crate) fn dwell_or_motion(
     cx: &mut Ctx<'_>,
@@ -610,7 +610,7 @@ pub(crate) fn dwell_or_motion(
     Ok(())
 }
 
-/// 7. Postfix M functions by group order, program control (M02/M30 …) last; speeds of spindles
+/// Step 7: Postfix M functions by group order, program control (M02/M30 …) last; speeds of spindles
 /// whose M function ran neither before nor now; compensation's end of block.
 pub(crate) fn postfix_aux(cx: &mut Ctx<'_>, aux: &mut Aux) -> Result<Outcome, Diagnostic> {
     let Aux { ms, mw } = aux;

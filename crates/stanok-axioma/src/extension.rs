@@ -203,13 +203,18 @@ impl Extension {
         let mut ready = resolved.into_iter().peekable();
         let mut index = self.held_base;
         let mut prev = self.released_end;
-        for mut item in held.drain(..limit) {
+        // Each command is chained where it lands (`back_mut`): moving it straight from the
+        // drain into the queue saves a copy of the ~330-byte Spanned<Canon> per command
+        // (callgrind).
+        for item in held.drain(..limit) {
             while let Some((_, mut c)) = ready.next_if(|(slot, _)| *slot <= index) {
                 chain(&mut prev, &mut c);
                 queue.push_back(c);
             }
-            chain(&mut prev, &mut item);
             queue.push_back(item);
+            if let Some(last) = queue.back_mut() {
+                chain(&mut prev, last);
+            }
             index += 1;
         }
         // Motions at the end of the released part (their slot is the next held index).

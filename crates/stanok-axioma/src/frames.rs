@@ -11,6 +11,7 @@
 //! the change (§8.2): G190 → the letter's value, G191 → current position + value; an omitted letter
 //! → the current position. G90/G91 do not make a pole relative (examples 4.5/4.6).
 
+use crate::codes::{G193, G194};
 use crate::ctx::Ctx;
 use crate::state::DistanceMode;
 use crate::words::Val;
@@ -148,19 +149,19 @@ pub(super) fn rotate(cx: &mut Ctx<'_>, on: bool) -> Result<(), Diagnostic> {
 /// G193 / G194 / G195: programmed zero shift (spec §12). Omitted G195 axes keep their value.
 pub(super) fn shift(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     match code {
-        1930 => cx.fe.chain.prog_shift = [0.0; 3],
+        G193 => cx.fe.chain.prog_shift = [0.0; 3],
         _ => {
             for (k, &l) in XYZ.iter().enumerate() {
                 if let Some(v) = cx.words.take(l) {
                     let mm = cx.mm(v.v);
-                    if code == 1940 {
+                    if code == G194 {
                         cx.fe.chain.prog_shift[k] += mm;
                     } else {
                         cx.fe.chain.prog_shift[k] = mm;
                     }
                 }
             }
-            only(cx, &[], if code == 1940 { "G194" } else { "G195" })?;
+            only(cx, &[], if code == G194 { "G194" } else { "G195" })?;
         }
     }
     Ok(())

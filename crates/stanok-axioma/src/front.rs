@@ -270,13 +270,4 @@ impl FrontEnd for Axioma {
         )?;
         self.hll_end_of_input(core)
     }
-
-    fn is_fatal(&self, d: &Diagnostic) -> bool {
-        // The HLL's run-wide bounds: the program cannot be followed past them.
-        matches!(
-            d.code,
-            stanok_canon::DiagCode::Stanok("hll::loop-limit")
-                | stanok_canon::DiagCode::Stanok("hll::nesting-too-deep")
-        )
-    }
 }

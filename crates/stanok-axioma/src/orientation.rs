@@ -369,6 +369,7 @@ pub(super) fn motion(cx: &mut Ctx<'_>, span: ColSpan, words: &OriWords) -> Resul
         start,
         end: end_m,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     };
     cx.out.push(if rapid {
         Canon::StraightTraverse(m)

@@ -78,6 +78,7 @@ pub(super) fn probe_move(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnost
             start: start_m,
             end: end_m,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: ProbeKind::Toward,
         contact: trip,

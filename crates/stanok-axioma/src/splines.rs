@@ -167,6 +167,7 @@ impl SplineState {
             knots,
             plane: self.plane,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         };
         self.push(&b, Canon::SplineFeed(mv));
     }
@@ -377,6 +378,7 @@ impl SplineState {
                     knots: bk.clone(),
                     plane: self.plane,
                     feed,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 };
                 self.push(&owner, Canon::SplineFeed(mv));
             } else {
@@ -390,6 +392,7 @@ impl SplineState {
                             start: prev,
                             end,
                             feed,
+                            law: stanok_canon::FeedLaw::PerMinute,
                         }),
                     );
                 }
@@ -559,6 +562,7 @@ pub(super) fn point(cx: &mut Ctx<'_>, span: ColSpan, w: &SplineWords) -> Result<
                     start,
                     end: end_m,
                     feed,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 }),
             );
         } else {

@@ -10,6 +10,7 @@
 //! therefore does not jump when G43 is read; `ModalState::pending_tlo` carries the new offset until
 //! `Ctx::straight`/`Ctx::arc` put it into the work frame at the start of the next motion.
 
+use crate::codes::{G43, G44, G45};
 use crate::ctx::Ctx;
 use crate::modes::LengthComp;
 use crate::words::Val;
@@ -32,9 +33,9 @@ fn axes_of(kind: ToolKind, plane: Plane) -> [usize; 3] {
 /// G43 / G44 / G45 L… / G49.
 pub(super) fn length_comp(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     cx.fe.modes.length_comp = match code {
-        430 => LengthComp::Plus,
-        440 => LengthComp::Minus,
-        450 => {
+        G43 => LengthComp::Plus,
+        G44 => LengthComp::Minus,
+        G45 => {
             // `G45 L<n>`, n ∈ {±17, ±18, ±19}; anything else (or no L) is reset to 17 (spec §3.5).
             let l = cx.words.take(b'L').map(|v| v.v).unwrap_or(17.0);
             let (plane, sign) = match l {

@@ -187,6 +187,7 @@ fn flush(cx: &mut Ctx<'_>, end_tangent: Option<[f64; 3]>, _at: ColSpan) -> Resul
                 knots: stanok_geom::bezier_knots(3),
                 plane: cx.st.plane,
                 feed: node.feed,
+                law: stanok_canon::FeedLaw::PerMinute,
             }),
         });
     }

@@ -197,6 +197,53 @@ pub enum FeedMode {
     UnitsPerRevolution,
 }
 
+/// How a feed move's speed follows the machine: with it the motion stage times the move from the
+/// command alone. `feed` beside it stays the move's nominal path feed, mm/min at the commanded
+/// values, which printers, reports and converters read.
+///
+/// The interpreter states its feed modes in the stream (`SetFeedMode`, `SetFeedRate`,
+/// `SetSpindleSpeed`, `SetSurfaceSpeedLaw`, `StartSpindleSync`/`StopSpindleSync`) and completes every
+/// motion with the law they put in force at its place in the stream; rapids carry the law in force
+/// too (their speed does not depend on it).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub enum FeedLaw {
+    /// G94: `feed` mm/min along the feed length.
+    #[default]
+    PerMinute,
+    /// G93: the move takes 1/F minutes; `feed` is the mm/min that does that over its length.
+    InverseTime,
+    /// G95: `mm_per_rev` per revolution of the main spindle at its commanded `rpm`
+    /// (`feed` = the product).
+    PerRevolution {
+        /// Feed per revolution, mm.
+        mm_per_rev: f64,
+        /// The main spindle's commanded speed, rev/min.
+        rpm: f64,
+    },
+    /// G95 under G96: per revolution of the main spindle, whose speed follows `law` along the path.
+    SurfaceSpeed {
+        /// Feed per revolution, mm.
+        mm_per_rev: f64,
+        /// The main spindle's constant-surface-speed law.
+        law: SurfaceSpeedLaw,
+    },
+    /// Spindle-synchronised (G33, G33.1, G76, AxiOMA G276): `pitch` per revolution of the main
+    /// spindle at `rpm`; the feed override does not apply.
+    SpindleSync {
+        /// Advance per revolution, mm.
+        pitch: f64,
+        /// The main spindle's commanded speed, rev/min.
+        rpm: f64,
+    },
+}
+
+impl FeedLaw {
+    /// The per-minute law (serialised moves leave it out).
+    pub fn is_per_minute(&self) -> bool {
+        *self == FeedLaw::PerMinute
+    }
+}
+
 /// Spindle rotation sense, as seen looking from the spindle towards the work.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum SpindleDirection {
@@ -224,6 +271,9 @@ pub struct LineMove {
     pub end: Pose,
     /// Path feed in mm/min for feed moves; 0 for rapids (the machine's rapid rate applies).
     pub feed: f64,
+    /// How the feed follows the machine (the law in force for rapids).
+    #[serde(skip_serializing_if = "FeedLaw::is_per_minute")]
+    pub law: FeedLaw,
 }
 
 impl LineMove {
@@ -263,6 +313,9 @@ pub struct ArcMove {
     pub plane: Plane,
     /// Path feed, mm/min.
     pub feed: f64,
+    /// How the feed follows the machine.
+    #[serde(skip_serializing_if = "FeedLaw::is_per_minute")]
+    pub law: FeedLaw,
 }
 
 /// A rational B-spline (NURBS) curve in machine X Y Z: the one exact form every spline of both
@@ -291,6 +344,9 @@ pub struct SplineMove {
     pub plane: Plane,
     /// Path feed, mm/min.
     pub feed: f64,
+    /// How the feed follows the machine.
+    #[serde(skip_serializing_if = "FeedLaw::is_per_minute")]
+    pub law: FeedLaw,
 }
 
 /// The program-log operations of LinuxCNC's comment commands.
@@ -395,7 +451,8 @@ pub enum Canon {
         contact: Option<Pose>,
     },
     /// G33.1 (and G84/G74 in rigid mode): spindle-synchronised feed to `end`, spindle reversal,
-    /// synchronised return to `start`. The pitch is the one of the `StartSpindleSync` before it.
+    /// synchronised return to `start`. The pitch is the one of the `StartSpindleSync` before it,
+    /// stated in `law`.
     RigidTap {
         /// Where the tap starts and returns to.
         start: Pose,
@@ -403,6 +460,9 @@ pub enum Canon {
         end: Pose,
         /// LinuxCNC's scale factor of the return (1 = same pitch).
         scale: f64,
+        /// How the feed follows the spindle (`FeedLaw::SpindleSync` with the pitch).
+        #[serde(skip_serializing_if = "FeedLaw::is_per_minute")]
+        law: FeedLaw,
     },
     /// G33/G76/G33.1 and AxiOMA G276: the following feed moves advance `pitch` per spindle revolution.
     StartSpindleSync {
@@ -491,12 +551,13 @@ pub enum Canon {
         /// Seconds.
         seconds: f64,
     },
-    /// An F word was programmed.
+    /// An F word was programmed. For printers and displays: every motion states its own speed
+    /// (`feed` and `law`).
     SetFeedRate {
         /// mm/min (in G95: mm/rev; in G93: 1/min).
         feed: f64,
     },
-    /// G93/G94/G95.
+    /// G93/G94/G95. For printers and displays: every motion states its own law.
     SetFeedMode {
         /// The new mode.
         mode: FeedMode,

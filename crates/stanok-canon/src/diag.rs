@@ -54,6 +54,10 @@ pub struct Diagnostic {
     /// The file the span refers to when it is not the program being run (an RS274/NGC subroutine
     /// file called from it); None = the program.
     pub file: Option<String>,
+    /// The run cannot go on past it, not even to list further errors (`stanok check`): the
+    /// program cannot be read or followed (I/O, control flow, the block limit, no program end).
+    #[serde(skip)]
+    pub fatal: bool,
 }
 
 impl Diagnostic {
@@ -66,6 +70,7 @@ impl Diagnostic {
             span,
             notes: Vec::new(),
             file: None,
+            fatal: false,
         }
     }
 
@@ -78,6 +83,7 @@ impl Diagnostic {
             span,
             notes: Vec::new(),
             file: None,
+            fatal: false,
         }
     }
 
@@ -90,12 +96,19 @@ impl Diagnostic {
             span,
             notes: Vec::new(),
             file: None,
+            fatal: false,
         }
     }
 
     /// Adds a note (builder style).
     pub fn with_note(mut self, note: impl Into<String>) -> Self {
         self.notes.push(note.into());
+        self
+    }
+
+    /// The same diagnostic, marked as ending the run (see [`Diagnostic::fatal`]).
+    pub fn fatal(mut self) -> Self {
+        self.fatal = true;
         self
     }
 

@@ -24,9 +24,9 @@ pub mod setup;
 mod span;
 
 pub use canon::{
-    AccelerationProfile, ArcMove, AuxTiming, Canon, FeedMode, LengthUnits, LineMove, LogAction,
-    Motion, OrientationInterpolation, PathMode, Plane, Pose, ProbeKind, SpindleDirection,
-    SplineMove, SurfaceSpeedLaw, AXIS_LETTERS,
+    AccelerationProfile, ArcMove, AuxTiming, Canon, FeedLaw, FeedMode, LengthUnits, LineMove,
+    LogAction, Motion, OrientationInterpolation, PathMode, Plane, Pose, ProbeKind,
+    SpindleDirection, SplineMove, SurfaceSpeedLaw, AXIS_LETTERS,
 };
 pub use diag::{DiagCode, Diagnostic, Severity};
 pub use span::{Span, Spanned};

@@ -43,7 +43,9 @@ impl Converter {
                 probe,
                 contact,
             } => self.probe(src, motion, *probe, *contact),
-            Canon::RigidTap { start, end, scale } => self.rigid_tap(src, start, end, *scale),
+            Canon::RigidTap {
+                start, end, scale, ..
+            } => self.rigid_tap(src, start, end, *scale),
             _ => {}
         }
     }

@@ -50,6 +50,7 @@ fn the_start_frame_is_folded_out_of_rs274ngc_positions() {
                 start: Pose::ZERO,
                 end: p(100.0, 60.0, -1.0),
                 feed: 250.0,
+                law: stanok_canon::FeedLaw::PerMinute,
             }),
         ),
         at(4, Canon::ProgramEnd),
@@ -86,6 +87,7 @@ fn an_arc_about_a_tilted_axis_becomes_chords_within_the_tolerance() {
         turns: 1,
         plane: Plane::XY,
         feed: 100.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     };
     let cmds = [
         init(Pose::ZERO, 0.0),
@@ -95,6 +97,7 @@ fn an_arc_about_a_tilted_axis_becomes_chords_within_the_tolerance() {
                 start: Pose::ZERO,
                 end: arc.start,
                 feed: 0.0,
+                law: stanok_canon::FeedLaw::PerMinute,
             }),
         ),
         at(3, Canon::ArcFeed(arc)),
@@ -161,6 +164,7 @@ fn end_coolant_sync_and_what_a_target_cannot_say() {
             start: a,
             end: b,
             feed: 300.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         })
     };
     let cmds = [

@@ -288,6 +288,7 @@ impl<X: Hooks> Ctx<'_, X> {
             start: self.st.position,
             end: end_m,
             feed: if rapid { 0.0 } else { feed },
+            law: stanok_canon::FeedLaw::PerMinute,
         };
         self.out.push(if rapid {
             Canon::StraightTraverse(m)
@@ -319,6 +320,7 @@ impl<X: Hooks> Ctx<'_, X> {
             turns: arc.turns,
             plane,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end_m;
     }
@@ -348,6 +350,7 @@ impl<X: Hooks> Ctx<'_, X> {
             turns,
             plane,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end_m;
     }

@@ -99,10 +99,4 @@ pub trait FrontEnd: Sized {
     /// End of input: what is still held is finished and released; unterminated constructs and a
     /// missing program end are errors.
     fn finish<R: BufRead + Seek>(&mut self, core: &mut Core<R>) -> Result<(), Diagnostic>;
-
-    /// True if a diagnostic of this front end ends the run even when the run goes on after
-    /// errors (`continue_after_error`): the program cannot be followed past it.
-    fn is_fatal(&self, _d: &Diagnostic) -> bool {
-        false
-    }
 }

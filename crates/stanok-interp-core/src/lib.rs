@@ -23,7 +23,9 @@
 //! * `words.rs` — STEP 2: a block's words evaluated and sorted ([`Words`], [`WordRules`]);
 //! * `state.rs` — the common [`ModalState`] and [`Journalled`], the per-block undo of large parts;
 //! * `frame.rs` — the work frame `origin + R·(F(p) + shift) + tlo` and its inverse;
+//! * `codes.rs` — [`code_table!`]: a dialect's codes (value, name, group, handler) in one table;
 //! * `arc.rs` — arcs in the programming plane ([`arc::PlanarArc`], [`arc::ArcError`]);
+//! * `feed_law.rs` — [`FeedLaws`]: every released motion completed with its feed law;
 //! * `options.rs` — [`CoreOptions`], the settings every front end reads, and the defaults of
 //!   the run's bounds;
 //! * `warnings.rs` — the bounds on warnings (per line, per run, repeats).
@@ -40,8 +42,10 @@
 #![deny(missing_docs)]
 
 pub mod arc;
+pub mod codes;
 pub mod ctx;
 pub mod driver;
+pub mod feed_law;
 pub mod frame;
 pub mod frontend;
 pub mod options;
@@ -52,6 +56,7 @@ pub mod words;
 
 pub use ctx::{is_linear, Ctx, Emitter, Hooks, Parts, AXIS_WORDS};
 pub use driver::{Core, Driver, Stats};
+pub use feed_law::FeedLaws;
 pub use frontend::{FrontEnd, Outcome, Unit};
 pub use options::{
     CoreOptions, DEFAULT_MAX_BLOCKS, DEFAULT_MAX_DIAGNOSTICS_PER_LINE, DEFAULT_MAX_NESTING,

@@ -72,7 +72,9 @@ impl<R: BufRead + Seek> Source<R> {
             Some(f) => f.reader.seek(pos),
             None => self.reader.seek(pos),
         };
-        r.map_err(|e| Diagnostic::error("io::seek", format!("cannot seek in the program: {e}"), at))
+        r.map_err(|e| {
+            Diagnostic::error("io::seek", format!("cannot seek in the program: {e}"), at).fatal()
+        })
     }
 
     /// Reads the next line into `block` (its syntax diagnostics into `syntax`).
@@ -92,6 +94,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot read the program: {e}"),
                 Span::default(),
             )
+            .fatal()
         })?;
         Ok(if more {
             Read::Line(here)
@@ -116,6 +119,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot read {}: {e}", f.path.display()),
                 Span::default(),
             )
+            .fatal()
         })?;
         Ok(if more {
             Read::Line(here)
@@ -137,6 +141,7 @@ impl<R: BufRead + Seek> Source<R> {
                 format!("cannot open subroutine file {}: {e}", path.display()),
                 at,
             )
+            .fatal()
         })?;
         // Seeks inside the buffer are free: a loop in a called file jumps back every pass.
         let mut reader = BlockReader::new(SeekBufReader::new(file), self.dialect);

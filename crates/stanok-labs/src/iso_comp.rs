@@ -252,6 +252,7 @@ impl Comp {
                     start: from,
                     end: to,
                     feed,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 };
                 out.push(Spanned {
                     value: if rapid {

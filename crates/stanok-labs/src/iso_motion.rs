@@ -234,6 +234,7 @@ impl Exec<'_> {
                     start: self.st.position,
                     end,
                     feed: f,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 }));
                 self.st.position = end;
             }
@@ -308,6 +309,7 @@ impl Exec<'_> {
             turns: out.turns,
             plane,
             feed: f,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end;
         Ok(())
@@ -318,6 +320,7 @@ impl Exec<'_> {
             start: self.st.position,
             end,
             feed: 0.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         self.st.position = end;
     }

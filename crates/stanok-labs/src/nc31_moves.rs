@@ -240,6 +240,7 @@ pub(super) fn traverse(st: &mut LabState, out: &mut Emit, end: Pose) {
         start: st.position,
         end,
         feed: 0.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     st.position = end;
 }
@@ -249,6 +250,7 @@ pub(super) fn feed_line(st: &mut LabState, out: &mut Emit, end: Pose, feed: f64)
         start: st.position,
         end,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     st.position = end;
 }
@@ -273,6 +275,7 @@ pub(super) fn arc(
         turns: 1,
         plane: Plane::ZX,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     st.position = end;
 }

@@ -400,6 +400,7 @@ impl SimMachine {
                     start: *start,
                     end: *end,
                     feed: 0.0,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 };
                 self.check_move(start, end, &end.to_array(), &end.to_array(), span)?;
                 self.apply_line(&down, LineKind::Feed, span)?;
@@ -407,6 +408,7 @@ impl SimMachine {
                     start: *end,
                     end: *start,
                     feed: 0.0,
+                    law: stanok_canon::FeedLaw::PerMinute,
                 };
                 self.apply_line(&up, LineKind::Feed, span)?;
             }

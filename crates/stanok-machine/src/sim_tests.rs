@@ -24,7 +24,12 @@ fn init(position: Pose) -> Canon {
 }
 
 fn line(start: Pose, end: Pose, feed: f64) -> LineMove {
-    LineMove { start, end, feed }
+    LineMove {
+        start,
+        end,
+        feed,
+        law: stanok_canon::FeedLaw::PerMinute,
+    }
 }
 
 /// A 90° counter-clockwise XY arc from (100, 50) centred so that it bulges to x = c + 10.
@@ -42,6 +47,7 @@ fn bulging_arc(feed: f64) -> ArcMove {
         turns: 1,
         plane: Plane::XY,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }
 }
 

@@ -30,6 +30,7 @@ fn feed(from: f64, to: f64, f: f64) -> Canon {
         start: p(from),
         end: p(to),
         feed: f,
+        law: stanok_canon::FeedLaw::PerMinute,
     })
 }
 

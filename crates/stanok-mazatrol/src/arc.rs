@@ -93,6 +93,7 @@ pub(crate) fn arc(
         turns: 1,
         plane,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     cx.st.position = end_t;
     Ok(())

@@ -6,29 +6,35 @@
 //! * path mode (`SetPathMode`: G60/G61 exact stop, G61.1 exact path, G64 P tolerance),
 //! * acceleration profile (`SetAccelerationProfile`: BRISK/SOFT; `MotionConfig::forced_profile`
 //!   overrides it),
-//! * feed mode and spindle synchronisation (`SetFeedMode`, `StartSpindleSync` → feed = pitch ×
-//!   spindle rpm; `SetSpindleSpeed` of spindle 0),
 //! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync),
 //! * the speeds of spindles 0–3 (`SetSpindleSpeed`, and G96's `SetSurfaceSpeedLaw`) and how they
 //!   turn (`StartSpindle` M3 +1 / M4 −1, `StopSpindle` M5, M19 and program end 0): stamped on every
 //!   segment so that each setpoint reports the signed speed at its position; under G96 a feed per
 //!   revolution (of the main spindle) is cut into pieces that follow its law ([`crate::css`]).
 //!
+//! It keeps no copy of the interpreter's feed modes: every motion states its own feed law
+//! (`stanok_canon::FeedLaw`), and `SetFeedMode`/`SetFeedRate` are for printers.
+//!
 //! ## Speeds
-//! Canon feeds are mm/min along the feed length (the interpreter already turned G93 inverse time
-//! and G95 per-revolution feeds into mm/min). Here: mm/min → mm/s, clamp to the machine's maximum
-//! feed, times (9-D length / feed length) — see [`crate::segment`]. A feed that is zero, negative
-//! or not a number (the interpreter never emits one; a spindle-synchronised move with the spindle
-//! at rest could) runs at the maximum feed, so that nothing waits for ever. Rapids use the rapid
-//! rate. No override is applied here: every segment says which override scales it
-//! ([`SpeedClass`]: feed, rapid, spindle for synchronised moves, none where the program disabled
-//! it), and the planner and the interpolator apply the factors in force at each servo instant
-//! ([`crate::overrides`]).
+//! From the move alone: its `feed` (mm/min along the feed length — the interpreter already turned
+//! G93 inverse time and G95 per-revolution feeds at the commanded spindle speed into mm/min), or
+//! under `FeedLaw::SpindleSync` pitch × spindle rpm, or under `FeedLaw::SurfaceSpeed` (G95 with
+//! G96) pieces that follow the law, each at mm/rev × its lowest spindle speed ([`crate::css`]).
+//! Then: mm/min → mm/s, clamp to the machine's maximum feed, times (9-D length / feed length) —
+//! see [`crate::segment`]. A feed that is zero, negative or not a number (the interpreter never
+//! emits one; a spindle-synchronised move with the spindle at rest could) runs at the maximum
+//! feed, so that nothing waits for ever. Rapids use the rapid rate. No override is applied here:
+//! every segment says which override scales it ([`SpeedClass`]: feed, rapid, spindle for
+//! synchronised moves, none where the program disabled it), and the planner and the
+//! interpolator apply the factors in force at each servo instant ([`crate::overrides`]).
 //!
 //! ## Stops (spec axioma-2 §3.4, rs274 §4.30)
 //! Exact stops are forced by M0/M1, tool changes, the tool-change start, program end, pallet
-//! shuttle, dwell (stop, then stand), waiting for an input, spindle orientation, a feed-mode change,
-//! the start and the end of spindle synchronisation, and around probe moves and rigid taps.
+//! shuttle, dwell (stop, then stand), waiting for an input, spindle orientation, the start and the
+//! end of spindle synchronisation, around probe moves and rigid taps, and between two motions whose
+//! feed laws are of different modes (per minute, inverse time, per revolution: a feed-mode change
+//! G93/G94/G95 in between; rapids carry the law in force, so the stop falls where the mode
+//! changed among the motions).
 //!
 //! ## Tool-centre-point control
 //! `SetToolCentrePoint` stops the path; while it is on, every segment is handed to
@@ -43,8 +49,8 @@ use crate::segment::{
     SPLINE_CHORD_TOLERANCE,
 };
 use stanok_canon::{
-    AccelerationProfile, ArcMove, Canon, FeedMode, LineMove, OrientationInterpolation, PathMode,
-    Pose, SplineMove, SurfaceSpeedLaw,
+    AccelerationProfile, ArcMove, Canon, FeedLaw, FeedMode, LineMove, OrientationInterpolation,
+    PathMode, Pose, SplineMove, SurfaceSpeedLaw,
 };
 use stanok_geom::{Helix, Nurbs};
 use stanok_kin::FiveAxis;
@@ -55,12 +61,12 @@ pub struct CanonAdapter {
     config: MotionConfig,
     path_mode: PathMode,
     profile: AccelerationProfile,
-    feed_mode: FeedMode,
+    /// The mode of the last motion's feed law: motions of another mode do not blend into it.
+    last_mode: FeedMode,
     /// Last `SetSpindleSpeed` of spindles 0–3, rev/min.
     spindle_rpm: [f64; 4],
     /// How spindles 0–3 turn: +1 M3, −1 M4, 0 stopped.
     spindle_dir: [f64; 4],
-    spindle_pitch: Option<f64>,
     override_enabled: bool,
     /// The machine's kinematics with the active tool, while tool-centre-point control is on.
     tcp: Option<FiveAxis>,
@@ -68,8 +74,18 @@ pub struct CanonAdapter {
     orientation: OrientationInterpolation,
     /// G96's law of spindles 0–3, where in force.
     surface_speed: [Option<SurfaceSpeedLaw>; 4],
-    /// The last `SetFeedRate` (mm/rev while the feed mode is per revolution).
-    programmed_feed: f64,
+}
+
+/// The feed mode of a law (None: spindle-synchronised, which stops before and after anyway).
+fn mode_of(law: &FeedLaw) -> Option<FeedMode> {
+    match law {
+        FeedLaw::PerMinute => Some(FeedMode::UnitsPerMinute),
+        FeedLaw::InverseTime => Some(FeedMode::InverseTime),
+        FeedLaw::PerRevolution { .. } | FeedLaw::SurfaceSpeed { .. } => {
+            Some(FeedMode::UnitsPerRevolution)
+        }
+        FeedLaw::SpindleSync { .. } => None,
+    }
 }
 
 /// Length the feed applies to (spec axioma-2 §3.2) and the 9-D length, of a straight move.
@@ -95,15 +111,13 @@ impl CanonAdapter {
             config: config.clone().sanitised(),
             path_mode: PathMode::Continuous { tolerance: 0.0 },
             profile: AccelerationProfile::Brisk,
-            feed_mode: FeedMode::UnitsPerMinute,
+            last_mode: FeedMode::UnitsPerMinute,
             spindle_rpm: [0.0; 4],
             spindle_dir: [0.0; 4],
-            spindle_pitch: None,
             override_enabled: true,
             tcp: None,
             orientation: OrientationInterpolation::Axes,
             surface_speed: [None; 4],
-            programmed_feed: 0.0,
         }
     }
 
@@ -152,18 +166,18 @@ impl CanonAdapter {
         PlannerInput::Segment(seg)
     }
 
-    /// Path speed (unit/s along the 9-D path) of a feed move programmed at `feed_per_min`, before
-    /// any override, and the override that will scale it.
-    fn feed_speed(&self, feed_per_min: f64, ratio: f64) -> (f64, SpeedClass) {
-        let mut f = match self.spindle_pitch {
-            Some(pitch) => pitch * self.spindle_rpm[0] / 60.0,
-            None => feed_per_min / 60.0,
+    /// Path speed (unit/s along the 9-D path) of a feed move at `feed_per_min` under `law`,
+    /// before any override, and the override that will scale it.
+    fn feed_speed(&self, feed_per_min: f64, law: &FeedLaw, ratio: f64) -> (f64, SpeedClass) {
+        let (mut f, synchronised) = match law {
+            FeedLaw::SpindleSync { pitch, rpm } => (pitch * rpm / 60.0, true),
+            _ => (feed_per_min / 60.0, false),
         };
         if !(f.is_finite() && f > 0.0) {
             f = self.config.max_feed;
         }
         f = f.min(self.config.max_feed);
-        let class = if self.spindle_pitch.is_some() {
+        let class = if synchronised {
             SpeedClass::Spindle
         } else if self.override_enabled {
             SpeedClass::Feed
@@ -171,6 +185,21 @@ impl CanonAdapter {
             SpeedClass::Fixed
         };
         (f * ratio, class)
+    }
+
+    /// An exact stop before a motion whose feed law is of another mode than the last one's.
+    fn stop_on_mode_change(
+        &mut self,
+        law: &FeedLaw,
+        line: u32,
+        out: &mut impl FnMut(PlannerInput),
+    ) {
+        if let Some(mode) = mode_of(law) {
+            if mode != self.last_mode {
+                out(PlannerInput::Stop { dwell_s: 0.0, line });
+                self.last_mode = mode;
+            }
+        }
     }
 
     fn rapid_speed(&self, ratio: f64) -> (f64, SpeedClass) {
@@ -213,20 +242,26 @@ impl CanonAdapter {
         )
     }
 
-    /// Emits a feed segment; under G96 with a feed per revolution, as the pieces of
-    /// [`crate::css::split`], each at f × (its lowest spindle speed).
-    fn emit_feed(&self, input: PlannerInput, ratio: f64, out: &mut impl FnMut(PlannerInput)) {
+    /// Emits a feed segment; under G96 with a feed per revolution (`FeedLaw::SurfaceSpeed`), as
+    /// the pieces of [`crate::css::split`], each at f × (its lowest spindle speed).
+    fn emit_feed(
+        &self,
+        input: PlannerInput,
+        feed_law: &FeedLaw,
+        ratio: f64,
+        out: &mut impl FnMut(PlannerInput),
+    ) {
         let PlannerInput::Segment(seg) = &input else {
             return out(input);
         };
-        let law = match (self.surface_speed[0], self.feed_mode, self.spindle_pitch) {
-            (Some(law), FeedMode::UnitsPerRevolution, None) if !seg.rapid => law,
+        let (mm_per_rev, law) = match feed_law {
+            FeedLaw::SurfaceSpeed { mm_per_rev, law } if !seg.rapid => (*mm_per_rev, law),
             _ => return out(input),
         };
-        for piece in crate::css::split(seg, &law) {
+        for piece in crate::css::split(seg, law) {
             let mut s = piece.segment;
             (s.path_speed, s.speed_class) =
-                self.feed_speed(self.programmed_feed * piece.min_rpm, ratio);
+                self.feed_speed(mm_per_rev * piece.min_rpm, &FeedLaw::PerMinute, ratio);
             out(PlannerInput::Segment(s));
         }
     }
@@ -246,7 +281,7 @@ impl CanonAdapter {
         let speed = if rapid {
             self.rapid_speed(ratio)
         } else {
-            self.feed_speed(m.feed, ratio)
+            self.feed_speed(m.feed, &m.law, ratio)
         };
         let seg = self.segment(m.start, m.end, SegmentGeometry::Line, speed, rapid, line);
         (PlannerInput::Segment(seg), ratio)
@@ -269,7 +304,7 @@ impl CanonAdapter {
         } else {
             1.0
         };
-        let speed = self.feed_speed(a.feed, ratio);
+        let speed = self.feed_speed(a.feed, &a.law, ratio);
         let seg = self.segment(
             a.start,
             a.end,
@@ -321,7 +356,7 @@ impl CanonAdapter {
         } else {
             1.0
         };
-        let speed = self.feed_speed(sp.feed, ratio);
+        let speed = self.feed_speed(sp.feed, &sp.law, ratio);
         let seg = self.segment(
             sp.start,
             sp.end,
@@ -338,20 +373,26 @@ impl CanonAdapter {
         let stop =
             |out: &mut dyn FnMut(PlannerInput)| out(PlannerInput::Stop { dwell_s: 0.0, line });
         match cmd {
-            Canon::StraightTraverse(m) => out(self.under_tcp(self.line(m, true, line))),
+            Canon::StraightTraverse(m) => {
+                self.stop_on_mode_change(&m.law, line, out);
+                out(self.under_tcp(self.line(m, true, line)))
+            }
             // Under G96 + G95 a feed may come in pieces (emit_feed); each goes through the TCP
             // caps on its own.
             Canon::StraightFeed(m) => {
+                self.stop_on_mode_change(&m.law, line, out);
                 let (input, ratio) = self.line_with_ratio(m, false, line);
-                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
+                self.emit_feed(input, &m.law, ratio, &mut |i| out(self.under_tcp(i)))
             }
             Canon::ArcFeed(a) => {
+                self.stop_on_mode_change(&a.law, line, out);
                 let (input, ratio) = self.arc(a, line);
-                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
+                self.emit_feed(input, &a.law, ratio, &mut |i| out(self.under_tcp(i)))
             }
             Canon::SplineFeed(sp) => {
+                self.stop_on_mode_change(&sp.law, line, out);
                 let (input, ratio) = self.spline(sp, line);
-                self.emit_feed(input, ratio, &mut |i| out(self.under_tcp(i)))
+                self.emit_feed(input, &sp.law, ratio, &mut |i| out(self.under_tcp(i)))
             }
             // The switch stops the path; the stage re-expresses the position (stage.rs).
             Canon::SetToolCentrePoint {
@@ -369,16 +410,24 @@ impl CanonAdapter {
             Canon::StraightProbe {
                 motion, contact, ..
             } => {
+                self.stop_on_mode_change(&motion.law, line, out);
                 stop(out);
                 out(self.line(&motion.stopped_at(*contact), false, line));
                 stop(out);
             }
-            Canon::RigidTap { start, end, scale } => {
+            Canon::RigidTap {
+                start,
+                end,
+                scale,
+                law,
+            } => {
+                self.stop_on_mode_change(law, line, out);
                 stop(out);
                 let down = LineMove {
                     start: *start,
                     end: *end,
                     feed: 0.0,
+                    law: *law,
                 };
                 out(self.line(&down, false, line));
                 stop(out);
@@ -387,6 +436,7 @@ impl CanonAdapter {
                         start: *end,
                         end: *start,
                         feed: 0.0,
+                        law: *law,
                     },
                     false,
                     line,
@@ -409,27 +459,13 @@ impl CanonAdapter {
             }),
             Canon::SetPathMode { mode, .. } => self.path_mode = *mode,
             Canon::SetAccelerationProfile { profile } => self.profile = *profile,
-            Canon::SetFeedMode { mode } => {
-                if *mode != self.feed_mode {
-                    stop(out);
-                }
-                self.feed_mode = *mode;
-            }
             Canon::SetSpindleSpeed { spindle, rpm } if *spindle < 4 => {
                 self.spindle_rpm[*spindle as usize] = rpm.abs()
             }
             Canon::SetSurfaceSpeedLaw { spindle, law } if *spindle < 4 => {
                 self.surface_speed[*spindle as usize] = *law
             }
-            Canon::SetFeedRate { feed } => self.programmed_feed = *feed,
-            Canon::StartSpindleSync { pitch, .. } => {
-                stop(out);
-                self.spindle_pitch = Some(pitch.abs());
-            }
-            Canon::StopSpindleSync => {
-                stop(out);
-                self.spindle_pitch = None;
-            }
+            Canon::StartSpindleSync { .. } | Canon::StopSpindleSync => stop(out),
             Canon::SetFeedOverrideEnabled { enabled } => self.override_enabled = *enabled,
             Canon::StartSpindle { spindle, direction } if *spindle < 4 => {
                 self.spindle_dir[*spindle as usize] = match direction {
@@ -506,6 +542,7 @@ mod tests {
                 start: x(0.0),
                 end: x(10.0),
                 feed: f,
+                law: FeedLaw::PerMinute,
             })
         };
         // 1200 mm/min = 20 mm/s; 9000 is clamped to 5000 = 83.3 mm/s.
@@ -541,23 +578,41 @@ mod tests {
             &mut |_| {},
         );
         // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, scaled by the spindle
-        // override; stops before and after.
+        // override, whatever the move's nominal feed; stops before and after. The move states
+        // its law itself.
+        let synchronised = Canon::StraightFeed(LineMove {
+            start: x(0.0),
+            end: x(10.0),
+            feed: 100.0,
+            law: FeedLaw::SpindleSync {
+                pitch: 1.5,
+                rpm: 600.0,
+            },
+        });
         let got = speeds(&collect(
             &mut a,
             &[
-                Canon::SetSpindleSpeed {
-                    spindle: 0,
-                    rpm: 600.0,
-                },
                 Canon::StartSpindleSync {
                     pitch: 1.5,
                     velocity_mode: false,
                 },
-                feed(100.0),
+                synchronised,
                 Canon::StopSpindleSync,
             ],
         ));
         assert_eq!(got, vec![None, Some(15.0), None]);
+        // Feed mode and F commands are for printers: they change no speed.
+        let got = speeds(&collect(
+            &mut a,
+            &[
+                Canon::SetFeedMode {
+                    mode: FeedMode::UnitsPerRevolution,
+                },
+                Canon::SetFeedRate { feed: 0.1 },
+                feed(1200.0),
+            ],
+        ));
+        assert_eq!(got, vec![Some(20.0)]);
     }
 
     #[test]
@@ -577,13 +632,21 @@ mod tests {
                     start: x(0.0),
                     end: x(10.0),
                     feed: 0.0,
+                    law: FeedLaw::PerMinute,
                 }),
-                Canon::SetFeedMode {
-                    mode: FeedMode::InverseTime,
-                },
-                Canon::SetFeedMode {
-                    mode: FeedMode::InverseTime,
-                },
+                // Two moves under inverse time (G93): the change of mode stops the path once.
+                Canon::StraightTraverse(LineMove {
+                    start: x(10.0),
+                    end: x(20.0),
+                    feed: 0.0,
+                    law: FeedLaw::InverseTime,
+                }),
+                Canon::StraightTraverse(LineMove {
+                    start: x(20.0),
+                    end: x(30.0),
+                    feed: 0.0,
+                    law: FeedLaw::InverseTime,
+                }),
                 Canon::Dwell { seconds: 2.0 },
                 Canon::ProgramStop { optional: true },
                 Canon::ChangeTool { tool: 3, slot: 3 },
@@ -598,10 +661,22 @@ mod tests {
             (PathMode::ExactStop, AccelerationProfile::Soft, true)
         );
         assert!((s.path_speed - 10_000.0 / 60.0).abs() < 1e-12);
-        // One stop for the feed-mode change (not for repeating it), the dwell, M1, M6, M2.
-        assert_eq!(got.len(), 6, "{got:?}");
+        // One stop for the feed-mode change (before the first G93 move, not again for the
+        // second), then the dwell, M1, M6, M2.
+        assert_eq!(got.len(), 8, "{got:?}");
         assert_eq!(
-            got[2],
+            got[1],
+            PlannerInput::Stop {
+                dwell_s: 0.0,
+                line: 1
+            }
+        );
+        assert!(matches!(
+            got[2..4],
+            [PlannerInput::Segment(_), PlannerInput::Segment(_)]
+        ));
+        assert_eq!(
+            got[4],
             PlannerInput::Stop {
                 dwell_s: 2.0,
                 line: 1

@@ -64,7 +64,12 @@ fn run(
             active: true,
             tool_offset: [0.0, 0.0, tool],
         },
-        Canon::StraightFeed(LineMove { start, end, feed }),
+        Canon::StraightFeed(LineMove {
+            start,
+            end,
+            feed,
+            law: stanok_canon::FeedLaw::PerMinute,
+        }),
         Canon::SetToolCentrePoint {
             active: false,
             tool_offset: [0.0; 3],

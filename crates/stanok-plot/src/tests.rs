@@ -30,6 +30,7 @@ fn rapid(a: Pose, b: Pose) -> Spanned<Canon> {
         start: a,
         end: b,
         feed: 0.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -38,6 +39,7 @@ fn feed(a: Pose, b: Pose) -> Spanned<Canon> {
         start: a,
         end: b,
         feed: 500.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -50,6 +52,7 @@ fn arc(a: Pose, b: Pose, centre: [f64; 3], axis: [f64; 3], turns: u32) -> Spanne
         turns,
         plane: Plane::XY,
         feed: 500.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     }))
 }
 
@@ -393,6 +396,7 @@ fn nurbs_circle_program() -> Vec<Spanned<Canon>> {
             ],
             plane: Plane::XY,
             feed: 1000.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         })),
     ]
 }

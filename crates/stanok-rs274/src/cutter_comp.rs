@@ -46,6 +46,7 @@
 
 use super::Rs274State;
 use crate::arc::PlanarArc;
+use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::params::Parameters;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
@@ -229,7 +230,7 @@ fn err(cx: &Ctx<'_>, code: &'static str, msg: &str, span: ColSpan) -> Diagnostic
     cx.err(code, msg, span)
 }
 
-/// G41/G42 (410/420: radius from the tool table, D = tool number) and G41.1/G42.1 (411/421:
+/// G41/G42 (radius from the tool table, D = tool number) and G41.1/G42.1 (
 /// D = diameter).
 pub(super) fn comp_on(
     cx: &mut Ctx<'_>,
@@ -253,7 +254,7 @@ pub(super) fn comp_on(
             span,
         ));
     }
-    let dynamic = code % 10 == 1;
+    let dynamic = matches!(code, G41_1 | G42_1);
     let d = cx.words.take(b'D');
     let orientation = if dynamic { cx.words.take(b'L') } else { None };
     let mut tool_orientation = 0;
@@ -298,7 +299,7 @@ pub(super) fn comp_on(
     };
     let orientation = orientation.map_or(tool_orientation, |l| l.v.round().clamp(0.0, 9.0) as u8);
     // A negative diameter swaps the side, as in LinuxCNC.
-    let mut side = if code / 10 == 41 { 1 } else { 2 };
+    let mut side = if matches!(code, G41 | G41_1) { 1 } else { 2 };
     if radius < 0.0 {
         side = 3 - side;
     }

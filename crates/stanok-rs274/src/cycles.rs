@@ -39,6 +39,7 @@
 //! the block is refused with a diagnostic instead of hanging.
 
 use super::Rs274State;
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::state::{DistanceMode, PathMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, LengthUnits, Plane, Pose, SpindleDirection};
@@ -70,7 +71,7 @@ fn plane_name(plane: Plane) -> &'static str {
     }
 }
 
-/// Executes a canned-cycle block (motion code ×10: 730, 740, 810…890).
+/// Executes a canned-cycle block (G73, G74, G81…G89).
 pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
     let plane = cx.st.plane;
     let (a, b, n) = plane.axes();
@@ -221,31 +222,31 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     let direction = cx.fe.modes.spindle_direction;
     match code {
         // LinuxCNC 2.9's messages: a stopped spindle first, then the wrong direction.
-        740 | 840 if direction.is_none() || !cx.st.spindle_on[0] => {
+        G74 | G84 if direction.is_none() || !cx.st.spindle_on[0] => {
             return Err(cx.err(
                 "rs274::tap-spindle",
                 format!(
                     "Spindle not turning in {}",
-                    if code == 740 { "G74" } else { "G84" }
+                    if code == G74 { "G74" } else { "G84" }
                 ),
                 span,
             ))
         }
-        840 if direction != Some(SpindleDirection::Clockwise) => {
+        G84 if direction != Some(SpindleDirection::Clockwise) => {
             return Err(cx.err(
                 "rs274::g84-spindle",
                 "Spindle turning counterclockwise in G84",
                 span,
             ))
         }
-        740 if direction != Some(SpindleDirection::CounterClockwise) => {
+        G74 if direction != Some(SpindleDirection::CounterClockwise) => {
             return Err(cx.err(
                 "rs274::g74-spindle",
                 "Spindle turning clockwise in G74",
                 span,
             ))
         }
-        860 | 870 | 880 if direction.is_none() || !cx.st.spindle_on[0] => {
+        G86 | G87 | G88 if direction.is_none() || !cx.st.spindle_on[0] => {
             return Err(cx.err(
                 "rs274::cycle-spindle",
                 format!("Spindle not turning in {g} canned cycle"),
@@ -369,8 +370,8 @@ impl CycleWords {
             offset: [0.0; 2],
             middle: 0.0,
         };
-        let needs_p = matches!(code, 820 | 860 | 880 | 890);
-        let takes_p = needs_p || matches!(code, 740 | 840);
+        let needs_p = matches!(code, G82 | G86 | G88 | G89);
+        let takes_p = needs_p || matches!(code, G74 | G84);
         if takes_p {
             w.p = match cx.words.take(b'P') {
                 Some(p) => Some(p.v),
@@ -387,7 +388,7 @@ impl CycleWords {
                 None => Some(cx.fe.modes.cycle_p),
             };
         }
-        if matches!(code, 730 | 830) {
+        if matches!(code, G73 | G83) {
             let q = match cx.words.take(b'Q') {
                 Some(q) => cx.mm(q.v),
                 None if same_series => cx.fe.modes.cycle_q,
@@ -408,7 +409,7 @@ impl CycleWords {
             }
             w.q = Some(q);
         }
-        if code == 870 {
+        if code == G87 {
             let (a, b, _) = cx.st.plane.axes();
             let letters = [b'I', b'J', b'K'];
             let (la, lb) = (letters[a], letters[b]);
@@ -545,22 +546,22 @@ fn hole(
     let dwell = w.p.unwrap_or(0.0);
     let dir = direction.unwrap_or(SpindleDirection::Clockwise);
     match code {
-        810 => {
+        G81 => {
             feed(cx, f, aa, bb, f.bottom);
             traverse(cx, f, aa, bb, f.clear);
         }
-        820 => {
+        G82 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             traverse(cx, f, aa, bb, f.clear);
         }
-        730 | 830 => {
+        G73 | G83 => {
             let q = w.q.unwrap_or(f.r - f.bottom);
             let up = peck_clearance(cx);
             let mut depth = f.r - q;
             while depth > f.bottom {
                 feed(cx, f, aa, bb, depth);
-                if code == 830 {
+                if code == G83 {
                     traverse(cx, f, aa, bb, f.r);
                 }
                 traverse(cx, f, aa, bb, depth + up);
@@ -569,7 +570,7 @@ fn hole(
             feed(cx, f, aa, bb, f.bottom);
             traverse(cx, f, aa, bb, f.clear);
         }
-        740 | 840 => {
+        G74 | G84 => {
             let reverse = match dir {
                 SpindleDirection::Clockwise => SpindleDirection::CounterClockwise,
                 SpindleDirection::CounterClockwise => SpindleDirection::Clockwise,
@@ -586,20 +587,20 @@ fn hole(
             // The interpreter's position is the hole's clear point (see `tap_feed`).
             place(cx, f, aa, bb, f.clear);
         }
-        850 => {
+        G85 => {
             feed(cx, f, aa, bb, f.bottom);
             feed(cx, f, aa, bb, f.r);
             // LinuxCNC's convert_cycle_g85 traverses to the clear level even when it is R.
             traverse(cx, f, aa, bb, f.clear);
         }
-        860 => {
+        G86 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             stop_spindle(cx);
             traverse(cx, f, aa, bb, f.clear);
             spindle(cx, dir);
         }
-        870 => {
+        G87 => {
             let (oa, ob) = (aa + w.offset[0], bb + w.offset[1]);
             // LinuxCNC orients in the spindle's sense: 2 under M3, 3 under M4 (rs274's trace).
             let orient = Canon::OrientSpindle {
@@ -627,14 +628,14 @@ fn hole(
             traverse(cx, f, aa, bb, f.clear);
             spindle(cx, dir);
         }
-        880 => {
+        G88 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             stop_spindle(cx);
             cx.out.push(Canon::ProgramStop { optional: false });
             spindle(cx, dir);
         }
-        890 => {
+        G89 => {
             feed(cx, f, aa, bb, f.bottom);
             cx.out.push(Canon::Dwell { seconds: dwell });
             feed(cx, f, aa, bb, f.clear);

@@ -181,7 +181,8 @@ fn flow_err(block: &Block, code: &'static str, msg: String) -> Diagnostic {
         .as_ref()
         .map(|o| block.span_of(o.span))
         .unwrap_or_else(|| block.span());
-    Diagnostic::error(code, msg, span)
+    // Control flow cannot be followed past its errors: they end even a check run.
+    Diagnostic::error(code, msg, span).fatal()
 }
 
 impl Flow {
@@ -708,7 +709,7 @@ impl Flow {
                 }
             }
         };
-        Some(Diagnostic::error("flow::unterminated", msg, last.span()))
+        Some(Diagnostic::error("flow::unterminated", msg, last.span()).fatal())
     }
 }
 

@@ -17,7 +17,7 @@ use crate::lathe::LatheCapture;
 use crate::lathe_cycles::LatheCall;
 use crate::params::{self, Parameters, Slot};
 use crate::Rs274State;
-use stanok_canon::{Canon, DiagCode, Diagnostic, LengthUnits, Spanned};
+use stanok_canon::{Canon, Diagnostic, LengthUnits, Spanned};
 use stanok_interp_core::{
     Core, CoreOptions, Emitter, FrontEnd, Hooks, Journalled, ModalState, MotionMode, Outcome,
     Parts, Read, Repeated, Unit, WordRules,
@@ -452,15 +452,10 @@ impl FrontEnd for Rs274 {
                 "File ended with no percent sign or program end",
                 core.block.span(),
             )
+            .fatal()
             .with_note("end the program with M2 or M30, or enclose it in % lines"));
         }
         Ok(())
-    }
-
-    fn is_fatal(&self, d: &Diagnostic) -> bool {
-        // Control flow cannot be followed past its errors; a missing end is the end.
-        matches!(d.code, DiagCode::Stanok("rs274::no-program-end"))
-            || d.code.to_string().starts_with("flow::")
     }
 }
 

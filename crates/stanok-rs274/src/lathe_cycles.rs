@@ -59,6 +59,7 @@
 //! come nearer the profile than the allowance is refused rather than cut.
 
 use crate::arc::PlanarArc;
+use crate::codes::*;
 use crate::ctx::Ctx;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
 use stanok_geom::chain2d::level_crossings;
@@ -76,7 +77,7 @@ pub const MAX_LEVELS: usize = 10_000;
 /// A G7x block waiting for its profile (set by `begin`, taken by the driver).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LatheCall {
-    /// ×10: 700 G70, 710 G71, 711 G71.1, 712 G71.2, 720 G72, 721, 722.
+    /// G70, G71, G71_1, G71_2, G72, G72_1, G72_2 (`codes.rs`).
     pub code: u32,
     /// The subroutine number (Q).
     pub q: i64,
@@ -110,7 +111,7 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
             span,
         ));
     }
-    if code != 700 && cx.fe.modes.comp.on() {
+    if code != G70 && cx.fe.modes.comp.on() {
         return Err(cx.err(
             "rs274::g7x-comp",
             format!(
@@ -134,7 +135,7 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
     };
     let d = word(cx, b'D', 0.0);
     let (mut e, mut i, mut r, mut passes) = (0.0, 1.0, 0.5, 1);
-    if code == 700 {
+    if code == G70 {
         e = word(cx, b'E', 0.0);
         passes = cx.words.take(b'P').map_or(1, |w| w.v.round() as i64);
     } else {
@@ -387,7 +388,7 @@ pub fn finish(
     profile: &Profile,
     at: ColSpan,
 ) -> Result<(), Diagnostic> {
-    if call.code != 700 && call.i <= 0.0 {
+    if call.code != G70 && call.i <= 0.0 {
         return Err(cx.err(
             "rs274::g7x-i",
             "G7X error: I must be greater than zero.",
@@ -405,8 +406,8 @@ pub fn finish(
     };
     let (p0, pend) = (profile.start, last.end());
     let facing = match call.code {
-        700 => !monotonic(chain, 0) && monotonic(chain, 1),
-        c => c >= 720,
+        G70 => !monotonic(chain, 0) && monotonic(chain, 1),
+        c => c >= G72,
     };
     if !monotonic(chain, if facing { 1 } else { 0 }) {
         return Err(cx.err("rs274::g7x-monotonic", "G7X error: Not monotonic", at));
@@ -429,7 +430,7 @@ pub fn finish(
         })
     };
     let mut moves: Vec<Move> = Vec::new();
-    if call.code == 700 {
+    if call.code == G70 {
         for k in (1..=call.passes.min(MAX_LEVELS as i64)).rev() {
             let dist = (k - 1) as f64 * (call.d - call.e) / call.passes as f64 + call.e;
             let pass = offset(dist)?;
@@ -515,7 +516,11 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         }
     };
     // G7x.2 cuts only the pockets: a type-1 profile has none.
-    let levels = if call.code % 10 == 2 { 0 } else { MAX_LEVELS };
+    let levels = if matches!(call.code, G71_2 | G72_2) {
+        0
+    } else {
+        MAX_LEVELS
+    };
     for k in 0..=levels {
         let l = s[1] - k as f64 * call.i;
         if l <= p0[1] + 1e-9 {
@@ -553,7 +558,7 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         a: pend,
         b: [pend[0], s[1]],
     };
-    if call.code % 10 == 1 {
+    if matches!(call.code, G71_1 | G72_1) {
         climb::climb_pass(moves, prof, p0, close);
         return Some(());
     }
@@ -564,7 +569,7 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
 /// does, though the tool is there already.
 fn pass<'a>(moves: &mut Vec<Move>, call: &LatheCall, elements: impl Iterator<Item = &'a Seg2>) {
     for seg in elements {
-        if call.code % 10 == 1 {
+        if matches!(call.code, G71_1 | G72_1) {
             moves.push(Move::Feed(Seg2::Line {
                 a: seg.start(),
                 b: seg.start(),

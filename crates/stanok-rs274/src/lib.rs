@@ -32,6 +32,7 @@
 //! own traces.
 
 mod arc_rules;
+mod codes;
 pub(crate) mod cutter_comp;
 mod cycles;
 mod flow;
@@ -64,6 +65,7 @@ pub use front::{Rs274, Rs274Options, Rs274Part};
 pub use params::{normalise_name, Parameters, MAX_PARAMETERS};
 pub(crate) use stanok_interp_core::Outcome;
 
+use crate::codes::*;
 use crate::ctx::{is_linear, Ctx, AXIS_WORDS};
 use crate::state::{DistanceMode, MotionMode, PathMode};
 use stanok_canon::{
@@ -78,7 +80,7 @@ use stanok_syntax::ColSpan;
 /// RS274/NGC state beyond the shared modal groups (LinuxCNC's `setup` fields of the same names).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Rs274State {
-    /// A group-1 code beyond G0–G3/G80 in force (×10: 50 G5, 382 G38.2, 810 G81 …): axis words
+    /// A group-1 code beyond G0–G3/G80 in force (`codes.rs`: G5, G38_2, G81 …): axis words
     /// alone repeat it. None = `ModalState::motion` says what is in force.
     pub motion_code: Option<u32>,
     /// Canned cycles: the sticky R (mm, as written: a G91 R stays an increment).
@@ -143,66 +145,47 @@ pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
 
 /// LinuxCNC's modal groups (the ones this module distinguishes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Group {
+pub(crate) enum Group {
+    /// Group 0: G4, G10, G28, G30, G52, G53, G92 …
     NonModal,
+    /// Group 1.
     Motion,
+    /// Group 2.
     Plane,
+    /// Group 3.
     Distance,
+    /// Group 4 (LinuxCNC's "arc distance").
     ArcDistance,
+    /// Group 5.
     FeedMode,
+    /// Group 6.
     Units,
+    /// Group 7.
     CutterComp,
+    /// Group 8.
     ToolLength,
+    /// Group 10.
     Retract,
+    /// Group 12.
     CoordSystem,
+    /// Group 13.
     PathControl,
+    /// Group 14.
     SpindleMode,
+    /// Group 15.
     LatheDiameter,
 }
 
 /// Group of a G code (×10), or None if LinuxCNC does not know it.
+#[inline(always)]
 fn group_of(code: u32) -> Option<Group> {
-    use Group::*;
-    Some(match code {
-        40 | 100 | 280 | 281 | 300 | 301 | 520 | 530 | 920 | 921 | 922 | 923 | 53 => NonModal,
-        0
-        | 10
-        | 20
-        | 30
-        | 50
-        | 51
-        | 52
-        | 330
-        | 331
-        | 382..=385
-        | 700
-        | 710
-        | 711
-        | 712
-        | 720
-        | 721
-        | 722
-        | 730
-        | 740
-        | 760 => Motion,
-        800..=890 if code.is_multiple_of(10) => Motion,
-        170 | 180 | 190 | 171 | 181 | 191 => Plane,
-        900 | 910 => Distance,
-        901 | 911 => ArcDistance,
-        930 | 940 | 950 => FeedMode,
-        200 | 210 => Units,
-        400 | 410 | 420 | 411 | 421 => CutterComp,
-        430 | 431 | 432 | 490 => ToolLength,
-        980 | 990 => Retract,
-        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => CoordSystem,
-        610 | 611 | 640 => PathControl,
-        960 | 970 => SpindleMode,
-        70 | 80 => LatheDiameter,
-        _ => return None,
-    })
+    g_code(code).map(|c| c.group)
 }
 
 fn g_name(code: u32) -> String {
+    if let Some(c) = g_code(code) {
+        return c.name.to_string();
+    }
     if code.is_multiple_of(10) {
         format!("G{}", code / 10)
     } else {
@@ -265,14 +248,14 @@ fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
             ));
         };
         // G53 is group 0 too: it travels with the motion, but shares the group with G4, G10 ….
-        let prev = if code == 530 {
+        let prev = if code == G53 {
             g.code[Group::NonModal as usize]
         } else if group == Group::NonModal && g.g53.is_some() {
-            530
+            G53
         } else {
             g.code[group as usize]
         };
-        if code == 530 && prev == NO_CODE {
+        if code == G53 && prev == NO_CODE {
             g.g53 = Some(span);
             continue;
         }
@@ -311,8 +294,8 @@ pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
 
 fn plane_of_code(code: u32) -> Plane {
     match code {
-        180 => Plane::ZX,
-        190 => Plane::YZ,
+        G18 => Plane::ZX,
+        G19 => Plane::YZ,
         _ => Plane::XY,
     }
 }
@@ -376,7 +359,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     };
 
     // Codes recognised but not supported: the UVW planes.
-    if let Some((code @ (171 | 181 | 191), span)) = g.get(Group::Plane, cx) {
+    if let Some((code @ (G17_1 | G18_1 | G19_1), span)) = g.get(Group::Plane, cx) {
         return Err(unsupported(
             cx,
             &g_name(code),
@@ -390,8 +373,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         set_feed_mode(
             cx,
             match code {
-                930 => FeedMode::InverseTime,
-                950 => FeedMode::UnitsPerRevolution,
+                G93 => FeedMode::InverseTime,
+                G95 => FeedMode::UnitsPerRevolution,
                 _ => FeedMode::UnitsPerMinute,
             },
         );
@@ -415,7 +398,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 4. Spindle mode (G96/G97), then S.
     if let Some((code, _)) = g.get(Group::SpindleMode, cx) {
-        let css = code == 960;
+        let css = code == G96;
         let max_rpm = if css {
             match cx.words.take(b'D') {
                 Some(d) if d.v <= 0.0 => {
@@ -459,7 +442,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         mcodes::before_dwell(cx, params, m)?;
     }
     // 8. Dwell.
-    if let Some((40, span)) = g.get(Group::NonModal, cx) {
+    if let Some((G4, span)) = g.get(Group::NonModal, cx) {
         let Some(p) = cx.words.take(b'P') else {
             return Err(cx.err("rs274::dwell-p-missing", "Dwell time missing with g4", span));
         };
@@ -481,17 +464,13 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
                 span,
             ));
         }
-        let plane = match code {
-            180 => Plane::ZX,
-            190 => Plane::YZ,
-            _ => Plane::XY,
-        };
+        let plane = plane_of_code(code);
         cx.st.plane = plane;
         cx.out.push(Canon::SelectPlane { plane });
     }
     // 10. Units.
     if let Some((code, _)) = g.get(Group::Units, cx) {
-        let units = if code == 200 {
+        let units = if code == G20 {
             LengthUnits::Inches
         } else {
             LengthUnits::Millimetres
@@ -503,7 +482,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // halves X words as it reads them — positions, G92, G10 and G43.1 values alike; arc centres
     // I/K and radii stay radii).
     if let Some((code, _)) = g.get(Group::LatheDiameter, cx) {
-        let diameter = code == 70;
+        let diameter = code == G7;
         if diameter != cx.st.diameter_mode {
             cx.out.push(Canon::Comment {
                 text: format!(
@@ -519,7 +498,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 11. Cutter compensation.
     if let Some((code, span)) = g.get(Group::CutterComp, cx) {
-        if code == 400 {
+        if code == G40 {
             cutter_comp::comp_off(cx);
         } else {
             cutter_comp::comp_on(cx, params, code, span)?;
@@ -549,10 +528,10 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 13. Coordinate system.
     if let Some((code, _)) = g.get(Group::CoordSystem, cx) {
         let index = match code {
-            591 => 7,
-            592 => 8,
-            593 => 9,
-            c => (c / 10 - 53) as u8,
+            G59_1 => 7,
+            G59_2 => 8,
+            G59_3 => 9,
+            c => ((c - G53) / 10) as u8,
         };
         if index == cx.st.g5x_index {
             cx.out.push(Canon::Comment {
@@ -565,8 +544,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 14. Path control.
     if let Some((code, _)) = g.get(Group::PathControl, cx) {
         cx.st.path_mode = match code {
-            610 => PathMode::ExactPath,
-            611 => PathMode::ExactStop,
+            G61 => PathMode::ExactPath,
+            G61_1 => PathMode::ExactStop,
             _ => {
                 let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
                 let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
@@ -581,22 +560,22 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     }
     // 15. Distance mode; 17. arc (IJK) distance mode. LinuxCNC comments only a real change.
     if let Some((code, _)) = g.get(Group::Distance, cx) {
-        let new = distance_mode(code == 900);
+        let new = distance_mode(code == G90);
         let old = std::mem::replace(&mut cx.st.distance, new);
         announce_distance(cx, "distance", old, new);
     }
     if let Some((code, _)) = g.get(Group::ArcDistance, cx) {
-        let new = distance_mode(code == 901);
+        let new = distance_mode(code == G90_1);
         let old = std::mem::replace(&mut cx.st.arc_distance, new);
         announce_distance(cx, "IJK distance", old, new);
     }
     // 18. Retract mode.
     if let Some((code, _)) = g.get(Group::Retract, cx) {
-        cx.st.retract_to_initial = code == 980;
+        cx.st.retract_to_initial = code == G98;
         cx.out.push(Canon::Comment {
             text: format!(
                 "interpreter: retract mode set to {}",
-                if code == 980 { "old_z" } else { "r_plane" }
+                if code == G98 { "old_z" } else { "r_plane" }
             ),
         });
     }
@@ -604,7 +583,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // with them an explicit motion code is an error and the modal motion is suspended.
     let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
     if let Some((code, span)) = g.get(Group::NonModal, cx) {
-        if matches!(code, 100 | 280 | 300 | 520 | 920) {
+        if matches!(code, G10 | G28 | G30 | G52 | G92) {
             if g.get(Group::Motion, cx).is_some() {
                 return Err(cx.err(
                     "rs274::two-axis-g-codes",
@@ -614,12 +593,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             }
             axis_words_used_by_modal_0 = true;
         }
-        match code {
-            100 => g10(cx, params, span)?,
-            280 | 300 => home::go_home(cx, params, code == 280)?,
-            281 | 301 => home::store_home(cx, params, code == 281),
-            520 | 920..=923 => g92_family(cx, params, code, span)?,
-            53 => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
+        match g_code(code).map(|c| c.handler) {
+            Some(Handler::SetData) => g10(cx, params, span)?,
+            Some(Handler::Home) => home::go_home(cx, params, code == G28)?,
+            Some(Handler::StoreHome) => home::store_home(cx, params, code == G28_1),
+            Some(Handler::Offset) => g92_family(cx, params, code, span)?,
+            Some(Handler::NurbsEnd) => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
             _ => {}
         }
     }
@@ -637,12 +616,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
                     && (cx.words.has(b'I') || cx.words.has(b'J') || cx.words.has(b'K')))) =>
         {
             let code = match cx.st.motion {
-                _ if cx.fe.modes.motion_code.is_some() => cx.fe.modes.motion_code.unwrap_or(800),
-                MotionMode::Rapid => 0,
-                MotionMode::Linear => 10,
-                MotionMode::ArcCw => 20,
-                MotionMode::ArcCcw => 30,
-                MotionMode::None => 800,
+                _ if cx.fe.modes.motion_code.is_some() => cx.fe.modes.motion_code.unwrap_or(G80),
+                MotionMode::Rapid => G0,
+                MotionMode::Linear => G1,
+                MotionMode::ArcCw => G2,
+                MotionMode::ArcCcw => G3,
+                MotionMode::None => G80,
             };
             Some((code, cx.whole(), false))
         }

@@ -4,6 +4,7 @@
 use super::{arc_tolerance, g_name, unsupported};
 use crate::arc::{helix_length, ArcError};
 use crate::arc_rules;
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::state::{DistanceMode, MotionMode};
 use stanok_canon::{Canon, Diagnostic, FeedMode, Plane, Pose};
@@ -21,7 +22,7 @@ pub(super) fn motion_block(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
-    if cx.fe.modes.in_profile && matches!(code, 0 | 10 | 20 | 30) {
+    if cx.fe.modes.in_profile && matches!(code, G0 | G1 | G2 | G3) {
         return motion_in_profile(cx, params, code, span, explicit, g53, f_in_block);
     }
     cx.fe.modes.motion_unset = false;
@@ -57,43 +58,49 @@ fn motion_block_inner(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
-    if !(730..=890).contains(&code) || code == 760 || code == 800 {
+    let handler = g_code(code).map_or(Handler::Unsupported, |c| c.handler);
+    if handler != Handler::CannedCycle {
         // Leaving the canned cycles ends a series (its initial level is forgotten). Written
         // only when it changes: `rs274` is journalled on its first write (`state::Journalled`).
         if cx.fe.modes.cycle_il_set {
             cx.fe.modes.cycle_il_set = false;
         }
     }
-    if matches!(code, 0 | 10 | 20 | 30 | 800) && cx.fe.modes.motion_code.is_some() {
+    if matches!(
+        handler,
+        Handler::Straight | Handler::Arc | Handler::CancelMotion
+    ) && cx.fe.modes.motion_code.is_some()
+    {
         cx.fe.modes.motion_code = None;
     }
     // Moves whose path compensation cannot offset (LinuxCNC refuses them the same way).
-    if cx.fe.modes.comp.on()
-        && matches!(code, 50..=52 | 330 | 331 | 382..=385 | 730 | 740 | 760 | 810..=890)
-    {
-        let what = match code {
-            382..=385 => "probe",
-            50..=52 => "use splines",
-            330 | 331 | 760 => "thread or tap",
-            _ => "use canned cycles",
+    if cx.fe.modes.comp.on() {
+        let what = match handler {
+            Handler::Probe => "probe",
+            Handler::Spline | Handler::Nurbs => "use splines",
+            Handler::Thread | Handler::RigidTap | Handler::ThreadCycle => "thread or tap",
+            Handler::CannedCycle => "use canned cycles",
+            _ => "",
         };
-        return Err(cx.err(
-            "rs274::comp-forbids",
-            format!("Cannot {what} with cutter radius compensation on"),
-            span,
-        ));
+        if !what.is_empty() {
+            return Err(cx.err(
+                "rs274::comp-forbids",
+                format!("Cannot {what} with cutter radius compensation on"),
+                span,
+            ));
+        }
     }
-    match code {
-        730 | 740 | 810..=890 => super::cycles::canned_cycle(cx, code, span),
-        700..=722 => super::lathe_cycles::begin(cx, code, span),
-        330 => super::sync::g33(cx, span),
-        50 => super::spline::cubic(cx, span, f_in_block),
-        51 => super::spline::quadratic(cx, span, f_in_block),
-        52 => super::spline::nurbs_point(cx, params, explicit, span),
-        382..=385 => super::probe::straight_probe(cx, params, code, span),
-        331 => super::sync::g33_1(cx, span),
-        760 => super::sync::g76(cx, span),
-        800 => {
+    match handler {
+        Handler::CannedCycle => super::cycles::canned_cycle(cx, code, span),
+        Handler::LatheCycle => super::lathe_cycles::begin(cx, code, span),
+        Handler::Thread => super::sync::g33(cx, span),
+        Handler::Spline if code == G5 => super::spline::cubic(cx, span, f_in_block),
+        Handler::Spline => super::spline::quadratic(cx, span, f_in_block),
+        Handler::Nurbs => super::spline::nurbs_point(cx, params, explicit, span),
+        Handler::Probe => super::probe::straight_probe(cx, params, code, span),
+        Handler::RigidTap => super::sync::g33_1(cx, span),
+        Handler::ThreadCycle => super::sync::g76(cx, span),
+        Handler::CancelMotion => {
             if explicit {
                 cx.st.motion = MotionMode::None;
                 cx.out.push(Canon::Comment {
@@ -119,8 +126,8 @@ fn motion_block_inner(
             }
             Ok(())
         }
-        0 | 10 => {
-            let rapid = code == 0;
+        Handler::Straight => {
+            let rapid = code == G0;
             let end = if let Some(g53_span) = g53 {
                 if cx.st.distance == DistanceMode::Incremental {
                     return Err(cx.err(
@@ -172,7 +179,7 @@ fn motion_block_inner(
                 Ok(())
             }
         }
-        20 | 30 => {
+        Handler::Arc => {
             if let Some(g53_span) = g53 {
                 return Err(cx.err(
                     "rs274::g53-with-arc",
@@ -180,12 +187,12 @@ fn motion_block_inner(
                     g53_span,
                 ));
             }
-            cx.st.motion = if code == 20 {
+            cx.st.motion = if code == G2 {
                 MotionMode::ArcCw
             } else {
                 MotionMode::ArcCcw
             };
-            arc_block(cx, code == 30, span, f_in_block)
+            arc_block(cx, code == G3, span, f_in_block)
         }
         _ => Err(unsupported(
             cx,

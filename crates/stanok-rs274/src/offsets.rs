@@ -9,6 +9,7 @@
 //! through the new frame, as LinuxCNC's DRO changes without motion.
 
 use super::{axis_values, unsupported};
+use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::params::Parameters;
 use crate::state::{DistanceMode, MotionMode};
@@ -165,7 +166,7 @@ pub(super) fn g92_family(
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     match code {
-        520 | 920 => {
+        G52 | G92 => {
             let given = axis_values(cx)?;
             if given.iter().all(Option::is_none) {
                 return Err(cx.err(
@@ -181,7 +182,7 @@ pub(super) fn g92_family(
             let mut shift = cx.st.frame.shift().to_array();
             for (k, v) in given.iter().enumerate() {
                 if let Some(v) = v {
-                    shift[k] = if code == 920 {
+                    shift[k] = if code == G92 {
                         current[k] + shift[k] - v
                     } else {
                         *v
@@ -190,16 +191,16 @@ pub(super) fn g92_family(
             }
             apply_g92(cx, params, Pose::from_array(shift));
         }
-        921 | 922 => {
+        G92_1 | G92_2 => {
             // G92.1 also forgets the values; G92.2 keeps them for a later G92.3.
             cx.st.frame.set_shift(Pose::ZERO);
             params.set(5210, 0.0);
-            if code == 921 {
+            if code == G92_1 {
                 params.set_pose_mm(5211, &Pose::ZERO);
             }
             cx.out.push(Canon::SetG92Offset { offset: Pose::ZERO });
         }
-        923 => {
+        G92_3 => {
             let shift = params.pose_mm(5211);
             apply_g92(cx, params, shift);
         }

@@ -1,8 +1,9 @@
 //! LinuxCNC's predefined read-only named parameters (`#<_x>`, `#<_metric>`, `#<_feed>` …): values
 //! computed from the modal state when a program reads them (spec rs274ngc §3.5; the values and
 //! their encodings checked against LinuxCNC 2.9's `rs274`, e.g. `#<_plane>` = 170 for G17 and
-//! `#<_coord_system>` = 540 for G54).
+//! `#<_coord_system>` = 540 for G54: the code × 10, as `codes.rs` holds it).
 
+use crate::codes::*;
 use crate::params::Parameters;
 use crate::state::{DistanceMode, ModalState, MotionMode};
 use crate::Rs274State;
@@ -52,23 +53,23 @@ pub fn predefined(
         "_motion_mode" => match rs.motion_code {
             Some(c) => c as f64,
             None => match st.motion {
-                MotionMode::Rapid => 0.0,
-                MotionMode::Linear => 10.0,
-                MotionMode::ArcCw => 20.0,
-                MotionMode::ArcCcw => 30.0,
+                MotionMode::Rapid => G0 as f64,
+                MotionMode::Linear => G1 as f64,
+                MotionMode::ArcCw => G2 as f64,
+                MotionMode::ArcCcw => G3 as f64,
                 MotionMode::None if rs.motion_unset => -1.0,
-                MotionMode::None => 800.0,
+                MotionMode::None => G80 as f64,
             },
         },
         "_plane" => match st.plane {
-            Plane::XY => 170.0,
-            Plane::ZX => 180.0,
-            Plane::YZ => 190.0,
+            Plane::XY => G17 as f64,
+            Plane::ZX => G18 as f64,
+            Plane::YZ => G19 as f64,
         },
         "_ccomp" => match rs.comp.side {
-            1 => 410.0,
-            2 => 420.0,
-            _ => 400.0,
+            1 => G41 as f64,
+            2 => G42 as f64,
+            _ => G40 as f64,
         },
         "_metric" => flag(st.units == LengthUnits::Millimetres),
         "_imperial" => flag(st.units == LengthUnits::Inches),
@@ -78,10 +79,10 @@ pub fn predefined(
         "_units_per_minute" => flag(st.feed_mode == FeedMode::UnitsPerMinute),
         "_units_per_rev" => flag(st.feed_mode == FeedMode::UnitsPerRevolution),
         "_coord_system" => match st.g5x_index {
-            7 => 591.0,
-            8 => 592.0,
-            9 => 593.0,
-            i => 530.0 + 10.0 * i as f64,
+            7 => G59_1 as f64,
+            8 => G59_2 as f64,
+            9 => G59_3 as f64,
+            i => (G53 + 10 * i as u32) as f64,
         },
         "_tool_offset" => flag(*st.frame.tlo() != stanok_canon::Pose::ZERO),
         "_retract_r_plane" => flag(!st.retract_to_initial),

@@ -21,6 +21,7 @@
 //! the programmed point along the move afterwards, as rs274's simulated probe puts it; the result
 //! parameters hold the programmed point and #5070 = 0.
 
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use stanok_canon::{Canon, Diagnostic, FeedMode, LineMove, Pose, ProbeKind};
@@ -29,7 +30,7 @@ use stanok_syntax::ColSpan;
 /// LinuxCNC's minimum probe distance: 0.01 in.
 const MIN_PROBE_DISTANCE_MM: f64 = 0.254;
 
-/// Executes G38.2 (382) … G38.5 (385).
+/// Executes G38.2 … G38.5.
 pub(super) fn straight_probe(
     cx: &mut Ctx<'_>,
     params: &mut Parameters,
@@ -79,9 +80,9 @@ pub(super) fn straight_probe(
         ));
     }
     let kind = match code {
-        382 => ProbeKind::TowardErrorIfNone,
-        383 => ProbeKind::Toward,
-        384 => ProbeKind::AwayErrorIfNone,
+        G38_2 => ProbeKind::TowardErrorIfNone,
+        G38_3 => ProbeKind::Toward,
+        G38_4 => ProbeKind::AwayErrorIfNone,
         _ => ProbeKind::Away,
     };
     let want_contact = matches!(kind, ProbeKind::TowardErrorIfNone | ProbeKind::Toward);
@@ -158,6 +159,7 @@ pub(super) fn straight_probe(
             start: start_m,
             end: end_m,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: kind,
         contact,

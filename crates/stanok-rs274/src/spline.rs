@@ -18,6 +18,7 @@
 //! mapped to the machine through the work frame point by point (the frame is affine, and a
 //! rational B-spline maps exactly under affine maps by mapping its control points).
 
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
 use crate::state::DistanceMode;
@@ -106,6 +107,7 @@ fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64
         knots,
         plane: Plane::XY,
         feed,
+        law: stanok_canon::FeedLaw::PerMinute,
     }));
     cx.st.position = end;
 }
@@ -186,7 +188,7 @@ pub(super) fn nurbs_point(
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.2", span)?;
-    let opening = explicit || cx.fe.modes.motion_code != Some(52);
+    let opening = explicit || cx.fe.modes.motion_code != Some(G5_2);
     // LinuxCNC's convert_nurbs: every point after the first (the current point) needs P > 0.
     let p_word = cx.words.take(b'P');
     let weight = match p_word {
@@ -265,7 +267,7 @@ pub(super) fn nurbs_point(
         }
         buf.points.push(([x, y, here.z], weight));
     }
-    cx.fe.modes.motion_code = Some(52);
+    cx.fe.modes.motion_code = Some(G5_2);
     Ok(())
 }
 
@@ -276,7 +278,7 @@ pub(super) fn nurbs_end(
     f_in_block: bool,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
-    if cx.fe.modes.motion_code != Some(52) {
+    if cx.fe.modes.motion_code != Some(G5_2) {
         return Err(cx.err(
             "rs274::g5-3-without-g5-2",
             "Cannot use G5.3 without G5.2 first",

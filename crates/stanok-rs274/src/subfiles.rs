@@ -56,7 +56,8 @@ impl Rs274 {
                     core.opts.max_call_depth
                 ),
                 at,
-            ));
+            )
+            .fatal());
         }
         let mut reader = core.source.open(path, at)?;
         let mut block = Block::default();
@@ -68,6 +69,7 @@ impl Rs274 {
                     format!("cannot read {}: {e}", path.display()),
                     at,
                 )
+                .fatal()
             })?;
             if more {
                 // Every call scans the file again up to its `sub` line: work done again.
@@ -77,7 +79,8 @@ impl Rs274 {
                     "flow::sub-not-found",
                     format!("EOF in file:{} seeking o-word: o{label}", path.display()),
                     at,
-                ));
+                )
+                .fatal());
             }
             if let Some(o) = &block.oword {
                 if matches!(o.kind, OKind::Sub) && flow::label_text(&block, &o.label) == label {
@@ -106,5 +109,6 @@ impl Rs274 {
             format!("subroutine file {path} ended without its endsub"),
             core.block.span(),
         )
+        .fatal()
     }
 }

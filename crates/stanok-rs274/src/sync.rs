@@ -28,6 +28,7 @@
 //! Invariant: the number of passes is bounded ([`MAX_PASSES`]); a schedule that would need more
 //! is refused before anything moves.
 
+use crate::codes::*;
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::state::DistanceMode;
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
@@ -75,7 +76,7 @@ pub(super) fn g33(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     let feed = sync_feed(cx, pitch);
     cx.straight(false, end, feed);
     cx.out.push(Canon::StopSpindleSync);
-    cx.fe.modes.motion_code = Some(330);
+    cx.fe.modes.motion_code = Some(G33);
     Ok(())
 }
 
@@ -96,9 +97,10 @@ pub(super) fn g33_1(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         start,
         end: end_m,
         scale: 1.0,
+        law: stanok_canon::FeedLaw::PerMinute,
     });
     cx.out.push(Canon::StopSpindleSync);
-    cx.fe.modes.motion_code = Some(331);
+    cx.fe.modes.motion_code = Some(G33_1);
     Ok(())
 }
 
@@ -270,6 +272,6 @@ pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         cx.out.push(Canon::SetFeedOverrideEnabled { enabled: true });
     }
     cx.straight(true, at(x0, w.z_end), 0.0);
-    cx.fe.modes.motion_code = Some(760);
+    cx.fe.modes.motion_code = Some(G76);
     Ok(())
 }

@@ -11,6 +11,7 @@
 //! Stanok writes them at the same events.
 
 use super::axis_values;
+use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::params::Parameters;
 use stanok_canon::setup::{Tool, ToolEdge};
@@ -104,13 +105,13 @@ pub(super) fn tool_length_offset(
     let tool_offset = |number: u32| edge(params.tools().get(number)).offset.to_array();
     let mut axes_used = false;
     let offset = match code {
-        490 => [0.0; 9],
-        430 => match cx.words.take(b'H') {
+        G49 => [0.0; 9],
+        G43 => match cx.words.take(b'H') {
             Some(h) => tool_offset(h_tool(cx, params, h)?),
             // Without H: the loaded tool (loaded by an M6 of this very block too).
             None => tool_offset(cx.st.current_tool),
         },
-        431 => {
+        G43_1 => {
             // Replaces the named axes' offsets; the others keep theirs.
             let mut o = current;
             for (k, v) in axis_values(cx)?.into_iter().enumerate() {

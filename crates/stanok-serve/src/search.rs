@@ -59,6 +59,7 @@ impl BlockSearch {
                         start: from,
                         end: to,
                         feed: 0.0,
+                        law: stanok_canon::FeedLaw::PerMinute,
                     }),
                     ..cmd.clone()
                 }),

@@ -382,6 +382,7 @@ mod tests {
             start: pose(0.0, 0.0, 0.0),
             end: pose(5.0, 6.0, 7.0),
             feed: 100.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         }));
         assert_eq!(s.spindles[0], SpindleState { rpm: 1200.0, m: 4 });
         assert!(s.flood && !s.mist);

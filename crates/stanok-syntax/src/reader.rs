@@ -181,7 +181,8 @@ impl<R: BufRead + Seek> BlockReader<R> {
                     ),
                     block.span_of(ColSpan::new(end, end)),
                 )
-                .with_note("the bound is the option --max-program-size (bytes)"),
+                .with_note("the bound is the option --max-program-size (bytes)")
+                .fatal(),
             );
         }
         Ok(true)

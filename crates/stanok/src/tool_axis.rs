@@ -74,6 +74,7 @@ mod tests {
             start: tip,
             end: Pose { b: -75.0, ..tip },
             feed: 600.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         };
         let at = |value| Spanned::new(Span::default(), value);
         let stream = [

@@ -34,6 +34,7 @@ pub(super) fn line_canon(
         start: tag.frame.to_machine(&from),
         end: tag.frame.to_machine(&to),
         feed: if rapid { 0.0 } else { feed },
+        law: stanok_canon::FeedLaw::PerMinute,
     };
     spanned(
         tag,
@@ -69,6 +70,7 @@ pub(super) fn arc_canon(
             turns: 1,
             plane: tag.plane,
             feed,
+            law: stanok_canon::FeedLaw::PerMinute,
         }),
     )
 }

@@ -26,6 +26,7 @@ mod emit;
 mod touch;
 
 use crate::arc::PlanarArc;
+use crate::codes::{G143, G40, G41, G42};
 use crate::ctx::Ctx;
 use contour::{ContourError, Elem, Event, Head, Kind, Tag};
 use emit::{arc_canon, line_canon, with_non_plane};
@@ -117,14 +118,14 @@ impl Comp {
         self.tool.unwrap_or_else(|| cx.st.program_position())
     }
 
-    /// G40 (400), G41 (410), G42 (420), G143 (1430), G144 (1440) in a block.
+    /// G40, G41, G42, G143, G144 in a block.
     pub fn select(cx: &mut Ctx<'_>, code: u32, at: ColSpan) -> Result<(), Diagnostic> {
         let mode = cx.fe.ext.comp.mode;
         let new = match code {
-            400 => CompMode::Off,
-            410 => CompMode::Left,
-            420 => CompMode::Right,
-            1430 => CompMode::Outside,
+            G40 => CompMode::Off,
+            G41 => CompMode::Left,
+            G42 => CompMode::Right,
+            G143 => CompMode::Outside,
             _ => CompMode::Inside,
         };
         if new == mode {

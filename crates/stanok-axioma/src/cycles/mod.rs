@@ -24,6 +24,7 @@ mod drilling;
 mod pockets;
 mod turning;
 
+use crate::codes;
 use crate::ctx::Ctx;
 use crate::words::Val;
 use stanok_canon::{Canon, Diagnostic, Pose};
@@ -58,19 +59,19 @@ pub enum CycleKind {
 }
 
 impl CycleKind {
-    /// From a G code ×10.
+    /// From a G code (`codes.rs`).
     pub fn from_code(code: u32) -> Option<CycleKind> {
         Some(match code {
-            810 => CycleKind::Drill,
-            830 => CycleKind::PeckDrill,
-            2760 => CycleKind::Thread,
-            2810 => CycleKind::RecessLongitudinal,
-            2820 => CycleKind::RecessFace,
-            2880 => CycleKind::GrooveLongitudinal,
-            2890 => CycleKind::GrooveFace,
-            3870 => CycleKind::RectPocket,
-            3880 => CycleKind::Slot,
-            3890 => CycleKind::CircPocket,
+            codes::G81 => CycleKind::Drill,
+            codes::G83 => CycleKind::PeckDrill,
+            codes::G276 => CycleKind::Thread,
+            codes::G281 => CycleKind::RecessLongitudinal,
+            codes::G282 => CycleKind::RecessFace,
+            codes::G288 => CycleKind::GrooveLongitudinal,
+            codes::G289 => CycleKind::GrooveFace,
+            codes::G387 => CycleKind::RectPocket,
+            codes::G388 => CycleKind::Slot,
+            codes::G389 => CycleKind::CircPocket,
             _ => return None,
         })
     }

@@ -476,7 +476,8 @@ impl Control {
                 ),
                 span,
             )
-            .with_note("the bound is the option --max-nesting"));
+            .with_note("the bound is the option --max-nesting")
+            .fatal());
         }
         Ok(())
     }
@@ -499,7 +500,8 @@ impl Control {
                 ),
                 span,
             )
-            .with_note("the bound is the option --max-total-loop-iterations"));
+            .with_note("the bound is the option --max-total-loop-iterations")
+            .fatal());
         }
         let Some(Frame::Loop(l)) = self.frames.last_mut() else {
             return Err(Diagnostic::error(
@@ -516,7 +518,8 @@ impl Control {
                 format!("the loop ran more than {max} times: stopped (endless loop?)"),
                 l.span,
             )
-            .with_note("the bound is the option --max-loop-iterations"));
+            .with_note("the bound is the option --max-loop-iterations")
+            .fatal());
         }
         Ok((l.header, l.item))
     }

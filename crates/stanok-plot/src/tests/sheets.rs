@@ -110,6 +110,7 @@ fn raster(n: usize) -> impl Iterator<Item = Canon> {
             start: p(x0, y, 0.0),
             end: p(x1, y + 100.0 / n as f64, 0.0),
             feed: 1000.0,
+            law: stanok_canon::FeedLaw::PerMinute,
         })
     })
 }

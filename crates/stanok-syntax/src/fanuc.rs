@@ -536,15 +536,17 @@ impl Fx<'_> {
                 );
                 return Err(Stop);
             }
-            _ => return self.fail(
-                "syntax::missing-value",
-                format!(
+            _ => {
+                return self.fail(
+                    "syntax::missing-value",
+                    format!(
                     "`{}` has no value (a word is a letter and a number, `#i` or `[expression]`)",
                     letter as char
                 ),
-                start,
-                start + 1,
-            ),
+                    start,
+                    start + 1,
+                )
+            }
         }
         let id = self.operand_value("a value")?;
         let end = self.out.exprs[id.0 as usize].1.end as usize;

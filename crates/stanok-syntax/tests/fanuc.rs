@@ -528,3 +528,23 @@ fn normalise_signs_rewrites_signed_literals() {
     assert_eq!(normalise_signs("(- 5 1)"), "(- 5 1)");
     let _ = Address::Letter(b'X');
 }
+
+#[test]
+fn the_example_jobs_parse() {
+    for name in ["mazak-m-job.eia", "mazak-t-job.eia"] {
+        let path = format!("{}/../../examples/{name}", env!("CARGO_MANIFEST_DIR"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let (program, diags) = stanok_syntax::parse(&text, D);
+        assert!(diags.is_empty(), "{name}: {diags:#?}");
+        let programs = program
+            .blocks
+            .iter()
+            .filter(|b| {
+                b.words
+                    .first()
+                    .is_some_and(|w| w.address == Address::Letter(b'O'))
+            })
+            .count();
+        assert!(programs >= 1, "{name}");
+    }
+}

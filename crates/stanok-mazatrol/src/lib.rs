@@ -1,0 +1,7 @@
+//! Mazatrol EIA/ISO: the Fanuc-compatible Mazak language (`docs/dialects/mazatrol-eia.md`).
+#![deny(missing_docs)]
+
+pub mod codes;
+pub mod macro_b;
+pub mod turning;
+pub mod vars;

@@ -160,7 +160,8 @@ pub fn g72(a: Zx, profile: &[Step], w: StockRemoval) -> R<Vec<Step>> {
 }
 
 fn stock_removal(a: Zx, profile: &[Step], w: StockRemoval, name: &str) -> R<Vec<Step>> {
-    if !(w.depth > 0.0) || !(w.retract >= 0.0) {
+    // NaN fails both tests.
+    if w.depth.is_nan() || w.depth <= 0.0 || w.retract.is_nan() || w.retract < 0.0 {
         return err(format!(
             "{name}: the depth of cut must be positive and the retract not negative"
         ));
@@ -393,7 +394,8 @@ pub struct Threading {
 /// The infeed depths of G76: `Δd·√n` with increments of at least Δdmin, up to k − d, then m
 /// passes at k.
 pub fn g76_depths(w: &Threading) -> R<Vec<f64>> {
-    if !(w.height > 0.0 && w.first_depth > 0.0 && w.lead > 0.0) {
+    let positive = |v: f64| v > 0.0;
+    if !positive(w.height) || !positive(w.first_depth) || !positive(w.lead) {
         return err("G76: the thread height, the first depth and the lead must be positive");
     }
     let rough_to = (w.height - w.allowance).max(0.0);

@@ -2,6 +2,8 @@
 #![deny(missing_docs)]
 
 pub mod codes;
+pub mod drilling;
 pub mod macro_b;
+pub mod polar;
 pub mod turning;
 pub mod vars;

@@ -51,8 +51,10 @@ use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
 
+mod mazatrol;
 mod sections;
 mod stored;
+pub use mazatrol::{MazatrolData, MazatrolSeries};
 use sections::{rate_table, validate_kinematics};
 pub use stored::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, PermParameters, StoredOffsets,
@@ -95,10 +97,12 @@ pub struct MachineData {
     pub feed_table: BTreeMap<u32, f64>,
     /// AxiOMA channel spindle-speed table (`STABLE(i)`, `[speed_table]`, rev/min), as `feed_table`.
     pub speed_table: BTreeMap<u32, f64>,
+    /// The Mazatrol EIA/ISO control's parameters (`[mazatrol]`); None = the defaults.
+    pub mazatrol: Option<MazatrolData>,
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
-pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
+pub const BUILTIN_FIVE_AXIS: [(&str, &str); 8] = [
     (
         "5axis-bc-head",
         include_str!("../../../machines/5axis-bc-head.toml"),
@@ -123,6 +127,8 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
         "5axis-cvu-tt",
         include_str!("../../../machines/5axis-cvu-tt.toml"),
     ),
+    ("mazak-m", include_str!("../../../machines/mazak-m.toml")),
+    ("mazak-t", include_str!("../../../machines/mazak-t.toml")),
 ];
 
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
@@ -205,6 +211,7 @@ struct RawFile {
     dperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
     kinematics: Option<Spanned<KinematicsData>>,
+    mazatrol: Option<Spanned<MazatrolData>>,
 }
 
 #[derive(Deserialize)]
@@ -387,6 +394,7 @@ impl RawFile {
             ("iperm", at(&self.iperm)),
             ("dperm", at(&self.dperm)),
             ("tool", at(&self.tool)),
+            ("mazatrol", at(&self.mazatrol)),
         ];
         keys.into_iter()
             .filter_map(|(k, r)| r.map(|r| (k, r)))
@@ -508,6 +516,10 @@ impl RawFile {
             None => None,
             Some(k) => Some(validate_kinematics(k, &axes)?),
         };
+        let mazatrol = match &self.mazatrol {
+            None => None,
+            Some(m) => Some(mazatrol::validate_mazatrol(m)?),
+        };
         Ok(MachineData {
             name: name.into_inner(),
             description: self
@@ -525,6 +537,7 @@ impl RawFile {
             kinematics,
             feed_table,
             speed_table,
+            mazatrol,
         })
     }
 }
@@ -647,6 +660,7 @@ impl MachineData {
             kinematics: None,
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
+            mazatrol: None,
         }
     }
 
@@ -680,6 +694,7 @@ impl MachineData {
             kinematics: None,
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
+            mazatrol: None,
         }
     }
 
@@ -761,6 +776,16 @@ impl MachineData {
                 out.push_str(&text);
             }
         }
+        if let Some(m) = &self.mazatrol {
+            #[derive(Serialize)]
+            struct Section<'a> {
+                mazatrol: &'a MazatrolData,
+            }
+            if let Ok(text) = toml::to_string(&Section { mazatrol: m }) {
+                out.push('\n');
+                out.push_str(&text);
+            }
+        }
         if !control_tables.is_empty() {
             out.push('\n');
             out.push_str(&control_tables);
@@ -787,6 +812,18 @@ impl MachineData {
             mask[a.pose_index()] = true;
         }
         mask
+    }
+
+    /// The Mazatrol series: the `[mazatrol]` section's, else T for a `mill-turn` kinematics, else
+    /// M (`docs/dialects/mazatrol-eia.md` §1).
+    pub fn mazatrol_series(&self) -> MazatrolSeries {
+        if let Some(s) = self.mazatrol.as_ref().and_then(|m| m.series) {
+            return s;
+        }
+        match &self.kinematics {
+            Some(k) if k.kind == stanok_kin::MachineType::MillTurn => MazatrolSeries::T,
+            _ => MazatrolSeries::M,
+        }
     }
 
     /// The axis with letter `name`, if the machine has it.

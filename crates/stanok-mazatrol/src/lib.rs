@@ -2,6 +2,7 @@
 #![deny(missing_docs)]
 
 pub mod codes;
+pub mod comp;
 pub mod drilling;
 pub mod macro_b;
 pub mod polar;

@@ -44,14 +44,14 @@ pub fn start_point(first: &Seg2, d: f64) -> Result<P2, CompError> {
     first
         .offset_left(d)
         .map(|o| o.start())
-        .ok_or_else(|| swallowed())
+        .ok_or_else(swallowed)
 }
 
 /// The end of the offset of `last` (cancel, type A).
 pub fn end_point(last: &Seg2, d: f64) -> Result<P2, CompError> {
     last.offset_left(d)
         .map(|o| o.end())
-        .ok_or_else(|| swallowed())
+        .ok_or_else(swallowed)
 }
 
 fn swallowed() -> CompError {

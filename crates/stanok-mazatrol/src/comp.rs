@@ -49,9 +49,7 @@ pub fn start_point(first: &Seg2, d: f64) -> Result<P2, CompError> {
 
 /// The end of the offset of `last` (cancel, type A).
 pub fn end_point(last: &Seg2, d: f64) -> Result<P2, CompError> {
-    last.offset_left(d)
-        .map(|o| o.end())
-        .ok_or_else(swallowed)
+    last.offset_left(d).map(|o| o.end()).ok_or_else(swallowed)
 }
 
 fn swallowed() -> CompError {

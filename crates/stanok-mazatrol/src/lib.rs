@@ -6,5 +6,6 @@ pub mod comp;
 pub mod drilling;
 pub mod macro_b;
 pub mod polar;
+pub mod rules;
 pub mod turning;
 pub mod vars;

@@ -6,6 +6,7 @@ pub mod comp;
 pub mod drilling;
 pub mod macro_b;
 pub mod polar;
+pub mod profile;
 pub mod rules;
 pub mod turning;
 pub mod vars;

@@ -34,7 +34,7 @@ use crate::search::BlockSearch;
 use crate::state::{g_vector, m_vector, ActiveCode, MachineState, SpindleState};
 use serde::Serialize;
 use stanok_canon::{Canon, Diagnostic, Spanned};
-use stanok_interp::{InterpOptions, Interpreter};
+use stanok_interp::{InterpOptions, Interpreter, LengthComp};
 use stanok_machine::{MachineData, SimMachine, SimOptions};
 use stanok_motion::hold::HoldSwitch;
 use stanok_motion::Setpoint;
@@ -313,9 +313,30 @@ pub fn interp_options(
     // Tool-centre-point control (TRAORI, CVU, G43.4/G43.5) as on the command line.
     opts.five_axis = machine.tcp_kinematics();
     opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
+    opts.mazatrol = mazatrol_params(machine);
     // M01 reaches the machine thread, which decides with the operator's switch.
     opts.optional_stop = true;
     opts
+}
+
+/// The Mazatrol front end's parameters from the machine's `[mazatrol]` section (defaults where it
+/// has none; the series from the kinematics type when the section does not name it).
+pub fn mazatrol_params(machine: &MachineData) -> stanok_interp::MazatrolParams {
+    let data = machine.mazatrol.clone().unwrap_or_default();
+    stanok_interp::MazatrolParams {
+        series: match machine.mazatrol_series() {
+            stanok_machine::MazatrolSeries::M => stanok_interp::MazatrolSeries::M,
+            stanok_machine::MazatrolSeries::T => stanok_interp::MazatrolSeries::T,
+        },
+        decimal_point_type: data.decimal_point_type,
+        peck_clearance: data.peck_clearance,
+        thread_chamfer_angle: data.thread_chamfer_angle,
+        g60_overshoot: data.g60_overshoot,
+        tool_data_length: data.tool_data_length,
+        g49_moves: data.g49_moves,
+        mazatrol_wpc: data.mazatrol_wpc,
+        ttpc_workpiece_frame: machine.ttpc_workpiece_frame(),
+    }
 }
 
 /// Starts the machine thread.
@@ -559,8 +580,13 @@ fn execute<R: std::io::BufRead + std::io::Seek>(
     sim.apply(cmd)?;
     state.apply(&cmd.value);
     let modal = interp.state();
-    let (g, m) = (g_vector(modal, dialect), m_vector(interp, state, dialect));
-    let edge = modal.axioma_modes.edge;
+    let axioma = interp.axioma_modes();
+    let length_comp = axioma.map_or(LengthComp::Off, |m| m.length_comp);
+    let (g, m) = (
+        g_vector(modal, length_comp, dialect),
+        m_vector(interp, state, dialect),
+    );
+    let edge = axioma.map_or(0, |m| m.edge);
     shared.publish(|s| {
         if let Canon::Message { text } = &cmd.value {
             s.message = text.trim().to_string();

@@ -212,8 +212,9 @@ fn code(group: &str, code: impl Into<String>) -> ActiveCode {
     }
 }
 
-/// The active G codes by modal group (module doc).
-pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
+/// The active G codes by modal group (module doc); `length_comp`: AxiOMA's tool length group
+/// (the others show G49).
+pub fn g_vector(s: &ModalState, length_comp: LengthComp, dialect: Dialect) -> Vec<ActiveCode> {
     let axioma = dialect == Dialect::Axioma;
     let mut v = vec![
         code(
@@ -288,7 +289,7 @@ pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
     ));
     v.push(code(
         "tool length",
-        match s.axioma_modes.length_comp {
+        match length_comp {
             LengthComp::Off => "G49",
             LengthComp::Plus => "G43",
             LengthComp::Minus => "G44",

@@ -59,7 +59,7 @@ fn turret(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
     if tool != 0 && tool != cx.st.current_tool {
         cx.out.push(Canon::SelectTool { tool });
         cx.out.push(Canon::StartToolChange);
-        cx.out.push(Canon::ChangeTool { tool });
+        cx.out.push(Canon::ChangeTool { tool, slot: tool });
         cx.st.current_tool = tool;
         cx.st.selected_tool = None;
     }

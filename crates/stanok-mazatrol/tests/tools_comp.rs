@@ -150,7 +150,7 @@ fn the_t_series_turret() {
         .canon
         .iter()
         .filter_map(|c| match c.value {
-            Canon::ChangeTool { tool } => Some(tool),
+            Canon::ChangeTool { tool, .. } => Some(tool),
             _ => None,
         })
         .collect();

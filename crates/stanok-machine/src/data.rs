@@ -54,7 +54,7 @@ use toml::Spanned;
 mod mazatrol;
 mod sections;
 mod stored;
-pub use mazatrol::{MazatrolData, MazatrolSeries};
+pub use mazatrol::{MazatrolData, MazatrolFeedMode, MazatrolSeries};
 use sections::{rate_table, validate_kinematics};
 pub use stored::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, PermParameters, StoredOffsets,

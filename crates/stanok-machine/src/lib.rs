@@ -32,8 +32,8 @@ mod sim_motion;
 pub use control_write::perm_to_toml;
 pub use data::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, AxisData, AxisKind,
-    MachineData, MazatrolData, MazatrolSeries, PermParameters, StoredOffsets, BAD_DATA,
-    BUILTIN_FIVE_AXIS,
+    MachineData, MazatrolData, MazatrolFeedMode, MazatrolSeries, PermParameters, StoredOffsets,
+    BAD_DATA, BUILTIN_FIVE_AXIS,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};

@@ -1,7 +1,7 @@
 //! The `[mazatrol]` machine-data section: defaults, the series rule, refusals, and the built-in
 //! Mazak machines.
 
-use stanok_machine::{MachineData, MazatrolSeries};
+use stanok_machine::{MachineData, MazatrolFeedMode, MazatrolSeries};
 
 const BASE: &str = r#"
 name = "m"
@@ -38,6 +38,15 @@ fn defaults_and_series() {
     // A mill-turn kinematics is a T-series control unless the section says otherwise.
     let mt = MachineData::builtin("millturn-bc").unwrap();
     assert_eq!(mt.mazatrol_series(), MazatrolSeries::T);
+    // The power-on feed mode: absent means "by series"; millturn-bc (the TTPC oracles' machine,
+    // programs in mm/min) says G94, mazak-t G95.
+    assert_eq!(s.power_on_feed, None);
+    let feed = |m: &MachineData| m.mazatrol.as_ref().and_then(|s| s.power_on_feed);
+    assert_eq!(feed(&mt), Some(MazatrolFeedMode::G94));
+    let t = MachineData::builtin("mazak-t").unwrap();
+    assert_eq!(feed(&t), Some(MazatrolFeedMode::G95));
+    let m = parse("[mazatrol]\npower_on_feed = \"G94\"\n").unwrap();
+    assert_eq!(feed(&m), Some(MazatrolFeedMode::G94));
 }
 
 #[test]
@@ -61,6 +70,7 @@ fn refusals_name_the_key() {
         ),
         ("[mazatrol]\nseries = \"X\"\n", "unknown variant"),
         ("[mazatrol]\nfoo = 1\n", "unknown field"),
+        ("[mazatrol]\npower_on_feed = \"G93\"\n", "unknown variant"),
     ] {
         let e = parse(extra).unwrap_err();
         assert!(e.message.contains(text), "{extra}: {}", e.message);

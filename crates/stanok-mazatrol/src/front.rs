@@ -54,6 +54,17 @@ pub struct MazatrolParams {
     pub mazatrol_wpc: Option<[f64; 3]>,
     /// TTPC programs in the workpiece frame (F85 bit 2 / P12 bit 7 = 1).
     pub ttpc_workpiece_frame: bool,
+    /// G95 (true) or G94 (false) at power-on; `None`: G95 on the T-series, G94 on the M-series
+    /// (machine data `[mazatrol] power_on_feed`).
+    pub power_on_feed_per_revolution: Option<bool>,
+}
+
+impl MazatrolParams {
+    /// Whether the control powers on (and resets) in G95.
+    pub fn power_on_feed_per_revolution(&self) -> bool {
+        self.power_on_feed_per_revolution
+            .unwrap_or(self.series == Series::T)
+    }
 }
 
 impl Default for MazatrolParams {
@@ -68,6 +79,7 @@ impl Default for MazatrolParams {
             g49_moves: true,
             mazatrol_wpc: None,
             ttpc_workpiece_frame: false,
+            power_on_feed_per_revolution: None,
         }
     }
 }
@@ -216,6 +228,8 @@ impl Mazatrol {
         }
         if params.series == Series::T {
             state.plane = stanok_canon::Plane::ZX;
+        }
+        if params.power_on_feed_per_revolution() {
             state.feed_mode = stanok_canon::FeedMode::UnitsPerRevolution;
         }
         state.motion = stanok_interp_core::MotionMode::Rapid;

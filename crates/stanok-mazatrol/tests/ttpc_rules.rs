@@ -193,3 +193,30 @@ fn issue_22_item_12_r_in_ttpc() {
     let a = arc_of("G02 X10 Y0 R5");
     assert!((a.centre[0] - a.start.x - 5.0).abs() < 1e-9, "{a:?}");
 }
+
+#[test]
+fn power_on_feed_mode_is_machine_data() {
+    // The T-series powers on in G95 (#4005 = 95), which forbids selecting TTPC (table 12.1,
+    // column [2]); a machine whose data says `power_on_feed = "G94"` (millturn-bc) selects it at
+    // once, and the M-series powers on in G94.
+    let ttpc = "G90 G01 F1000.\nG43.4 X100. Y0 Z50. B0 H2\n";
+    let t = mazak_t();
+    let e = run(ttpc, &t).error.expect("G95 in force");
+    assert_eq!(e.code.to_string(), "mazatrol::ttpc-not-selectable");
+    assert_eq!(
+        e.message,
+        "G43.4 cannot be selected while G95 is in force on the T-series (table 12.1, column [2])"
+    );
+    let mut t94 = mazak_t();
+    t94.params.power_on_feed_per_revolution = Some(false);
+    run(ttpc, &t94).ok();
+    // #4005, the group 05 code, at power-on: 95 / 94 / 94 — read back through a G00 Z move.
+    for (m, want) in [(mazak_t(), 95.0), (t94, 94.0), (mazak_m(), 94.0)] {
+        let r = run("#1 = #4005\nG00 Z#1\n", &m);
+        r.ok();
+        let z = r.ends()[0].z;
+        let g54 = m.opts.control.offsets.zero.first().and_then(|p| p.first());
+        let z0 = g54.map_or(0.0, |o| o.offset.z);
+        assert_eq!(z - z0, want, "{:?}", m.params.series);
+    }
+}

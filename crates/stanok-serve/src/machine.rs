@@ -336,6 +336,9 @@ pub fn mazatrol_params(machine: &MachineData) -> stanok_interp::MazatrolParams {
         g49_moves: data.g49_moves,
         mazatrol_wpc: data.mazatrol_wpc,
         ttpc_workpiece_frame: machine.ttpc_workpiece_frame(),
+        power_on_feed_per_revolution: data
+            .power_on_feed
+            .map(|f| f == stanok_machine::MazatrolFeedMode::G95),
     }
 }
 

@@ -12,6 +12,7 @@
 //! tool_data_length = false  # F93 bit 3: T…M6 puts the tool's length in force
 //! g49_moves = true          # P12 bit 6 / F114 bit 1 = 0: G49 moves the axes
 //! mazatrol_wpc = [0, 0, 0]  # G53.5 workpiece origin, machine mm (default: the G54 offset)
+//! power_on_feed = "G95"     # feed mode at power-on and reset (default: G95 on T, G94 on M)
 //! ```
 
 use super::Invalid;
@@ -25,6 +26,15 @@ pub enum MazatrolSeries {
     M,
     /// Mill-turn (M640MT 5X, M640MT Pro, MATRIX T).
     T,
+}
+
+/// A feed mode a control powers on in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+pub enum MazatrolFeedMode {
+    /// Feed per minute.
+    G94,
+    /// Feed per revolution.
+    G95,
 }
 
 /// The `[mazatrol]` section, checked.
@@ -55,6 +65,11 @@ pub struct MazatrolData {
     /// G53.5's workpiece origin, machine mm; absent: the G54 offset.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mazatrol_wpc: Option<[f64; 3]>,
+    /// The feed mode at power-on; absent: G95 on the T-series (Fanuc's lathe default), G94 on
+    /// the M-series. A machine whose programs feed in mm/min without writing G94 (the TTPC
+    /// specification's mill-turn, `millturn-bc`) says `"G94"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub power_on_feed: Option<MazatrolFeedMode>,
 }
 
 fn two() -> u8 {
@@ -81,6 +96,7 @@ impl Default for MazatrolData {
             tool_data_length: false,
             g49_moves: true,
             mazatrol_wpc: None,
+            power_on_feed: None,
         }
     }
 }

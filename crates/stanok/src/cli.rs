@@ -28,7 +28,8 @@ pub enum DialectArg {
     Mc2101,
     /// The GOST 20999-83 control of the lab collection (section 6.3).
     Gost20999,
-    /// Mazatrol EIA/ISO, tool tip point control G43.4/G43.5.
+    /// Mazatrol EIA/ISO: Mazak's Fanuc-compatible G-code (M- and T-series, custom macro B, tool tip
+    /// point control G43.4/G43.5).
     Mazatrol,
     /// Balt-System NC, 5-axis CVU programs.
     Balt,
@@ -204,6 +205,7 @@ pub struct VarArgs {
     /// AxiOMA: the permanent parameters $iPerm[n] / $dPerm[n] kept between runs, as the control
     /// keeps them: a TOML file with [iperm] and [dperm] (`1 = 1500`), read before the run in place
     /// of the machine's (if it exists), written back after it with what the program left.
+    /// Mazatrol: the common variables #500–#999, in [dperm] by number (`500 = 2.5`).
     #[arg(long, value_name = "FILE")]
     pub perm: Option<PathBuf>,
 }

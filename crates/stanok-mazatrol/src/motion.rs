@@ -29,10 +29,16 @@ pub(crate) fn end_point(cx: &mut Ctx<'_>) -> Result<(Pose, [bool; 9]), Diagnosti
     }
     let inc = cx.st.distance == DistanceMode::Incremental;
     let mut given = [false; 9];
+    // The plane's two words G122 read as radius and angle (`Words::take` marks a word used but
+    // keeps it, so the loop below must not read them again as positions).
+    let mut polar_words = [false; 6];
     if cx.fe.m.polar_input && cx.fe.m.t() {
-        polar_input(cx, &mut p, &mut given, inc)?;
+        polar_words = polar_input(cx, &mut p, &mut given, inc)?;
     }
     for (i, &l) in AXES.iter().enumerate() {
+        if polar_words[i] {
+            continue;
+        }
         let Some(val) = cx.words.take(l) else {
             continue;
         };
@@ -76,26 +82,36 @@ pub(crate) fn end_point(cx: &mut Ctx<'_>) -> Result<(Pose, [bool; 9]), Diagnosti
     Ok((Pose::from_array(p), given))
 }
 
-/// G122 (T): the plane's first axis word is a radius, the second an angle (degrees).
+/// G122 (T): the plane's first axis word is a radius, the second an angle (degrees). Returns the
+/// axis words it read.
 fn polar_input(
     cx: &mut Ctx<'_>,
     p: &mut [f64; 9],
     given: &mut [bool; 9],
     inc: bool,
-) -> Result<(), Diagnostic> {
+) -> Result<[bool; 6], Diagnostic> {
     let (a, b, _) = cx.st.plane.axes();
     let (la, lb) = (AXES[a], AXES[b]);
     let r = cx.words.take(la);
     let t = cx.words.take(lb);
     if r.is_none() && t.is_none() {
-        return Ok(());
+        return Ok([false; 6]);
     }
+    // An X word arrives halved when X is programmed as a diameter; neither G122's radius nor
+    // its angle is a diameter.
+    let diameter = cx.fe.m.t() && !cx.fe.m.x_radius;
+    let t = t.map(|mut v| {
+        if lb == b'X' && diameter {
+            v.v *= 2.0;
+        }
+        v
+    });
     let (r0, t0) = (p[a].hypot(p[b]), p[b].atan2(p[a]).to_degrees());
     // The radius word is on the radius (not a diameter), in program units.
     let rw = r.map(|v| {
         let mut x = cx.mm(v.v);
-        if la == b'X' && cx.fe.m.t() && !cx.fe.m.x_radius {
-            x *= 2.0; // undo the diameter halving: G122's radius is a radius
+        if la == b'X' && diameter {
+            x *= 2.0;
         }
         x
     });
@@ -108,7 +124,10 @@ fn polar_input(
     p[b] = rr * tt.to_radians().sin();
     given[a] = true;
     given[b] = true;
-    Ok(())
+    let mut read = [false; 6];
+    read[a] = true;
+    read[b] = true;
+    Ok(read)
 }
 
 /// The group-01 code of the block becomes the modal motion.

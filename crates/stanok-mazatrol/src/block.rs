@@ -377,7 +377,7 @@ fn run(cx: &mut Ctx<'_>, codes: &Codes) -> Result<Outcome, Diagnostic> {
             _ => {}
         }
     }
-    if let Some((code, g)) = codes.motion.map(|(c, s)| (c, s)) {
+    if let Some((code, g)) = codes.motion {
         crate::motion::set_mode(cx, code, g)?;
     }
     if let Some((code, span)) = length {

@@ -177,11 +177,7 @@ impl Mazatrol {
         let lines = core.stats.lines_read;
         core.seek(first)?;
         let mut out = Vec::new();
-        loop {
-            match core.read_line()? {
-                Read::Line(_) => {}
-                _ => break,
-            }
+        while let Read::Line(_) = core.read_line()? {
             if let Some(e) = core.take_syntax(true) {
                 core.stats.lines_read = lines;
                 return Err(e);

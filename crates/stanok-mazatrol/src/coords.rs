@@ -95,8 +95,8 @@ pub(crate) fn apply_frame(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
     let o = origin(cx);
     let m = &cx.fe.m;
     let mut shift = [0.0; 9];
-    for i in 0..6 {
-        shift[i] = m.g92[i] + m.local[i];
+    for (i, s) in shift.iter_mut().take(6).enumerate() {
+        *s = m.g92[i] + m.local[i];
     }
     let origin = Pose::from_array(o);
     let shift = Pose::from_array(shift);

@@ -111,11 +111,9 @@ pub(crate) fn drill(cx: &mut Ctx<'_>, _codes: &Codes) -> Result<(), Diagnostic> 
     // The cycle's words (modal).
     if let Some(r) = cx.words.take(b'R') {
         let v = cx.mm(r.v);
-        if t {
-            c.r_inc = v;
-            c.incremental = true;
-            c.r = Some(c.initial + v);
-        } else if inc {
+        // The T-series R is always an increment from the initial point; the M-series' follows
+        // G90/G91.
+        if t || inc {
             c.r_inc = v;
             c.incremental = true;
             c.r = Some(c.initial + v);
@@ -177,16 +175,16 @@ pub(crate) fn drill(cx: &mut Ctx<'_>, _codes: &Codes) -> Result<(), Diagnostic> 
         }
     }
     // The other axes may be positioned in the block too (absolute or incremental).
-    for ax in 0..6 {
+    for (ax, &letter) in letters.iter().enumerate() {
         if ax == axis || pos_axes.contains(&ax) {
             continue;
         }
-        if let Some(v) = cx.words.peek(letters[ax]) {
+        if let Some(v) = cx.words.peek(letter) {
             return Err(cx.err(
                 "mazatrol::cycle",
                 format!(
                     "{} is not a word of the {} cycle in this plane",
-                    letters[ax] as char,
+                    letter as char,
                     crate::codes::g_name(c.code)
                 ),
                 v.span,

@@ -243,11 +243,7 @@ pub fn index_programs<R: BufRead + Seek>(
     let lines = core.stats.lines_read;
     core.seek(SourcePos::start())?;
     let mut index = HashMap::new();
-    loop {
-        let pos = match core.read_line()? {
-            Read::Line(p) => p,
-            Read::EndOfInput | Read::EndOfFile => break,
-        };
+    while let Read::Line(pos) = core.read_line()? {
         core.syntax.clear();
         if let Some(n) = program_number(&core.block) {
             index.entry(n).or_insert(pos);

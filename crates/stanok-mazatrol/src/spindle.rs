@@ -15,7 +15,7 @@ const MILL: u8 = 1;
 /// Which spindle the block's S and spindle codes are for: the milling spindle when the block has
 /// M203/M204/M205 (T), else the main one [D].
 fn spindle_of_block(cx: &Ctx<'_>) -> u8 {
-    let mill = cx.fe.m.t() && cx.words.m.iter().any(|(m, _)| matches!(m, 203 | 204 | 205));
+    let mill = cx.fe.m.t() && cx.words.m.iter().any(|(m, _)| matches!(m, 203..=205));
     if mill {
         MILL
     } else {

@@ -9,7 +9,7 @@ fn arcs(r: &Run) -> Vec<stanok_canon::ArcMove> {
     r.canon
         .iter()
         .filter_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(a.clone()),
+            Canon::ArcFeed(a) => Some(*a),
             _ => None,
         })
         .collect()

@@ -46,7 +46,7 @@ impl Run {
                 Canon::ArcFeed(a) => Some(a.end),
                 _ => None,
             })
-            .last()
+            .next_back()
     }
 
     /// The last machine joint pose of the block on `line`: motion ends under tool-centre-point

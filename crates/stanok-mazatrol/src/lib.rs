@@ -12,7 +12,8 @@
 //! | `codes.rs` | the G codes of both series and tables 12.1 / 12.2 |
 //! | `ttpc_table.rs` | the tables applied: columns [1] and [2], R-08, R-09 |
 //! | `ttpc.rs`, `ttpc_arc.rs`, `tlo.rs` | tool tip point control, G43/G44/G49, `T… M6` |
-//! | `motion.rs` | end points, lines, arcs, spirals, threads, G04, G27–G31, G53, G60, G22 |
+//! | `endpoint.rs` | end points: G90/G91, U/V/W, G122 polar input |
+//! | `motion.rs` | lines, arcs, spirals, threads, G04, G27–G31, G53, G60, G22 |
 //! | `coords.rs` | work offsets, G52, G92/G50, G10, scaling, mirror, rotations |
 //! | `tools.rs` | the T-series turret `T tt oo`, G45–G48 |
 //! | `spindle.rs` | S, G96/G97, M03–M05, M19, M203–M205, machine M codes, G109–G112 |
@@ -29,6 +30,7 @@ pub mod comp;
 mod compensate;
 mod coords;
 mod cycles;
+pub(crate) mod endpoint;
 pub mod drilling;
 mod eval;
 pub mod flow;

@@ -119,4 +119,3 @@ fn polar_input(
     read[b] = true;
     Ok(read)
 }
-

@@ -16,8 +16,8 @@ use stanok_interp_core::arc::PlanarArc;
 use stanok_interp_core::{is_linear, DistanceMode, MotionMode};
 use stanok_syntax::ColSpan;
 
-use crate::endpoint::AXES;
 pub(crate) use crate::endpoint::end_point;
+use crate::endpoint::AXES;
 
 /// The group-01 code of the block becomes the modal motion.
 pub(crate) fn set_mode(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {

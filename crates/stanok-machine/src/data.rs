@@ -133,7 +133,7 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 8] = [
 
 /// The names of the built-in machines (`--machine NAME`), in the order `stanok machine list`
 /// shows them; [`MachineData::builtin`] knows each.
-pub const BUILTIN_MACHINES: [&str; 10] = [
+pub const BUILTIN_MACHINES: [&str; 12] = [
     "mill",
     "lathe",
     "beavermill",
@@ -144,6 +144,8 @@ pub const BUILTIN_MACHINES: [&str; 10] = [
     "5axis-bc-head-table",
     "millturn-bc",
     "5axis-cvu-tt",
+    "mazak-m",
+    "mazak-t",
 ];
 
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and

@@ -13,7 +13,7 @@ use crate::TtpcMode;
 use stanok_canon::{Canon, Diagnostic, LineMove, Plane, Pose, ProbeKind};
 use stanok_geom::centre_from_radius;
 use stanok_interp_core::arc::PlanarArc;
-use stanok_interp_core::{is_linear, DistanceMode, MotionMode};
+use stanok_interp_core::{is_linear, MotionMode};
 use stanok_syntax::ColSpan;
 
 pub(crate) use crate::endpoint::end_point;

@@ -68,6 +68,18 @@ pub struct WordRules {
 pub trait WordValues {
     /// The value of `Value::Expr` (the block's expression arena).
     fn expr(&self, block: &Block, e: ExprId, at: ColSpan) -> Result<f64, Diagnostic>;
+    /// The value of `Value::Expr`, or None when the expression has no value and the word is
+    /// dropped as if not written (Fanuc's vacant variable, Mazatrol EIA/ISO).
+    #[inline(always)]
+    fn expr_or_vacant(
+        &self,
+        block: &Block,
+        e: ExprId,
+        at: ColSpan,
+    ) -> Result<Option<f64>, Diagnostic> {
+        self.expr(block, e, at).map(Some)
+    }
+
     /// The value of `Value::Hll`, evaluated before the block (None: no value).
     fn hll(&self, _id: u32) -> Option<f64> {
         None
@@ -151,7 +163,10 @@ impl Words {
             let value = match w.value {
                 Value::None => None,
                 Value::Number(v) => Some(v),
-                Value::Expr(e) => Some(values.expr(block, e, w.span)?),
+                Value::Expr(e) => match values.expr_or_vacant(block, e, w.span)? {
+                    Some(v) => Some(v),
+                    None => continue,
+                },
                 // Evaluated by the front end before the block (AxiOMA's HLL).
                 Value::Hll(e) => values.hll(e.0),
             };

@@ -44,6 +44,8 @@ pub use stanok_interp_core::{
     DEFAULT_MAX_REPEATED_LINES, DEFAULT_MAX_TOTAL_LOOP_ITERATIONS, MAX_WARNINGS,
 };
 pub use stanok_labs::{LabMachineParams, LabState};
+pub use stanok_mazatrol::codes::Series as MazatrolSeries;
+pub use stanok_mazatrol::MazatrolParams;
 pub use stanok_rs274::{normalise_name, Parameters, MAX_PARAMETERS};
 
 use stanok_axioma::Axioma;
@@ -135,7 +137,7 @@ fn axioma<R: BufRead + Seek>(source: R, opts: InterpOptions) -> Driver<R, Axioma
 fn mazatrol<R: BufRead + Seek>(source: R, opts: InterpOptions) -> Driver<R, Mazatrol> {
     let core = opts.core();
     let mut state = State::power_on(&core);
-    let fe = Mazatrol::new(&core, opts.ttpc_workpiece_frame, &mut state);
+    let fe = Mazatrol::new(&core, opts.mazatrol(), &mut state);
     Driver::new(source, core, state, fe)
 }
 

@@ -7,6 +7,7 @@ use stanok_canon::setup::ControlData;
 use stanok_canon::{LengthUnits, Pose};
 use stanok_interp_core::CoreOptions;
 use stanok_labs::{LabMachineParams, LabOptions};
+use stanok_mazatrol::MazatrolParams;
 use stanok_rs274::Rs274Options;
 use stanok_syntax::Dialect;
 
@@ -93,8 +94,11 @@ pub struct InterpOptions {
     /// (AxiOMA TRAORI, Balt-System CVU, Mazatrol G43.4/G43.5); None = not allowed (AxiOMA 654).
     pub five_axis: Option<stanok_kin::FiveAxis>,
     /// Mazatrol TTPC programs X Y Z in the workpiece frame (parameter 1, spec mazatrol §4.2)
-    /// instead of the table frame (0, the default).
+    /// instead of the table frame (0, the default). It wins over `mazatrol.ttpc_workpiece_frame`.
     pub ttpc_workpiece_frame: bool,
+    /// The Mazatrol control's parameters (machine data `[mazatrol]`): the series, the decimal
+    /// point type, cycle clearances (`docs/dialects/mazatrol-eia.md` §1).
+    pub mazatrol: MazatrolParams,
 }
 
 impl InterpOptions {
@@ -134,6 +138,7 @@ impl InterpOptions {
             strip_fixture_comments: false,
             five_axis: core.five_axis,
             ttpc_workpiece_frame: false,
+            mazatrol: MazatrolParams::default(),
         }
     }
 
@@ -173,6 +178,14 @@ impl InterpOptions {
             user_m_codes: self.user_m_codes,
             machine_units: self.rs274_machine_units,
             g92_persistence: self.g92_persistence,
+        }
+    }
+
+    /// The Mazatrol front end's parameters.
+    pub fn mazatrol(&self) -> MazatrolParams {
+        MazatrolParams {
+            ttpc_workpiece_frame: self.ttpc_workpiece_frame,
+            ..self.mazatrol.clone()
         }
     }
 

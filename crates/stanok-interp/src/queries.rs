@@ -51,12 +51,18 @@ impl<R: BufRead + Seek> Interpreter<R> {
     /// The stored control data as the run left it. RS274/NGC: what LinuxCNC writes back to its
     /// `.var` file and tool table when it exits — the options' data with the offsets, G28/G30
     /// positions, G92, active system, tool table and preset parameters updated. AxiOMA:
-    /// `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote. The others write no
+    /// `$iPerm`/`$dPerm` and the tables `settable_zs`/`settable_wcs` wrote. Mazatrol: the
+    /// non-volatile common variables #500–#999 in `perm_double`. The others write no
     /// control data: the options' data.
     pub fn control_data(&self) -> ControlData {
         let control = &self.run.core().opts.control;
         match &self.run {
             Run::Rs274(d) => d.front_end().parameters().to_control(control),
+            Run::Mazatrol(d) => {
+                let mut c = control.clone();
+                c.perm_double = d.front_end().stored_variables();
+                c
+            }
             _ => control.clone(),
         }
     }

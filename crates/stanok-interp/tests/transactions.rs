@@ -293,6 +293,111 @@ fn mazatrol_tool_length_and_tool_tip_control() {
     check(opts(), "G1 F1000\n", "G43.4 H1 X1 A10 Q5", RS274_UNUSED);
 }
 
+/// Mazatrol EIA/ISO on an M-series mill with tools 1–3 (radius 5, 3, 5) and a subprogram O100
+/// after the main program's M30.
+fn mazatrol(prefix: &str, failing: &str, code: &str) {
+    mazatrol_on(InterpOptions::new(Dialect::Mazatrol), prefix, failing, code);
+}
+
+fn mazatrol_on(mut opts: InterpOptions, prefix: &str, failing: &str, code: &str) {
+    for (t, radius, length) in [(1, 5.0, 100.0), (2, 3.0, 80.0), (3, 5.0, 90.0)] {
+        opts.control.tools.tools.insert(
+            t,
+            Tool {
+                number: t,
+                edges: vec![ToolEdge {
+                    radius,
+                    length: [length, 0.0, 0.0],
+                    ..Default::default()
+                }],
+                ..Default::default()
+            },
+        );
+    }
+    let start = "G21 G17 G90 G94 F100\n";
+    let line = (start.lines().count() + prefix.lines().count() + failing.lines().count()) as u32;
+    check_at(
+        opts,
+        &format!("{start}{prefix}"),
+        &format!("{failing}\nM30\nO100\nG91 G01 X1.\nM99\n"),
+        code,
+        line,
+    );
+}
+
+const MAZATROL_UNUSED: &str = "interp::unused-word";
+
+#[test]
+fn mazatrol_eia_modes_offsets_and_tools() {
+    mazatrol(
+        "G91\nG20\nG18\nG61\nG99\nS1000 M03\nM08\n",
+        "G17 G90 G64 G98 G95 F0.1 S500 M04 M09 G01 X1. Y1. Q5",
+        MAZATROL_UNUSED,
+    );
+    let offsets = "G10 L2 P2 X5. Y5.\nG55\nG92 X1.\nG52 Z1.\n";
+    mazatrol(offsets, "G10 L2 P2 X7. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G10 L10 P2 R7. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G92 X3. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G52 X3. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G54 G01 X1. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G51 P2. Q1", MAZATROL_UNUSED);
+    mazatrol(offsets, "G68 R30. Q1", MAZATROL_UNUSED);
+    mazatrol(
+        "T01 M06\nG43 H1\n",
+        "T02 T03 M06 G44 H2 G01 X1. Q5",
+        MAZATROL_UNUSED,
+    );
+}
+
+#[test]
+fn mazatrol_eia_variables_cycles_and_compensation() {
+    // An assignment is a block of its own: the second one fails after the first has run.
+    mazatrol(
+        "#1=5\n#100=3\n#500=2\n",
+        "#1=6 #100=4 #500=7 #2=[1/0]",
+        "mazatrol::division-by-zero",
+    );
+    // A canned cycle drills, then the block fails.
+    mazatrol(
+        "G00 Z10.\nG81 X0 Y0 Z-5. R2. F100.\n",
+        "G82 X5. Y5. Z-6. R2. P100 E5",
+        MAZATROL_UNUSED,
+    );
+    // The pending compensated element's end is moved to the corner, then the block fails.
+    let comp = "T03 M06\nG00 X-10. Y0\nG41 D3 G01 X0 Y0\nY10.\n";
+    mazatrol(comp, "X10. Q1", MAZATROL_UNUSED);
+    mazatrol(comp, "G03 X0 Y20. R10. Q1", MAZATROL_UNUSED);
+    mazatrol(comp, "G40 G01 X-10. Q1", MAZATROL_UNUSED);
+    // A modal call in force: the move runs and the call is asked for, then the block fails.
+    mazatrol("G66 P100 A1.\n", "G01 X5. Q1", MAZATROL_UNUSED);
+    mazatrol("", "G66 P100 A1. G01", "mazatrol::macro-call");
+}
+
+#[test]
+fn mazatrol_eia_inside_a_subprogram() {
+    // The failing block is the subprogram's first line, run by M98 (line 5 of the text).
+    check_at(
+        InterpOptions::new(Dialect::Mazatrol),
+        "G21 G90 G94 F100\nM98 P100\nM30\nO100\n",
+        "G91 G01 X1. Q1\nM99",
+        MAZATROL_UNUSED,
+        5,
+    );
+}
+
+#[test]
+fn mazatrol_eia_tool_tip_control_on_the_t_series() {
+    let mut opts = InterpOptions::new(Dialect::Mazatrol);
+    opts.five_axis = Some(five_axis());
+    opts.mazatrol.series = stanok_interp::MazatrolSeries::T;
+    mazatrol_on(
+        opts,
+        "G94\nG43.4 H1 X1. A10.\n",
+        "G01 X2. A20. C5. Q1",
+        MAZATROL_UNUSED,
+    );
+}
+
 #[test]
 fn lab_controls() {
     // The lab front ends run a unit on a copy of their state (`LabRun::step`).

@@ -54,9 +54,11 @@ use std::path::Path;
 use toml::Spanned;
 
 mod channel;
+mod mazatrol;
 mod sections;
 mod stored;
 pub use channel::ChannelData;
+pub use mazatrol::{MazatrolData, MazatrolFeedMode, MazatrolSeries};
 pub use sections::PATH_TOLERANCE;
 use sections::{rate_table, tolerance, validate_kinematics};
 pub use stored::{
@@ -106,10 +108,12 @@ pub struct MachineData {
     /// AxiOMA channel parameters (`[channel]`: encoder, PLC outputs, compensation depth, edge
     /// positions); absent keys keep the control's defaults.
     pub channel: ChannelData,
+    /// The Mazatrol EIA/ISO control's parameters (`[mazatrol]`); None = the defaults.
+    pub mazatrol: Option<MazatrolData>,
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
-pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
+pub const BUILTIN_FIVE_AXIS: [(&str, &str); 8] = [
     (
         "5axis-bc-head",
         include_str!("../../../machines/5axis-bc-head.toml"),
@@ -134,11 +138,13 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
         "5axis-cvu-tt",
         include_str!("../../../machines/5axis-cvu-tt.toml"),
     ),
+    ("mazak-m", include_str!("../../../machines/mazak-m.toml")),
+    ("mazak-t", include_str!("../../../machines/mazak-t.toml")),
 ];
 
 /// The names of the built-in machines (`--machine NAME`), in the order `stanok machine list`
 /// shows them; [`MachineData::builtin`] knows each.
-pub const BUILTIN_MACHINES: [&str; 10] = [
+pub const BUILTIN_MACHINES: [&str; 12] = [
     "mill",
     "lathe",
     "beavermill",
@@ -149,6 +155,8 @@ pub const BUILTIN_MACHINES: [&str; 10] = [
     "5axis-bc-head-table",
     "millturn-bc",
     "5axis-cvu-tt",
+    "mazak-m",
+    "mazak-t",
 ];
 
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
@@ -235,6 +243,7 @@ struct RawFile {
     dperm: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
     kinematics: Option<Spanned<KinematicsData>>,
+    mazatrol: Option<Spanned<MazatrolData>>,
 }
 
 #[derive(Deserialize)]
@@ -419,6 +428,7 @@ impl RawFile {
             ("iperm", at(&self.iperm)),
             ("dperm", at(&self.dperm)),
             ("tool", at(&self.tool)),
+            ("mazatrol", at(&self.mazatrol)),
         ];
         keys.into_iter()
             .filter_map(|(k, r)| r.map(|r| (k, r)))
@@ -544,6 +554,10 @@ impl RawFile {
             None => None,
             Some(k) => Some(validate_kinematics(k, &axes)?),
         };
+        let mazatrol = match &self.mazatrol {
+            None => None,
+            Some(m) => Some(mazatrol::validate_mazatrol(m)?),
+        };
         Ok(MachineData {
             name: name.into_inner(),
             description: self
@@ -563,6 +577,7 @@ impl RawFile {
             feed_table,
             speed_table,
             channel,
+            mazatrol,
         })
     }
 }
@@ -709,6 +724,7 @@ impl MachineData {
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
             channel: ChannelData::default(),
+            mazatrol: None,
         }
     }
 
@@ -744,6 +760,7 @@ impl MachineData {
             feed_table: BTreeMap::new(),
             speed_table: BTreeMap::new(),
             channel: ChannelData::default(),
+            mazatrol: None,
         }
     }
 
@@ -826,6 +843,16 @@ impl MachineData {
                 out.push_str(&text);
             }
         }
+        if let Some(m) = &self.mazatrol {
+            #[derive(Serialize)]
+            struct Section<'a> {
+                mazatrol: &'a MazatrolData,
+            }
+            if let Ok(text) = toml::to_string(&Section { mazatrol: m }) {
+                out.push('\n');
+                out.push_str(&text);
+            }
+        }
         if !control_tables.is_empty() {
             out.push('\n');
             out.push_str(&control_tables);
@@ -852,6 +879,18 @@ impl MachineData {
             mask[a.pose_index()] = true;
         }
         mask
+    }
+
+    /// The Mazatrol series: the `[mazatrol]` section's, else T for a `mill-turn` kinematics, else
+    /// M (`docs/dialects/mazatrol-eia.md` §1).
+    pub fn mazatrol_series(&self) -> MazatrolSeries {
+        if let Some(s) = self.mazatrol.as_ref().and_then(|m| m.series) {
+            return s;
+        }
+        match &self.kinematics {
+            Some(k) if k.kind == stanok_kin::MachineType::MillTurn => MazatrolSeries::T,
+            _ => MazatrolSeries::M,
+        }
     }
 
     /// The axis with letter `name`, if the machine has it.

@@ -33,8 +33,8 @@ pub mod time_bound;
 pub use control_write::perm_to_toml;
 pub use data::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, AxisData, AxisKind,
-    ChannelData, MachineData, PermParameters, StoredOffsets, BAD_DATA, BUILTIN_FIVE_AXIS,
-    BUILTIN_MACHINES,
+    ChannelData, MachineData, MazatrolData, MazatrolFeedMode, MazatrolSeries, PermParameters,
+    StoredOffsets, BAD_DATA, BUILTIN_FIVE_AXIS, BUILTIN_MACHINES,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{

@@ -39,14 +39,10 @@ pub enum LengthOffset {
 pub(crate) const G43: u32 = 430;
 pub(crate) const G44: u32 = 440;
 
-/// The length of tool `n` (first edge, L1 + wear); 0 for an unknown tool.
+/// The length of tool `n` (first edge, L1 + wear, as G10 and #2001… may have changed it); 0 for
+/// an unknown tool.
 pub(crate) fn tool_length(cx: &Ctx<'_>, n: u32) -> f64 {
-    cx.opts
-        .control
-        .tools
-        .get(n)
-        .and_then(|t| t.edges.first())
-        .map_or(0.0, |e| e.length[0] + e.length_wear[0])
+    cx.fe.tables.length(n)
 }
 
 /// L without an H word (module doc).
@@ -59,12 +55,9 @@ pub(crate) fn length_without_h(cx: &Ctx<'_>) -> f64 {
     }
 }
 
-/// True on a T-series control: the machine is a mill-turn (X a diameter on the C spindle).
+/// True on a T-series control (machine data `[mazatrol] series`).
 pub(crate) fn t_series(cx: &Ctx<'_>) -> bool {
-    cx.opts
-        .five_axis
-        .as_ref()
-        .is_some_and(|k| k.x_is_diameter())
+    cx.fe.m.t()
 }
 
 fn set_tlo(cx: &mut Ctx<'_>, z: f64) {
@@ -95,10 +88,13 @@ pub(crate) fn tool_change(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnos
         cx.out.push(Canon::SelectTool { tool: next });
         cx.st.selected_tool = Some(next);
     }
-    let length = tool_length(cx, tool);
-    cx.fe.modes.length = length;
-    cx.fe.modes.offset = LengthOffset::Plus;
-    set_tlo(cx, length);
+    if cx.fe.params.tool_data_length {
+        // F93 bit 3 = 1: the ATC cycle puts the new tool's LENGTH in force (S §10).
+        let length = tool_length(cx, tool);
+        cx.fe.modes.length = length;
+        cx.fe.modes.offset = LengthOffset::Plus;
+        set_tlo(cx, length);
+    }
     Ok(())
 }
 
@@ -137,7 +133,7 @@ pub(crate) fn length_offset(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Resul
     let before = cx.st.program_position();
     if from_ttpc {
         // TTPC off without motion: the axes stay, the control point becomes the virtual tip.
-        let base = crate::kinematics(cx, span)?;
+        let base = crate::ttpc::kinematics(cx, span)?;
         let kin = base
             .clone()
             .with_tool_offset(base.base().map(|x| x * cx.fe.modes.length));
@@ -167,10 +163,10 @@ pub(crate) fn length_offset(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Resul
     set_tlo(cx, if code == G44 { -length } else { length });
     if cx.has_axis_words() {
         let (end, _) = cx.end_point()?;
-        crate::move_to(cx, end, span)
+        crate::ttpc::move_to(cx, end, span)
     } else if !from_ttpc && !was_on {
         // From G49: the axes take up the offset (the program position stays).
-        crate::move_to(cx, before, span)
+        crate::ttpc::move_to(cx, before, span)
     } else {
         // A direct switch on its own moves no axis (§11.1); the displayed position changes.
         Ok(())
@@ -183,7 +179,10 @@ pub(crate) fn cancel_length_offset(cx: &mut Ctx<'_>, span: ColSpan) -> Result<()
     let before = cx.st.program_position();
     *cx.fe.modes = MazatrolState::default();
     set_tlo(cx, 0.0);
-    crate::move_to(cx, before, span)
+    if !cx.fe.params.g49_moves {
+        return Ok(());
+    }
+    crate::ttpc::move_to(cx, before, span)
 }
 
 /// G43.4/G43.5 while G43/G44 is in force (§11.1): the M-series replaces the length offset by

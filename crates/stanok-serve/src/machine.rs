@@ -321,9 +321,33 @@ pub fn interp_options(
     // Tool-centre-point control (TRAORI, CVU, G43.4/G43.5) as on the command line.
     opts.five_axis = machine.tcp_kinematics();
     opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
+    opts.mazatrol = mazatrol_params(machine);
     // M01 reaches the machine thread, which decides with the operator's switch.
     opts.optional_stop = true;
     opts
+}
+
+/// The Mazatrol front end's parameters from the machine's `[mazatrol]` section (defaults where it
+/// has none; the series from the kinematics type when the section does not name it).
+pub fn mazatrol_params(machine: &MachineData) -> stanok_interp::MazatrolParams {
+    let data = machine.mazatrol.clone().unwrap_or_default();
+    stanok_interp::MazatrolParams {
+        series: match machine.mazatrol_series() {
+            stanok_machine::MazatrolSeries::M => stanok_interp::MazatrolSeries::M,
+            stanok_machine::MazatrolSeries::T => stanok_interp::MazatrolSeries::T,
+        },
+        decimal_point_type: data.decimal_point_type,
+        peck_clearance: data.peck_clearance,
+        thread_chamfer_angle: data.thread_chamfer_angle,
+        g60_overshoot: data.g60_overshoot,
+        tool_data_length: data.tool_data_length,
+        g49_moves: data.g49_moves,
+        mazatrol_wpc: data.mazatrol_wpc,
+        ttpc_workpiece_frame: machine.ttpc_workpiece_frame(),
+        power_on_feed_per_revolution: data
+            .power_on_feed
+            .map(|f| f == stanok_machine::MazatrolFeedMode::G95),
+    }
 }
 
 /// Starts the machine thread.

@@ -30,8 +30,9 @@ pub enum Dialect {
     Mc2101,
     /// The unnamed GOST 20999-83 control of the lab collection's section 6.3 (spec §4).
     Gost20999,
-    /// Mazatrol EIA/ISO with tool tip point control G43.4/G43.5 (chosen with `--dialect mazatrol`;
-    /// lexed as ISO words like RS274/NGC).
+    /// Mazatrol EIA/ISO, Mazak's Fanuc-compatible language with tool tip point control
+    /// G43.4/G43.5 (chosen with `--dialect mazatrol`; lexed by `fanuc.rs`: `O` program numbers,
+    /// `;` end of block, `#` variables, `[ ]` expressions, custom macro statements).
     Mazatrol,
     /// Balt-System NC, 5-axis CVU=1/CVU=3 programs (chosen with `--dialect balt`).
     Balt,
@@ -397,6 +398,54 @@ pub struct OWord {
     pub span: ColSpan,
 }
 
+/// What a Fanuc-style custom macro control statement does (Mazatrol EIA/ISO, `fanuc.rs`). The
+/// assignments of a line (`#1 = …`, also the one after `THEN`) are in [`Block::assignments`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MacroKind {
+    /// `GOTO n`: the sequence number is a number, `#i` or `[expression]`.
+    Goto(ExprId),
+    /// `IF [condition] GOTO n`.
+    IfGoto {
+        /// The bracketed condition.
+        condition: ExprId,
+        /// The sequence number jumped to.
+        target: ExprId,
+    },
+    /// `IF [condition] THEN #i = …`: the line's assignments run only when the condition holds.
+    IfThen {
+        /// The bracketed condition.
+        condition: ExprId,
+    },
+    /// `WHILE [condition] DO m`.
+    While {
+        /// The bracketed condition.
+        condition: ExprId,
+        /// The identification number m (as written; the interpreter checks its range).
+        label: u32,
+    },
+    /// `DO m` without `WHILE`: a loop that only a `GOTO` leaves.
+    Do {
+        /// The identification number m.
+        label: u32,
+    },
+    /// `END m`: the end of the loop `DO m`.
+    End {
+        /// The identification number m.
+        label: u32,
+    },
+}
+
+/// A Fanuc-style custom macro control statement and where it was written.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MacroStatement {
+    /// What it does.
+    pub kind: MacroKind,
+    /// The whole statement (`IF [#1 GT 0] GOTO 10`).
+    pub span: ColSpan,
+    /// The loop number of `WHILE … DO m`, `DO m`, `END m` (for diagnostics); `None` otherwise.
+    pub label_span: Option<ColSpan>,
+}
+
 /// One block: the parse of one line of the program.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Block {
@@ -424,6 +473,9 @@ pub struct Block {
     pub assignments: Vec<Assignment>,
     /// RS274/NGC O-word statement.
     pub oword: Option<OWord>,
+    /// Mazatrol EIA/ISO (Fanuc-style custom macro): the line's control statement (`GOTO`, `IF`,
+    /// `WHILE … DO`, `DO`, `END`). Its program number `O1234` is an `O` word in [`Block::words`].
+    pub statement: Option<MacroStatement>,
     /// Expression arena: nodes and the text each came from.
     pub exprs: Vec<(ExprNode, ColSpan)>,
     /// The height of each node of `exprs` (a leaf is 1): the parser keeps it at most
@@ -456,6 +508,7 @@ impl Block {
         self.message = None;
         self.assignments.clear();
         self.oword = None;
+        self.statement = None;
         self.exprs.clear();
         self.expr_heights.clear();
         if let Some(hll) = self.hll.0.as_deref_mut() {
@@ -534,6 +587,7 @@ impl Block {
             && self.message.is_none()
             && self.assignments.is_empty()
             && self.oword.is_none()
+            && self.statement.is_none()
             && self
                 .hll
                 .0

@@ -35,12 +35,14 @@
 //! ## Files
 //!
 //! `lexer.rs` (byte helpers, pending diagnostics), `number.rs` (numbers), `axioma.rs` (AxiOMA lines),
-//! `rs274.rs` (RS274/NGC lines and O-words; Mazatrol EIA/ISO uses it too), `expr.rs` (RS274/NGC
-//! real values and expressions), `hll.rs` / `hll_parse.rs` (the AxiOMA high-level language: tree
-//! and parser), `balt.rs` (Balt-System CVU lines: letters without digits, words run together,
-//! `CVU=`/`MOVST=`, mnemonic blocks as comments), `labs/` (the lab-collection readers: NC-31 frames,
-//! the 2P32/MC2101/GOST-20999 word lines, fixture-comment stripping; they share nothing with
-//! [`BlockParser`] but its rule that reading never fails), `ast.rs` (blocks, words, [`Dialect`]),
+//! `rs274.rs` (RS274/NGC lines and O-words), `expr.rs` (RS274/NGC real values and expressions),
+//! `fanuc.rs` / `fanuc_expr.rs` (Mazatrol EIA/ISO: Fanuc-style lines, program numbers, custom macro
+//! statements, and its expressions with Fanuc precedence, read without recursion),
+//! `hll.rs` / `hll_parse.rs` (the AxiOMA high-level language: tree and parser), `balt.rs`
+//! (Balt-System CVU lines: letters without digits, words run together, `CVU=`/`MOVST=`, mnemonic
+//! blocks as comments), `labs/` (the lab-collection readers: NC-31 frames, the 2P32/MC2101/GOST-20999
+//! word lines, fixture-comment stripping; they share nothing with [`BlockParser`] but its rule that
+//! reading never fails), `ast.rs` (blocks, words, [`Dialect`]),
 //! `reader.rs` (streaming and seeking).
 //!
 //! ## Diagnostic codes
@@ -62,12 +64,14 @@
 //! | `hll::too-long` | error | an HLL expression more than [`MAX_EXPR_HEIGHT`] operations deep (a long chain) |
 //! | `syntax::unexpected-character` | error | a character that cannot start an item there |
 //! | `syntax::unbalanced-brackets` | error | `[` without `]`, stray `]`, `MSG(` without `)` |
-//! | `syntax::expression-too-deep` | error | RS274/NGC expression nested deeper than 64 levels |
+//! | `syntax::expression-too-deep` | error | RS274/NGC expression nested deeper than 64 levels; Mazatrol brackets deeper than 5 |
 //! | `syntax::expression-too-long` | error | RS274/NGC expression more than [`MAX_EXPR_HEIGHT`] operations deep (a long chain) |
 //! | `syntax::bad-function` | error | RS274/NGC function without `[`, `ATAN` without `/[x]`, bad `EXISTS` |
 //! | `syntax::bad-parameter` | error | RS274/NGC `#<` without `>`, empty name |
 //! | `syntax::bad-assignment` | error | RS274/NGC `#…` item without `=` |
 //! | `syntax::bad-oword` | error | malformed O-word line, or an O-word that is not first |
+//! | `syntax::mixed-block` | error | Mazatrol: NC words and a macro statement or assignment in one block |
+//! | `syntax::chained-comparison` | error | Mazatrol: `[a LT b LT c]` (bracket each comparison) |
 //! | `syntax::block-skip-ignored` | warning | AxiOMA `/` block skip (not supported, block runs) |
 //! | `syntax::invalid-utf8` | error | [`BlockReader`]: bytes that are not UTF-8 (replaced) |
 //! | `syntax::line-too-long` | error | [`BlockReader`]: line longer than [`MAX_LINE_BYTES`] (or the bound set) |
@@ -78,6 +82,8 @@ mod ast;
 mod axioma;
 mod balt;
 mod expr;
+mod fanuc;
+mod fanuc_expr;
 pub mod hll;
 mod hll_parse;
 pub mod labs;
@@ -175,11 +181,11 @@ impl BlockParser {
                 axioma::parse_line(text, block, &mut self.pending, &mut self.in_block_comment)
             }
             Dialect::Balt => balt::parse_line(text, block, &mut self.pending),
+            Dialect::Mazatrol => fanuc::parse_line(text, block, &mut self.pending),
             // The lab dialects are read by their own front ends (`labs`); a block parser made
             // for one reads ISO words as RS274/NGC does. One call site: `rs274::parse_line` is
             // inlined here.
             Dialect::Rs274ngc
-            | Dialect::Mazatrol
             | Dialect::Nc31
             | Dialect::P2p32
             | Dialect::Mc2101

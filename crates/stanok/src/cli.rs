@@ -68,7 +68,8 @@ pub enum DialectArg {
     /// LinuxCNC RS274/NGC (.ngc): O-words, #<named> parameters, G7x lathe cycles.
     #[value(alias = "linuxcnc", alias = "ngc")]
     Rs274ngc,
-    /// Mazatrol EIA/ISO (Mazak): tool tip point control G43.4/G43.5 on a 5-axis machine.
+    /// Mazatrol EIA/ISO (Mazak): Fanuc-compatible G-code of the M- and T-series, custom macro B,
+    /// tool tip point control G43.4/G43.5.
     Mazatrol,
     /// Balt-System NC: 5-axis CVU=1/CVU=3 programs.
     Balt,

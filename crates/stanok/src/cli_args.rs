@@ -152,6 +152,7 @@ pub struct VarArgs {
     /// AxiOMA: the permanent parameters $iPerm[n] / $dPerm[n] kept between runs, as the control
     /// keeps them: a TOML file with [iperm] and [dperm] (`1 = 1500`), read before the run in place
     /// of the machine's (if it exists), written back after it with what the program left.
+    /// Mazatrol: the common variables #500–#999, in [dperm] by number (`500 = 2.5`).
     #[arg(long, value_name = "FILE")]
     pub perm: Option<PathBuf>,
 }

@@ -1,6 +1,8 @@
-//! `--perm FILE`: AxiOMA's permanent parameters `$iPerm[n]` / `$dPerm[n]` kept from run to run, as
-//! the control keeps them in its non-volatile memory. The file is machine-data TOML holding only
-//! `[iperm]` and `[dperm]`: read before the run in place of the machine's (if it exists), written
+//! `--perm FILE`: AxiOMA's permanent parameters `$iPerm[n]` / `$dPerm[n]` and Mazatrol EIA/ISO's
+//! non-volatile common variables #500–#999 kept from run to run, as the controls keep them in
+//! their non-volatile memory. The file is machine-data TOML holding only `[iperm]` and `[dperm]`
+//! (Mazatrol: `[dperm]` keyed by variable number, `500 = 2.5`; a vacant variable is absent):
+//! read before the run in place of the machine's (if it exists), written
 //! back after it with what the program left (also after an error: the failing line's own writes
 //! are already undone by the interpreter, so the file holds the state before that line).
 
@@ -11,14 +13,15 @@ use stanok_machine::{perm_from_toml_str, perm_to_toml, MachineData};
 use stanok_syntax::Dialect;
 use std::process::ExitCode;
 
-/// Before the run: the file's parameters replace the machine's. Only for AxiOMA programs.
+/// Before the run: the file's parameters replace the machine's. Only for AxiOMA and Mazatrol
+/// programs.
 pub fn load(dialect: Dialect, args: &VarArgs, machine: &mut MachineData) -> Result<(), ExitCode> {
     let Some(path) = &args.perm else {
         return Ok(());
     };
-    if dialect != Dialect::Axioma {
+    if !matches!(dialect, Dialect::Axioma | Dialect::Mazatrol) {
         return Err(program::refuse(format_args!(
-            "--perm {}: $iPerm/$dPerm are AxiOMA's permanent parameters",
+            "--perm {}: the permanent parameters are AxiOMA's $iPerm/$dPerm and Mazatrol's #500–#999",
             path.display()
         )));
     }

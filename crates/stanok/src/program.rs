@@ -144,6 +144,8 @@ pub fn options(
     // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
     opts.five_axis = machine.tcp_kinematics();
     opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
+    // The Mazatrol control's parameters (series, decimal point type, …: `[mazatrol]`).
+    opts.mazatrol = stanok_serve::machine::mazatrol_params(machine);
     opts
 }
 

@@ -430,7 +430,7 @@ fn workpiece_frame_versus_table_frame() {
 #[test]
 fn feed_modes_in_ttpc() {
     // §9: G94 (feed per minute) is accepted in and out of TTPC; G95 in TTPC is not allowed
-    // (the compatibility tables' "no"), G93 is not built (a diagnostic, not a silent mode).
+    // (the compatibility tables' "no"), G93 runs in and out of it (M-series, table 12.2).
     let run_text = |text: &str| {
         run(
             text,
@@ -444,8 +444,8 @@ fn feed_modes_in_ttpc() {
     let e = run_text("G43.4 H1\nG95 G01 X20 F0.1\n").error.expect("G95");
     assert_eq!(e.code.to_string(), "mazatrol::code-not-allowed-in-ttpc");
     assert_eq!((e.span.line, e.span.column), (2, 1));
-    let e = run_text("G93 G01 X20 F2\n").error.expect("G93");
-    assert_eq!(e.code.to_string(), "interp::unsupported");
+    // G93 (inverse time, docs/dialects/mazatrol-eia.md §6.4) runs, in TTPC too on the M-series.
+    run_text("G93 G01 X20 F600\nG43.4 H1\nG01 X30 F600\nG49\nM30\n").ok();
 }
 
 #[test]

@@ -14,7 +14,7 @@ use five_axis_harness::*;
 use stanok_canon::setup::{ControlData, Tool, ToolEdge, ToolKind, ZeroOffset};
 use stanok_canon::{Canon, Pose};
 use stanok_kin::Kinematics;
-use stanok_machine::MachineData;
+use stanok_machine::{MachineData, MazatrolData};
 use stanok_syntax::Dialect;
 
 const A: usize = 3;
@@ -73,12 +73,18 @@ fn filled(name: &str, values: &[(&str, &str)]) -> String {
     out
 }
 
+/// `5axis-bc-head-table` with F93 bit 3 = 1 (`[mazatrol] tool_data_length = true`).
 fn head_table(text: &str) -> Run {
-    run(
+    let mut m = MachineData::builtin("5axis-bc-head-table").unwrap();
+    m.control = control([0.0, 0.0, -300.0]);
+    m.mazatrol = Some(MazatrolData {
+        tool_data_length: true,
+        ..MazatrolData::default()
+    });
+    run_on(
         text,
         Dialect::Mazatrol,
-        "5axis-bc-head-table",
-        control([0.0, 0.0, -300.0]),
+        m,
         Pose {
             z: 200.0,
             ..Pose::ZERO
@@ -257,16 +263,17 @@ fn switch_through_g49_at_safe_positions() {
 
 #[test]
 fn t_series_refuses_the_direct_switch() {
-    // AMB-13: on the mill-turn (T-series) G43 ↔ G43.4 must go through G49.
+    // AMB-13: on the mill-turn (T-series) G43 ↔ G43.4 must go through G49. (The T-series powers
+    // on in G95, under which TTPC cannot be selected: the programs start with G94.)
     for (text, code, line, column) in [
         (
-            "G43 H1\nG01 F1000 X0 Y0 Z0\nG43.4 X0 Y20 Z5 B45\n",
+            "G43 H1\nG94 G01 F1000 X0 Y0 Z0\nG43.4 X0 Y20 Z5 B45\n",
             "mazatrol::ttpc-not-selectable",
             3,
             1,
         ),
         (
-            "G01 F1000\nG43.4 X0 Y20 Z5 B45 H1\n  G43 X0 Y0 Z0\n",
+            "G94 G01 F1000\nG43.4 X0 Y20 Z5 B45 H1\n  G43 X0 Y0 Z0\n",
             "mazatrol::code-not-allowed-in-ttpc",
             3,
             3,
@@ -285,7 +292,7 @@ fn t_series_refuses_the_direct_switch() {
     }
     // Through G49 the same change is accepted.
     let r = run(
-        "G43 H1\nG01 F1000 X0 Y0 Z0\nG49\nG43.4 X0 Y20 Z5 B45 H1\nM30\n",
+        "G43 H1\nG94 G01 F1000 X0 Y0 Z0\nG49\nG43.4 X0 Y20 Z5 B45 H1\nM30\n",
         Dialect::Mazatrol,
         "millturn-bc",
         control([0.0, 0.0, -400.0]),
@@ -384,7 +391,11 @@ fn type1_start_with_motion_on_each_machine() {
             [(A, 0.0), (C, 0.0)],
         ),
     ] {
-        let text = format!("G01 F1000\n{}", filled("g43_4-type1-start-move.nc", &words));
+        // G94: `millturn-bc` is T-series and powers on in G95 (table 12.1 column [2] refuses it).
+        let text = format!(
+            "G94 G01 F1000\n{}",
+            filled("g43_4-type1-start-move.nc", &words)
+        );
         let r = run(&text, Dialect::Mazatrol, machine, control(w), Pose::ZERO);
         r.ok();
         assert_axes(r.end_at_line(2, machine), xyz, &rot, TOL, machine);

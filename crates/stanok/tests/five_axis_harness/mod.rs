@@ -54,6 +54,7 @@ pub fn run_on(text: &str, dialect: Dialect, machine: MachineData, start: Pose) -
         .kinematics
         .as_ref()
         .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece);
+    opts.mazatrol = stanok_serve::machine::mazatrol_params(&machine);
     opts.initial_position = start;
     let options = SimOptions {
         servo_period_s: 2e-3,

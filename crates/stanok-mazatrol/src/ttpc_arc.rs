@@ -39,6 +39,7 @@ pub(crate) fn arc(
         }
     }
     let offsets = [b'I', b'J', b'K'].map(|l| cx.words.take(l).map_or(0.0, |w| cx.mm(w.v)));
+    let radius = cx.words.take(b'R');
     let table = cx.st.position;
     // The tip's current W position in machine coordinates (x + w), and the program's.
     let start_m = base.table_at(&table, table.xyz());
@@ -52,15 +53,33 @@ pub(crate) fn arc(
     let s = start_p.xyz();
     let e = end_p.xyz();
     let mut c = s;
-    for i in 0..3 {
-        c[i] += offsets[i];
+    if let Some(rw) = radius {
+        // R: the centre on the chord's side the sign says (issue 22 item 12: R was ignored).
+        let rr = cx.mm(rw.v);
+        let centre = stanok_geom::centre_from_radius(
+            [s[a], s[b]],
+            [e[a], e[b]],
+            rr.abs(),
+            ccw,
+            rr < 0.0,
+            RADIUS_TOLERANCE,
+        )
+        .map_err(|err| cx.err("mazatrol::arc-radius", format!("R{}: {err}", rw.v), rw.span))?;
+        c[a] = centre[0];
+        c[b] = centre[1];
+    } else {
+        for i in 0..3 {
+            c[i] += offsets[i];
+        }
     }
     let r1 = ((s[a] - c[a]).powi(2) + (s[b] - c[b]).powi(2)).sqrt();
     let r2 = ((e[a] - c[a]).powi(2) + (e[b] - c[b]).powi(2)).sqrt();
     if r1 < 1e-9 || (r1 - r2).abs() > RADIUS_TOLERANCE {
         return Err(cx.err(
             "mazatrol::arc-radius",
-            format!("the start radius {r1:.4} and the end radius {r2:.4} differ"),
+            format!(
+                "start radius {r1:.4} and end radius {r2:.4} differ by more than the arc tolerance {RADIUS_TOLERANCE:.4}"
+            ),
             at,
         ));
     }

@@ -23,6 +23,14 @@ impl<R: BufRead + Seek> Interpreter<R> {
         &self.state
     }
 
+    /// Starts in `state` instead of the power-on state: an operator's MDI session, where each
+    /// block is a new interpreter that continues in the modes the previous block left (with
+    /// `state.position` set to where the machine stands now, after any jog). Call it before the
+    /// first command; the lab dialects keep their own state and ignore it.
+    pub fn resume_modal_state(&mut self, state: ModalState) {
+        self.state = state;
+    }
+
     /// Parameter storage (RS274/NGC), e.g. to preset work offsets before a run.
     pub fn parameters_mut(&mut self) -> &mut Parameters {
         &mut self.params

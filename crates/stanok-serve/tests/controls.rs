@@ -41,8 +41,9 @@ fn runs_in_real_time_and_at_the_time_scale_whatever_the_clients_do() {
             let mut s = TcpStream::connect(server.addr).unwrap();
             write!(
                 s,
-                "GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
-                 Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"
+                "GET /ws HTTP/1.1\r\nHost: {}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
+                 Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n",
+                server.addr
             )
             .unwrap();
             s
@@ -235,6 +236,7 @@ fn feed_override_scales_the_feed_moves() {
         .unwrap();
     let (code, _) = server.call("POST", "/api/override", json!({"feed": 50}));
     assert_eq!(code, 200);
+    server.home();
     start(&server);
     let s = server.wait_for(&["finished"], LONG);
     let half = s["cycle_time_s"].as_f64().unwrap();

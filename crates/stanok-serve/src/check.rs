@@ -42,6 +42,32 @@ use std::rc::Rc;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+/// The longest line the panel hands to the interpreter, bytes. The parser and the expression
+/// evaluator recurse per term of a chain (`1+1+…`): a debug build takes about 5 KB of stack per
+/// term, so this bounds the depth well within a job's stack (`jobs::JOB_STACK_BYTES`) whatever the
+/// build. LinuxCNC's own limit is 256 characters; no real program comes near.
+pub const MAX_LINE_BYTES: usize = 32 * 1024;
+
+/// The first line longer than [`MAX_LINE_BYTES`], as an error (the text is then not interpreted).
+pub fn long_line(text: &str) -> Option<Alarm> {
+    for (n, line) in text.split('\n').enumerate() {
+        if line.len() > MAX_LINE_BYTES {
+            return Some(Alarm {
+                line: n as u32 + 1,
+                column: 1,
+                severity: "error".into(),
+                code: "serve::line-too-long".into(),
+                message: format!(
+                    "line {} has {} bytes; the panel reads lines of at most {MAX_LINE_BYTES} bytes",
+                    n + 1,
+                    line.len()
+                ),
+            });
+        }
+    }
+    None
+}
+
 /// At most this many travel violations are listed (each is also an error diagnostic).
 pub const MAX_VIOLATIONS: usize = 1000;
 
@@ -292,6 +318,12 @@ impl Diagnostics {
 
 /// The check and, with `limits`, the preview of the module doc.
 pub fn examine(subject: &Subject, cancel: &Cancel, limits: Option<PreviewLimits>) -> Examined {
+    if let Some(alarm) = long_line(&subject.text) {
+        return Examined {
+            diagnostics: vec![alarm],
+            preview: None,
+        };
+    }
     let machine = subject.machine;
     let mut opts = interp_options(
         machine,

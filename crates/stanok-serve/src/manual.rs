@@ -364,6 +364,9 @@ fn run_mdi(
     if block.trim().is_empty() {
         return refused("the MDI block is empty");
     }
+    if let Some(a) = crate::check::long_line(block) {
+        return refused(a.message);
+    }
     let mut opts = interp_options(&config.machine, dialect, &config.subroutine_path, here);
     opts.max_blocks = 1_000_000;
     let source = CancelReader::new(

@@ -263,6 +263,10 @@ pub enum Command {
         file: PathBuf,
         #[arg(long, value_enum)]
         dialect: Option<DialectArg>,
+        /// Do not check the moves against the machine's travel limits (the program's positions
+        /// with the offsets and tool lengths in force; joints under tool-centre-point control).
+        #[arg(long)]
+        no_travel_check: bool,
         #[command(flatten)]
         machine: MachineArgs,
     },
@@ -347,6 +351,13 @@ pub enum Command {
         /// Machine time per wall-clock time: 1 = real time, 10 = ten times faster, 0 = unpaced.
         #[arg(long, default_value_t = 1.0)]
         time_scale: f64,
+        /// A host name the panel answers to besides its address (repeatable; e.g. the name a
+        /// reverse proxy or the shop's DNS gives it). Requests naming any other host are refused.
+        #[arg(long, value_name = "NAME")]
+        allowed_host: Vec<String>,
+        /// Seconds one check, load or preview may take before it is answered with a diagnostic.
+        #[arg(long, value_name = "S", default_value_t = 60.0)]
+        job_budget: f64,
         #[command(flatten)]
         machine: MachineArgs,
     },

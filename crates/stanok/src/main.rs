@@ -52,8 +52,9 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
         Command::Check {
             file,
             dialect,
+            no_travel_check,
             machine,
-        } => check(&file, dialect.map(Into::into), &machine),
+        } => check(&file, dialect.map(Into::into), !no_travel_check, &machine),
         Command::Run {
             file,
             dialect,
@@ -88,8 +89,14 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             programs,
             upload_limit,
             time_scale,
+            allowed_host,
+            job_budget,
             machine,
         } => {
+            if !(job_budget > 0.0 && job_budget <= 86_400.0) {
+                eprintln!("error: --job-budget must be more than 0 and at most 86400 s");
+                return Ok(ExitCode::from(2));
+            }
             let machine = match load_machine(&machine) {
                 Ok((m, _)) => m,
                 Err(code) => return Ok(code),
@@ -100,6 +107,8 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             options.upload_limit =
                 usize::try_from(upload_limit.saturating_mul(1024 * 1024)).unwrap_or(usize::MAX);
             options.time_scale = time_scale;
+            options.allowed_hosts = allowed_host;
+            options.job_budget = std::time::Duration::from_secs_f64(job_budget);
             stanok_serve::run(options)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -270,7 +279,15 @@ fn machine_show(args: &MachineArgs, format: ShowFormat) -> Result<ExitCode, Stri
     Ok(ExitCode::SUCCESS)
 }
 
-fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<ExitCode, String> {
+/// `stanok check`: every diagnostic of the program, and (unless `travel` is false) every move
+/// beyond the machine's travel up to the first error, as the panel's preview and the run check
+/// them (`stanok_machine::TravelCheck`).
+fn check(
+    file: &Path,
+    dialect: Option<Dialect>,
+    travel: bool,
+    args: &MachineArgs,
+) -> Result<ExitCode, String> {
     let machine = match load_machine(args) {
         Ok((m, _)) => m,
         Err(code) => return Ok(code),
@@ -280,16 +297,28 @@ fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<Ex
     // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
     // error is listed once.
     let mut seen = std::collections::HashSet::new();
+    let mut limits = travel.then(|| stanok_machine::TravelCheck::new(&machine));
+    let mut failed = false;
     for item in interp.by_ref() {
-        if let Err(d) = item {
-            if seen.insert((
-                d.code.to_string(),
-                d.span.start,
-                d.span.end,
-                d.message.clone(),
-            )) {
-                errors.push(d);
+        let d = match item {
+            // The moves a run would make: those before the first error.
+            Ok(cmd) if !failed => match limits.as_mut().map(|t| t.check(&cmd)) {
+                Some(Err(d)) => d,
+                _ => continue,
+            },
+            Ok(_) => continue,
+            Err(d) => {
+                failed = true;
+                d
             }
+        };
+        if seen.insert((
+            d.code.to_string(),
+            d.span.start,
+            d.span.end,
+            d.message.clone(),
+        )) {
+            errors.push(d);
         }
     }
     let mut all: Vec<Diagnostic> = interp.take_warnings();

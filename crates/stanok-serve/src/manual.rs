@@ -27,6 +27,7 @@ use crate::machine::{
 };
 use crate::paced::{paced_machine, Mode};
 use crate::run::{drive, guarded, RunSetup, Unwound};
+use crate::state::MachineState;
 use stanok_canon::{Canon, LengthUnits, LineMove, Pose, Span, Spanned};
 use stanok_interp::{Interpreter, ModalState, Parameters};
 use stanok_machine::AxisData;
@@ -34,10 +35,11 @@ use stanok_syntax::Dialect;
 use std::sync::mpsc::Receiver;
 use std::sync::Arc;
 
-/// The modes an MDI block leaves for the next (module doc).
+/// The modes an MDI block leaves for the next (module doc): the interpreter's modal state and
+/// parameters, and the machine state the DRO shows.
 #[derive(Debug, Default)]
 pub struct MdiSession {
-    modes: Option<(Dialect, ModalState, Box<Parameters>)>,
+    modes: Option<(Dialect, ModalState, Box<Parameters>, MachineState)>,
 }
 
 fn done(note: impl Into<String>) -> ManualReply {
@@ -374,13 +376,16 @@ fn run_mdi(
         shared.controls.stop.clone(),
     );
     let mut interp = Interpreter::new(source, opts);
-    match session.modes.take() {
-        Some((d, mut state, params)) if d == dialect => {
+    let mut machine_state = MachineState::default();
+    let previous = session.modes.take();
+    if let Some((d, state, params, shown)) = &previous {
+        if *d == dialect {
+            let mut state = *state;
             state.position = Pose::from_array(here.position);
             interp.resume_modal_state(state);
-            *interp.parameters_mut() = *params;
+            *interp.parameters_mut() = (**params).clone();
+            machine_state = shown.clone();
         }
-        _ => {}
     }
     shared.publish(|s| {
         s.run_state = RunState::Mdi;
@@ -390,6 +395,7 @@ fn run_mdi(
     let setup = RunSetup {
         search: None,
         mark_line: None,
+        state: machine_state.clone(),
     };
     let out = drive(config, shared, rx, here, &mut interp, dialect, setup);
     let mut warnings: Vec<Alarm> = interp.take_warnings().iter().map(Alarm::of).collect();
@@ -403,8 +409,14 @@ fn run_mdi(
             dialect,
             *interp.state(),
             Box::new(interp.parameters().clone()),
+            out.state.clone(),
         ));
         here.control = interp.control_data();
+    } else if failure.is_some() {
+        // A failing block changes nothing: the session goes on as it was.
+        if let Some(prev) = previous {
+            session.modes = Some(prev);
+        }
     }
     let alarm = failure.as_ref().map(Alarm::of);
     shared.publish(|s| {

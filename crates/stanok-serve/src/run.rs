@@ -76,6 +76,8 @@ pub(crate) struct Outcome {
     pub report: Option<RunReport>,
     /// With a block search: whether its line came.
     pub search_reached: Option<bool>,
+    /// The machine state after the last command accepted.
+    pub state: MachineState,
 }
 
 /// What a run needs besides the interpreter.
@@ -84,6 +86,9 @@ pub(crate) struct RunSetup {
     pub search: Option<BlockSearch>,
     /// Record the state when this line first reaches the machine.
     pub mark_line: Option<u32>,
+    /// The machine state before the first command (a program: power-on; an MDI block: what the
+    /// previous block left). Its position is replaced by where the machine stands.
+    pub state: MachineState,
 }
 
 /// The machine's side of one run: the simulated machine, the state read off the accepted
@@ -173,7 +178,7 @@ pub(crate) fn drive<R: BufRead + Seek>(
 ) -> Outcome {
     let controls = &shared.controls;
     let (sim, tracker) = paced_machine(config, shared, here.position, Mode::Program);
-    let mut state = MachineState::default();
+    let mut state = std::mem::take(&mut setup.state);
     state.position = here.position;
     let mut m = Machine {
         shared,
@@ -336,7 +341,7 @@ pub(crate) fn drive<R: BufRead + Seek>(
         _ => m.tracker.at.get(),
     };
     // A run that went to its end shows the state after its last command.
-    if report.is_some() {
+    if report.is_some() && failure.is_none() {
         let latest = m.tracker.ring.borrow().latest();
         let tracker = m.tracker.clone();
         shared.publish(|s| {
@@ -352,6 +357,7 @@ pub(crate) fn drive<R: BufRead + Seek>(
         stopped,
         report,
         search_reached: setup.search.as_ref().map(BlockSearch::reached),
+        state: m.state,
     }
 }
 
@@ -383,6 +389,7 @@ pub(crate) fn run_program(
     let setup = RunSetup {
         search: job.search_line.map(BlockSearch::new),
         mark_line: job.mark_line,
+        state: MachineState::default(),
     };
     let out = drive(config, shared, rx, here, &mut interp, job.dialect, setup);
     let not_reached_line = job

@@ -179,7 +179,11 @@ fn a_foreign_host_is_refused_and_an_allowed_name_accepted() {
         format!("127.0.0.1:{}", port.wrapping_add(1)),
         String::new(),
     ] {
-        for (method, path) in [("GET", "/"), ("GET", "/api/state"), ("POST", "/api/cycle-start")] {
+        for (method, path) in [
+            ("GET", "/"),
+            ("GET", "/api/state"),
+            ("POST", "/api/cycle-start"),
+        ] {
             let (code, body) = server.raw_with(method, path, b"", None, &host, "");
             assert_eq!(code, 403, "{method} {path} Host {host:?}: {body}");
         }
@@ -188,15 +192,28 @@ fn a_foreign_host_is_refused_and_an_allowed_name_accepted() {
     let (code, body) = server.raw_with(
         "POST",
         "/api/load",
-        json!({"name": "x.ngc", "text": "G0 X1\nM2\n"}).to_string().as_bytes(),
+        json!({"name": "x.ngc", "text": "G0 X1\nM2\n"})
+            .to_string()
+            .as_bytes(),
         None,
         "evil.example",
         "",
     );
     assert_eq!(code, 403, "{body}");
-    assert_eq!(server.call("GET", "/api/loaded", Value::Null).1["name"], Value::Null);
-    for host in [own.clone(), format!("localhost:{port}"), format!("cnc.shop.lan:{port}")] {
-        assert_eq!(server.raw_with("GET", "/api/state", b"", None, &host, "").0, 200, "{host}");
+    assert_eq!(
+        server.call("GET", "/api/loaded", Value::Null).1["name"],
+        Value::Null
+    );
+    for host in [
+        own.clone(),
+        format!("localhost:{port}"),
+        format!("cnc.shop.lan:{port}"),
+    ] {
+        assert_eq!(
+            server.raw_with("GET", "/api/state", b"", None, &host, "").0,
+            200,
+            "{host}"
+        );
     }
 }
 
@@ -222,20 +239,39 @@ fn state_changing_requests_and_websockets_need_the_panels_own_origin() {
     let server = Server::start(options(temp_programs("origin")));
     let own = server.addr.to_string();
     let evil = "Origin: http://evil.example\r\n";
-    for path in ["/api/cycle-start", "/api/feed-hold", "/api/stop", "/api/acknowledge"] {
+    for path in [
+        "/api/cycle-start",
+        "/api/feed-hold",
+        "/api/stop",
+        "/api/acknowledge",
+    ] {
         let (code, _) = server.raw_with("POST", path, b"", None, &own, evil);
         assert_eq!(code, 403, "{path}");
     }
     let (code, _) = server.raw_with("PUT", "/api/programs/x.nc", b"G0 X1\n", None, &own, evil);
     assert_eq!(code, 403);
     assert!(!server.programs.join("x.nc").exists());
-    assert_eq!(server.state()["held"], false, "the refused feed hold did nothing");
+    assert_eq!(
+        server.state()["held"],
+        false,
+        "the refused feed hold did nothing"
+    );
     assert_eq!(ws_status_with(&server, &own, evil), 403);
     assert_eq!(ws_status_with(&server, &own, "Origin: null\r\n"), 403);
     // A GET from another origin is no harm (the browser does not let it read the answer).
-    assert_eq!(server.raw_with("GET", "/api/state", b"", None, &own, evil).0, 200);
+    assert_eq!(
+        server
+            .raw_with("GET", "/api/state", b"", None, &own, evil)
+            .0,
+        200
+    );
     let mine = format!("Origin: http://{own}\r\n");
-    assert_eq!(server.raw_with("POST", "/api/feed-hold", b"", None, &own, &mine).0, 200);
+    assert_eq!(
+        server
+            .raw_with("POST", "/api/feed-hold", b"", None, &own, &mine)
+            .0,
+        200
+    );
     assert_eq!(ws_status_with(&server, &own, &mine), 101);
     assert_eq!(ws_status_with(&server, &own, ""), 101);
 }

@@ -146,7 +146,10 @@ fn no_request_kills_the_panel_or_keeps_a_core_busy() {
     .unwrap();
     let t0 = Instant::now();
     while job_threads() == 0 {
-        assert!(t0.elapsed() < Duration::from_secs(2), "the job never started");
+        assert!(
+            t0.elapsed() < Duration::from_secs(2),
+            "the job never started"
+        );
         std::thread::sleep(Duration::from_millis(5));
     }
     std::thread::sleep(Duration::from_millis(300));

@@ -24,9 +24,15 @@ fn check_lists_travel_violations_at_their_blocks_unless_told_not_to() {
     assert!(located[0].contains("over.ngc:2:"), "{err}");
     assert!(located[1].contains("over.ngc:5:"), "{err}");
     assert!(located[2].contains("over.ngc:6:"), "{err}");
-    assert!(err.contains("X would reach 600.0000 mm, beyond its maximum 500.0000 mm"), "{err}");
+    assert!(
+        err.contains("X would reach 600.0000 mm, beyond its maximum 500.0000 mm"),
+        "{err}"
+    );
     assert!(err.contains("X would reach 550.0000 mm"), "{err}");
-    assert!(err.contains("Y would reach -600.0000 mm, beyond its minimum -500.0000 mm"), "{err}");
+    assert!(
+        err.contains("Y would reach -600.0000 mm, beyond its minimum -500.0000 mm"),
+        "{err}"
+    );
     assert!(err.contains("3 error(s)"), "{err}");
     let (code, _, err) = stanok(&["check", "--no-travel-check", &program]);
     assert_eq!(code, 0, "{err}");
@@ -41,6 +47,9 @@ fn travel_is_checked_only_up_to_the_first_error() {
     );
     let (code, _, err) = stanok(&["check", &program]);
     assert_eq!(code, 1);
-    assert!(!err.contains("travel-limit"), "a move after the error is not a move of the run: {err}");
+    assert!(
+        !err.contains("travel-limit"),
+        "a move after the error is not a move of the run: {err}"
+    );
     assert!(err.contains("1 error(s)"), "{err}");
 }

@@ -1,26 +1,30 @@
-// Tool-path view: a small orthographic renderer of 3D polylines on a 2D canvas (own code, no
-// library; ARCHITECTURE.md says why).
+// The fallback view: a small orthographic renderer of 3D polylines on a 2D canvas (own code),
+// used when the panel is built without three.js or the browser has no WebGL (view3d.js says so
+// in a notice). Same methods as View3D, fewer layers: path, violations, executed path, tool.
 //
 // Model space is machine X Y Z in mm. A point p goes to the screen by
 //   q = Rx(pitch) · Rz(yaw) · (p − centre);   screen = (w/2 + panX + s·q.x, h/2 + panY − s·q.y)
-// so pitch 0 is the top view and pitch −55° with yaw −45° an isometric-like view, Z up.
-// The programmed path (rapids dashed, feeds solid) is drawn into an off-screen layer only when
-// the path or the view changes; the executed path, the tool and its axis are drawn over that
-// layer on every frame, so a 30 Hz update costs one image copy and the executed polyline.
+// so pitch 0 is the top view and pitch −55° with yaw −45° an isometric-like view, Z up; the lathe
+// view maps (Z, X) to the screen's (x, y). The programmed path is drawn into an off-screen layer
+// only when the path or the view changes; the executed path and the tool on every frame.
 "use strict";
 
 class PathView {
-  constructor(canvas) {
+  constructor(canvas, labels) {
+    this.kind = "2d";
     this.canvas = canvas;
+    this.labelsEl = labels;
     this.ctx = canvas.getContext("2d");
     this.layer = document.createElement("canvas");
     this.path = [];
+    this.marks = [];
     this.executed = [];
     this.tool = null;
     this.toolAxis = [0, 0, 1];
     this.centre = [0, 0, 0];
     this.scale = 1;
     this.pan = [0, 0];
+    this.lathe = false;
     this.iso();
     this.layerDirty = true;
     this.pointers = new Map();
@@ -30,23 +34,48 @@ class PathView {
 
   iso() { this.yaw = -Math.PI / 4; this.pitch = -55 * Math.PI / 180; this.redraw(); }
   top() { this.yaw = 0; this.pitch = 0; this.redraw(); }
+  addMesh() {}
+  removeMesh() {}
 
-  setPath(pieces) {
-    this.path = pieces || [];
+  setMachine(info) { this.lathe = !!info.lathe; this.fit(); }
+
+  setPreview(preview) {
+    this.path = [];
+    this.marks = preview ? preview.violations || [] : [];
+    if (preview) {
+      if (preview.lathe !== undefined) this.lathe = preview.lathe;
+      for (const piece of preview.path.pieces) {
+        const pts = [];
+        for (let i = 0; i + 2 < piece.points.length; i += 3) pts.push([piece.points[i], piece.points[i + 1], piece.points[i + 2]]);
+        this.path.push({ rapid: piece.rapid, points: pts });
+      }
+    }
     this.fit();
   }
 
   clearExecuted() { this.executed = []; this.draw(); }
 
-  // Appends the tool position to the executed path (skipping repeats) and draws.
-  setTool(p) {
-    const last = this.executed[this.executed.length - 1];
-    if (!last || Math.hypot(p[0] - last[0], p[1] - last[1], p[2] - last[2]) > 1e-4) {
-      this.executed.push([p[0], p[1], p[2]]);
-      if (this.executed.length > 200000) this.executed.splice(0, 100000);
+  setStatus(s, shape) {
+    const p = s.machine_position;
+    if (["running", "prompt", "block_end", "mdi", "jogging", "homing"].includes(s.run_state)) {
+      const last = this.executed[this.executed.length - 1];
+      if (!last || Math.hypot(p[0] - last[0], p[1] - last[1], p[2] - last[2]) > 1e-4) {
+        this.executed.push([p[0], p[1], p[2]]);
+        if (this.executed.length > 200000) this.executed.splice(0, 100000);
+      }
     }
     this.tool = p;
+    this.toolAxis = s.tool_axis || [0, 0, 1];
+    this.shape = shape;
     this.draw();
+  }
+
+  stats() {
+    return {
+      kind: this.kind, lathe: this.lathe,
+      pathVertices: this.path.reduce((n, p) => n + p.points.length, 0),
+      violations: this.marks.length, executed: this.executed.length,
+    };
   }
 
   bounds() {
@@ -70,6 +99,7 @@ class PathView {
 
   project(p) {
     const x = p[0] - this.centre[0], y = p[1] - this.centre[1], z = p[2] - this.centre[2];
+    if (this.lathe) return [this.w / 2 + this.pan[0] + this.scale * z, this.h / 2 + this.pan[1] - this.scale * x];
     const cy = Math.cos(this.yaw), sy = Math.sin(this.yaw);
     const x1 = cy * x - sy * y, y1 = sy * x + cy * y;
     const cp = Math.cos(this.pitch), sp = Math.sin(this.pitch);
@@ -96,10 +126,9 @@ class PathView {
     c.setTransform(1, 0, 0, 1, 0, 0);
     c.clearRect(0, 0, this.layer.width, this.layer.height);
     c.setTransform(dpr, 0, 0, dpr, 0, 0);
-    this.drawAxes(c);
     c.lineWidth = 1.5;
     for (const piece of this.path) {
-      c.strokeStyle = piece.rapid ? "#c03000" : "#111";
+      c.strokeStyle = piece.rapid ? "#d9480f" : "#1b2733";
       c.setLineDash(piece.rapid ? [6, 5] : []);
       c.beginPath();
       piece.points.forEach((p, i) => {
@@ -109,19 +138,12 @@ class PathView {
       c.stroke();
     }
     c.setLineDash([]);
+    c.fillStyle = "#e03131";
+    for (const m of this.marks) {
+      const [sx, sy] = this.project(m.at);
+      c.beginPath(); c.arc(sx, sy, 5, 0, 2 * Math.PI); c.fill();
+    }
     this.layerDirty = false;
-  }
-
-  drawAxes(c) {
-    const o = this.project(this.centre.map((v, i) => v - 0 * i));
-    const len = 40 / this.scale;
-    const base = [this.centre[0], this.centre[1], this.centre[2]];
-    [["X", "#b00020"], ["Y", "#0a6b1f"], ["Z", "#0040a0"]].forEach(([name, colour], i) => {
-      const tip = base.slice(); tip[i] += len;
-      const [tx, ty] = this.project(tip);
-      c.strokeStyle = colour; c.lineWidth = 1; c.beginPath(); c.moveTo(o[0], o[1]); c.lineTo(tx, ty); c.stroke();
-      c.fillStyle = colour; c.font = "12px system-ui"; c.fillText(name, tx + 2, ty - 2);
-    });
   }
 
   draw() {
@@ -133,7 +155,7 @@ class PathView {
     c.drawImage(this.layer, 0, 0);
     c.setTransform(dpr, 0, 0, dpr, 0, 0);
     if (this.executed.length > 1) {
-      c.strokeStyle = "#0077ff"; c.lineWidth = 2.5; c.globalAlpha = 0.6;
+      c.strokeStyle = "#1c7ed6"; c.lineWidth = 2.5; c.globalAlpha = 0.6;
       c.beginPath();
       this.executed.forEach((p, i) => {
         const [sx, sy] = this.project(p);
@@ -143,12 +165,14 @@ class PathView {
     }
     if (this.tool) {
       const [tx, ty] = this.project(this.tool);
-      const axisLen = 30 / this.scale;
-      const top = [0, 1, 2].map(i => this.tool[i] + this.toolAxis[i] * axisLen);
+      const len = ((this.shape && this.shape.length) || 30);
+      const top = [0, 1, 2].map(i => this.tool[i] + this.toolAxis[i] * len);
       const [ax, ay] = this.project(top);
-      c.strokeStyle = "#b00020"; c.lineWidth = 3;
+      c.strokeStyle = "#f08c00"; c.lineWidth = Math.max(3, ((this.shape && this.shape.diameter) || 6) * this.scale);
+      c.globalAlpha = 0.75;
       c.beginPath(); c.moveTo(tx, ty); c.lineTo(ax, ay); c.stroke();
-      c.fillStyle = "#b00020"; c.beginPath(); c.arc(tx, ty, 5, 0, 2 * Math.PI); c.fill();
+      c.globalAlpha = 1;
+      c.fillStyle = "#c92a2a"; c.beginPath(); c.arc(tx, ty, 4, 0, 2 * Math.PI); c.fill();
     }
   }
 
@@ -159,7 +183,7 @@ class PathView {
     cv.addEventListener("contextmenu", e => e.preventDefault());
     cv.addEventListener("pointerdown", e => {
       cv.setPointerCapture(e.pointerId);
-      this.pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2 });
+      this.pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2 || this.lathe });
     });
     const end = e => this.pointers.delete(e.pointerId);
     cv.addEventListener("pointerup", end);
@@ -169,8 +193,7 @@ class PathView {
       if (!p) return;
       const dx = e.clientX - p.x, dy = e.clientY - p.y;
       if (this.pointers.size >= 2) {
-        const others = [...this.pointers.entries()].filter(([id]) => id !== e.pointerId);
-        const o = others[0][1];
+        const o = [...this.pointers.entries()].find(([id]) => id !== e.pointerId)[1];
         const before = Math.hypot(p.x - o.x, p.y - o.y);
         const after = Math.hypot(e.clientX - o.x, e.clientY - o.y);
         if (before > 0) this.scale *= after / before;

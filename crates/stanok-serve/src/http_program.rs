@@ -437,8 +437,15 @@ pub(crate) async fn stop(State(app): State<AppState>) -> Response {
     Json(json!({ "stopping": busy })).into_response()
 }
 
-pub(crate) async fn acknowledge(State(app): State<AppState>) -> Response {
+/// Acknowledge: the M00/M01 prompt and the message; `{"what": "notice"}` only the notice (it must
+/// not let a waiting program go on).
+pub(crate) async fn acknowledge(State(app): State<AppState>, body: axum::body::Bytes) -> Response {
     let shared = &app.machine;
+    let only_notice = serde_json::from_slice::<Value>(&body).is_ok_and(|v| v["what"] == "notice");
+    if only_notice {
+        shared.publish(|s| s.notice = None);
+        return Json(json!({ "acknowledged": "notice" })).into_response();
+    }
     let prompt = shared.status().run_state == RunState::Prompt;
     shared.publish(|s| {
         s.message.clear();

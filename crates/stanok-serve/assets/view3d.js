@@ -253,8 +253,10 @@ class View3D {
     const geo = new T.BufferGeometry();
     geo.setAttribute("position", new T.BufferAttribute(this.execBuf, 3));
     geo.setDrawRange(0, 0);
-    this.execLine = new T.Line(geo, new T.LineBasicMaterial({ color: 0x1c7ed6, linewidth: 2 }));
+    // Drawn over the programmed path it follows (no depth test), blue.
+    this.execLine = new T.Line(geo, new T.LineBasicMaterial({ color: 0x1c7ed6, depthTest: false }));
     this.execLine.frustumCulled = false;
+    this.execLine.renderOrder = 10;
     this.layers.executed.add(this.execLine);
   }
 

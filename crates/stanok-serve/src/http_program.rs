@@ -247,7 +247,8 @@ pub(crate) async fn load_program(
     let text2 = text.clone();
     let limits = PreviewLimits {
         points: app.options.preview_points,
-        planning: app.options.job_budget / 3,
+        // A third of the budget, at most 4 s: past that the time is extrapolated (check.rs).
+        planning: (app.options.job_budget / 3).min(Duration::from_secs(4)),
     };
     let result = app
         .jobs

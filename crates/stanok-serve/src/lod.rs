@@ -100,6 +100,15 @@ impl Run {
         }
     }
 
+    /// The last point received.
+    fn end(&self) -> [f64; 3] {
+        *self
+            .pending
+            .last()
+            .or(self.kept.last())
+            .expect("a run starts with a kept point")
+    }
+
     /// The kept points plus the pending end.
     fn points(&self) -> impl Iterator<Item = [f64; 3]> + '_ {
         self.kept

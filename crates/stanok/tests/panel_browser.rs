@@ -147,6 +147,29 @@ fn the_panel_runs_holds_resumes_prompts_and_refuses_a_bad_program_in_a_real_brow
     );
     let alarm = b.eval("document.getElementById('alarms').textContent");
     assert!(alarm.as_str().unwrap().starts_with("3:"), "{alarm}");
+
+    // The README's picture: examples/demo-plate.nc in the helical bore (line 21).
+    std::fs::copy(repo("examples/demo-plate.nc"), panel.programs.join("demo-plate.nc")).unwrap();
+    b.eval("refreshList()");
+    b.wait_until(
+        "[...document.getElementById('program-select').options].some(o => o.value === 'demo-plate.nc')",
+        Duration::from_secs(10),
+    );
+    set_value(&mut b, "program-select", "demo-plate.nc");
+    b.click("#open");
+    b.wait_until(
+        "window.panel.loaded && window.panel.loaded.name === 'demo-plate.nc'",
+        Duration::from_secs(30),
+    );
+    b.click("#home-all");
+    wait_state(&mut b, "idle", 30);
+    b.click("#cycle-start");
+    b.wait_until(
+        "(() => { const c = document.querySelector('#highlight .current');            return c && Number(c.dataset.line) === 21; })()",
+        Duration::from_secs(60),
+    );
+    std::thread::sleep(Duration::from_millis(1500));
+    shot(&mut b, "readme");
     no_page_errors(&mut b);
     eprintln!("browser test took {:.1} s", t0.elapsed().as_secs_f64());
 }

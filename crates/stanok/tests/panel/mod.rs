@@ -55,6 +55,13 @@ impl Panel {
     }
 }
 
+impl Panel {
+    /// The server's process id.
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+}
+
 impl Drop for Panel {
     fn drop(&mut self) {
         let _ = self.child.kill();

@@ -200,7 +200,7 @@ fn planner(machine: &MachineData, cancel: &Cancel, deadline: Instant) -> Planner
     sim.set_setpoint_sink(Box::new(move |sp| {
         t.set(sp.t);
         count = count.wrapping_add(1);
-        if count % 1024 == 0 {
+        if count.is_multiple_of(1024) {
             cancel.check();
             if Instant::now() > deadline {
                 resume_unwind(Box::new(PlanningOver));
@@ -521,7 +521,7 @@ fn add_ticks(
         return;
     };
     *count += 1;
-    if *count % *stride != 0 {
+    if !(*count).is_multiple_of(*stride) {
         return;
     }
     let (s, e) = (m.start.to_array(), m.end.to_array());

@@ -158,8 +158,10 @@ mod tests {
     use super::*;
 
     fn snap(line: u32, feed: f64) -> Snapshot {
-        let mut state = MachineState::default();
-        state.feed = feed;
+        let mut state = MachineState {
+            feed,
+            ..MachineState::default()
+        };
         state.position[0] = line as f64;
         Snapshot {
             line,

@@ -169,9 +169,9 @@ impl PathLod {
     /// Adds a move of `line` from `start` through `points` (its end last).
     pub fn push(&mut self, rapid: bool, line: u32, start: [f64; 3], points: &[[f64; 3]]) {
         for p in std::iter::once(&start).chain(points) {
-            for i in 0..3 {
-                self.lo[i] = self.lo[i].min(p[i]);
-                self.hi[i] = self.hi[i].max(p[i]);
+            for (i, v) in p.iter().enumerate() {
+                self.lo[i] = self.lo[i].min(*v);
+                self.hi[i] = self.hi[i].max(*v);
             }
         }
         self.points_in += points.len() as u64;
@@ -181,7 +181,7 @@ impl PathLod {
         let continues = self
             .current
             .as_ref()
-            .is_some_and(|r| r.rapid == rapid && r.points().last().is_some_and(|q| q == start));
+            .is_some_and(|r| r.rapid == rapid && r.end() == start);
         if !continues {
             self.close_run();
             self.current = Some(Run {

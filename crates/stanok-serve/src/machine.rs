@@ -611,9 +611,10 @@ pub(crate) fn reset_to_start(s: &mut Status, start: Option<&Snapshot>) {
     match start {
         Some(snap) => s.show_block(snap),
         None => {
-            let mut state = MachineState::default();
-            state.position = s.machine_position;
-            s.state = state;
+            s.state = MachineState {
+                position: s.machine_position,
+                ..MachineState::default()
+            };
             s.feed_programmed = 0.0;
             s.spindles = MachineState::default().spindles;
             s.g_codes.clear();

@@ -149,7 +149,11 @@ fn the_panel_runs_holds_resumes_prompts_and_refuses_a_bad_program_in_a_real_brow
     assert!(alarm.as_str().unwrap().starts_with("3:"), "{alarm}");
 
     // The README's picture: examples/demo-plate.nc in the helical bore (line 21).
-    std::fs::copy(repo("examples/demo-plate.nc"), panel.programs.join("demo-plate.nc")).unwrap();
+    std::fs::copy(
+        repo("examples/demo-plate.nc"),
+        panel.programs.join("demo-plate.nc"),
+    )
+    .unwrap();
     b.eval("refreshList()");
     b.wait_until(
         "[...document.getElementById('program-select').options].some(o => o.value === 'demo-plate.nc')",

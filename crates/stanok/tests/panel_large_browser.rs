@@ -58,7 +58,10 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
     let t0 = Instant::now();
     write_raster(&panel.programs.join(name));
     let bytes = std::fs::metadata(panel.programs.join(name)).unwrap().len();
-    eprintln!("{BLOCKS} blocks, {bytes} bytes written in {:.1} s", t0.elapsed().as_secs_f64());
+    eprintln!(
+        "{BLOCKS} blocks, {bytes} bytes written in {:.1} s",
+        t0.elapsed().as_secs_f64()
+    );
     let Some(mut b) = open(&panel, "large") else {
         return;
     };
@@ -86,7 +89,10 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
         if done == true {
             break;
         }
-        assert!(t0.elapsed() < Duration::from_secs(600), "not loaded after 10 min");
+        assert!(
+            t0.elapsed() < Duration::from_secs(600),
+            "not loaded after 10 min"
+        );
         std::thread::sleep(Duration::from_millis(200));
     }
     let wall = t0.elapsed();
@@ -105,11 +111,18 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
     eprintln!("preview: {info}");
     assert_eq!(info["diagnostics"], 0, "{info}");
     assert!(info["points"].as_u64().unwrap() <= 300_000, "{info}");
-    assert!(info["points_in"].as_u64().unwrap() >= BLOCKS as u64, "{info}");
+    assert!(
+        info["points_in"].as_u64().unwrap() >= BLOCKS as u64,
+        "{info}"
+    );
     assert!(info["tolerance"].as_f64().unwrap() <= 0.05, "{info}");
     assert_eq!(info["cut"], serde_json::Value::Null, "{info}");
     assert_eq!(info["lines"], BLOCKS as u64 + 5, "{info}");
-    assert_eq!(info["text"], serde_json::Value::Null, "the text stays on the server");
+    assert_eq!(
+        info["text"],
+        serde_json::Value::Null,
+        "the text stays on the server"
+    );
     assert!(view_stats(&mut b)["pathVertices"].as_u64().unwrap() > 1000);
     // The windowed text view shows the lines on screen, also deep in the program.
     b.eval("window.panel.editor.reveal(5000000 > window.panel.editor.total ? 500000 : 5000000)");
@@ -118,11 +131,19 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
          document.querySelector('#big-lines div').textContent.includes('X')",
         Duration::from_secs(30),
     );
-    assert!(b.eval("document.querySelectorAll('#big-lines div').length").as_u64().unwrap() < 200);
+    assert!(
+        b.eval("document.querySelectorAll('#big-lines div').length")
+            .as_u64()
+            .unwrap()
+            < 200
+    );
     let longest = b.eval("window.__longest").as_f64().unwrap();
     eprintln!("longest main-thread task: {longest:.0} ms");
     assert!(longest < 1000.0, "the page froze for {longest} ms");
-    assert!(slowest_answer < Duration::from_secs(2), "{slowest_answer:?}");
+    assert!(
+        slowest_answer < Duration::from_secs(2),
+        "{slowest_answer:?}"
+    );
     if !cfg!(debug_assertions) {
         assert!(wall < Duration::from_secs(20), "{wall:?}");
     }

@@ -40,5 +40,6 @@ pub use data::{
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};
+pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;
 pub use travel::TravelCheck;

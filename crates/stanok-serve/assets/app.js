@@ -189,6 +189,8 @@ function toolShape(number) {
 
 function show(s) {
   panel.status = s;
+  // Tests (and the curious) can keep every frame: panel.frames = [] starts recording.
+  if (panel.frames) panel.frames.push(s);
   const was = panel.lastRunState;
   panel.lastRunState = s.run_state;
   const badge = $("run-state");

@@ -28,48 +28,40 @@ pub(crate) struct Override {
 }
 
 pub(crate) async fn set_override(State(app): State<AppState>, Json(o): Json<Override>) -> Response {
-    let c = &app.machine.controls;
+    let knobs = &app.machine.controls.overrides;
     let checks = [
-        (
-            o.feed,
-            0.0,
-            200.0,
-            &c.feed_override,
-            "feed override is 0…200 %",
-        ),
-        (
-            o.rapid,
-            1.0,
-            100.0,
-            &c.rapid_override,
-            "rapid override is 1…100 %",
-        ),
-        (
-            o.spindle,
-            50.0,
-            120.0,
-            &c.spindle_override,
-            "spindle override is 50…120 %",
-        ),
+        (o.feed, 0.0, 200.0, "feed override is 0…200 %"),
+        (o.rapid, 0.0, 100.0, "rapid override is 0…100 %"),
+        (o.spindle, 50.0, 120.0, "spindle override is 50…120 %"),
     ];
-    for (value, lo, hi, _, why) in &checks {
+    for (value, lo, hi, why) in checks {
         if let Some(v) = value {
-            if !(*lo..=*hi).contains(v) {
-                return error(StatusCode::BAD_REQUEST, *why);
+            if !(lo..=hi).contains(&v) {
+                return error(StatusCode::BAD_REQUEST, why);
             }
         }
     }
-    for (value, _, _, slot, _) in &checks {
-        if let Some(v) = value {
-            slot.store(v.round() as u32, Ordering::Relaxed);
-        }
+    // Whole percent, as the knobs show them.
+    let fraction = |v: f64| v.round() / 100.0;
+    if let Some(v) = o.feed {
+        knobs.set_feed(fraction(v));
     }
-    let (f, r, s) = crate::machine::switches(c);
-    app.machine.publish(|st| {
-        st.feed_override = f;
-        st.rapid_override = r;
-        st.spindle_override = s;
-    });
+    if let Some(v) = o.rapid {
+        knobs.set_rapid(fraction(v));
+    }
+    if let Some(v) = o.spindle {
+        knobs.set_spindle(fraction(v));
+    }
+    let (f, r, s) = crate::machine::switches(&app.machine.controls);
+    // At rest the status shows the knobs at once; while moving the setpoints publish them as
+    // they take effect (paced.rs).
+    if !app.machine.status().run_state.busy() {
+        app.machine.publish(|st| {
+            st.feed_override = f;
+            st.rapid_override = r;
+            st.spindle_override = s;
+        });
+    }
     Json(json!({ "feed": f, "rapid": r, "spindle": s })).into_response()
 }
 

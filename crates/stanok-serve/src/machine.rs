@@ -21,7 +21,8 @@
 //!   snapshot of the state they leave, the interpolator hands the tag back with each setpoint.
 //! * **Pacing, back-pressure, feed hold, stop, program stops, single block** as described in
 //!   `paced.rs` and `run.rs`. The thread never waits for a client.
-//! * **Overrides** are read before every command and apply to the commands planned from then on.
+//! * **Overrides** are the motion stage's [`OverrideSwitch`], read by the interpolator at every
+//!   servo instant: a change acts on the motion being executed and on everything planned.
 //!
 //! Invariant: a program with an error never starts (the HTTP layer checks it first); an error
 //! found while running (a travel limit) stops the run at that block, nothing after it moves; a
@@ -35,16 +36,18 @@ use stanok_canon::setup::ControlData;
 use stanok_canon::{Diagnostic, Pose};
 use stanok_interp::InterpOptions;
 use stanok_machine::MachineData;
+use stanok_machine::OverrideSwitch;
 use stanok_motion::hold::HoldSwitch;
 use stanok_syntax::Dialect;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-/// Planner look-ahead of the panel's runs, pieces.
-pub const SERVE_LOOKAHEAD: usize = 64;
+/// Planner look-ahead of the panel's runs and previews, pieces (the motion stage's default:
+/// overrides act on everything planned, so the window need not be short for them).
+pub const SERVE_LOOKAHEAD: usize = stanok_motion::limits::DEFAULT_LOOKAHEAD;
 
 /// Every dialect the panel runs, in the selector's order.
 pub const DIALECTS: [Dialect; 8] = [
@@ -198,12 +201,15 @@ pub struct Status {
     pub notice: Option<String>,
     /// Errors that stopped or refused the run.
     pub alarms: Vec<Alarm>,
-    /// Feed override, % (0…200).
+    /// Feed override in force, % (0…200).
     pub feed_override: u32,
-    /// Rapid override, % (1…100).
+    /// Rapid override in force, % (0…100).
     pub rapid_override: u32,
-    /// Spindle override, % (50…120).
+    /// Spindle override in force, % (50…120).
     pub spindle_override: u32,
+    /// Machine time since which the overrides shown act on the motion (the first setpoint that
+    /// ran with them), s.
+    pub overrides_since_s: f64,
     /// Single block switch.
     pub single_block: bool,
     /// Optional stop (M01) switch.
@@ -255,6 +261,7 @@ impl Status {
             feed_override: 100,
             rapid_override: 100,
             spindle_override: 100,
+            overrides_since_s: 0.0,
             single_block: false,
             optional_stop: true,
             held: false,
@@ -292,12 +299,9 @@ pub struct Controls {
     pub single_block: AtomicBool,
     /// M01 stops.
     pub optional_stop: AtomicBool,
-    /// Feed override, % (0…200).
-    pub feed_override: AtomicU32,
-    /// Rapid override, % (1…100).
-    pub rapid_override: AtomicU32,
-    /// Spindle override, % (50…120).
-    pub spindle_override: AtomicU32,
+    /// Feed, rapid and spindle override: the motion stage's knobs, read by the interpolator at
+    /// every servo instant of a program or MDI block (jogs and reference returns ignore them).
+    pub overrides: Arc<OverrideSwitch>,
     /// A continuous jog moves until this instant (ms since the thread started; extended by the
     /// page while the key is held, so a lost page stops the jog).
     pub jog_until_ms: AtomicU64,
@@ -508,9 +512,7 @@ pub fn spawn(config: MachineConfig) -> Arc<Shared> {
             stop: Cancel::new(),
             single_block: AtomicBool::new(false),
             optional_stop: AtomicBool::new(true),
-            feed_override: AtomicU32::new(100),
-            rapid_override: AtomicU32::new(100),
-            spindle_override: AtomicU32::new(100),
+            overrides: Arc::new(OverrideSwitch::default()),
             jog_until_ms: AtomicU64::new(0),
             epoch: Instant::now(),
         },
@@ -625,11 +627,9 @@ pub(crate) fn reset_to_start(s: &mut Status, start: Option<&Snapshot>) {
     s.work_position = s.state.work_of(&s.machine_position);
 }
 
-/// Relaxed atomics of the switches, for the status.
+/// The override knobs in %, for the status.
 pub(crate) fn switches(c: &Controls) -> (u32, u32, u32) {
-    (
-        c.feed_override.load(Ordering::Relaxed),
-        c.rapid_override.load(Ordering::Relaxed),
-        c.spindle_override.load(Ordering::Relaxed),
-    )
+    let o = c.overrides.get();
+    let pct = |f: f64| (f * 100.0).round() as u32;
+    (pct(o.feed), pct(o.rapid), pct(o.spindle))
 }

@@ -113,6 +113,9 @@ pub(crate) fn paced_machine(
     };
     let mut sim = SimMachine::with_options(config.machine.clone(), options);
     sim.set_hold_switch(shared.controls.hold.clone());
+    if mode == Mode::Program {
+        sim.set_override_switch(shared.controls.overrides.clone());
+    }
     let tracker = Rc::new(Tracker {
         at: Cell::new(at),
         abandoned: Cell::new(false),
@@ -143,6 +146,8 @@ fn sink(
         origin: Instant::now(),
         origin_t: 0.0,
     };
+    // The overrides the last setpoint ran with, and since when (module doc of machine.rs).
+    let mut in_force = (None, 0.0);
     Box::new(move |sp: &Setpoint| {
         if tracker.abandoned.get() {
             resume_unwind(Box::new(Cancelled));
@@ -165,7 +170,10 @@ fn sink(
             Mode::Program => tracker.ring.borrow_mut().executing(sp.line),
             _ => None,
         };
-        let override_factor = controls.spindle_override.load(Ordering::Relaxed) as f64 / 100.0;
+        let overrides = (mode == Mode::Program).then(|| crate::machine::switches(controls));
+        if overrides.is_some() && overrides != in_force.0 {
+            in_force = (overrides, sp.t);
+        }
         tracker.at.set(sp.position);
         shared.publish(|s| {
             s.machine_position = sp.position;
@@ -178,7 +186,12 @@ fn sink(
                 s.elapsed_s = sp.t;
             }
             s.feed_actual = speed * 60.0;
-            s.spindle_actual_rpm = sp.spindle_rpm.map(|n| n * override_factor);
+            // The commanded speed with the spindle override (the motion stage applies it).
+            s.spindle_actual_rpm = sp.spindle_rpm;
+            if let Some((f, r, sp_o)) = in_force.0 {
+                (s.feed_override, s.rapid_override, s.spindle_override) = (f, r, sp_o);
+                s.overrides_since_s = in_force.1;
+            }
             s.held = controls.hold.is_held() && !ending;
         });
         if ending && at_rest {

@@ -194,7 +194,6 @@ pub(crate) fn drive<R: BufRead + Seek>(
         .as_ref()
         .map(BlockSearch::line)
         .or(setup.mark_line);
-    let (mut feed_pct, mut rapid_pct) = (100, 100);
     let mut block_line = 0u32;
     let mut block_moved = false;
     let mut failure: Option<Diagnostic> = None;
@@ -226,15 +225,6 @@ pub(crate) fn drive<R: BufRead + Seek>(
                 break;
             }
         };
-        let (f, r) = (
-            controls.feed_override.load(Ordering::Relaxed),
-            controls.rapid_override.load(Ordering::Relaxed),
-        );
-        if (f, r) != (feed_pct, rapid_pct) {
-            (feed_pct, rapid_pct) = (f, r);
-            m.sim.set_feed_override((f as f64 / 100.0).max(0.001));
-            m.sim.set_rapid_override((r as f64 / 100.0).max(0.001));
-        }
         let (approach, cmds) = match &mut setup.search {
             Some(s) => s.filter(cmd),
             None => (None, vec![cmd]),

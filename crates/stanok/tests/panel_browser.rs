@@ -379,3 +379,76 @@ fn a_travel_violation_is_shown_at_its_block_before_the_start() {
     assert_eq!(dro(&mut b), [0.0, 0.0, 0.0], "nothing moved");
     no_page_errors(&mut b);
 }
+
+/// The feed override slider and keys act on the block being executed: 10 % gives 120 mm/min
+/// within 50 ms of machine time (every status frame from `overrides_since_s` + 0.05 s on), the
+/// ` key (0 %) brings the axes to rest on the path, the 0 key (100 %) resumes to the end.
+#[test]
+fn feed_override_acts_on_the_executing_block_from_the_page() {
+    let panel = Panel::start("override", &["--time-scale", "1"]);
+    let Some(mut b) = open(&panel, "override") else {
+        return;
+    };
+    load_program(&mut b, "long.ngc", "G21 G90\nG1 X60 F1200\nM2\n");
+    b.eval("window.panel.frames = []");
+    b.click("#cycle-start");
+    b.wait_until(
+        "window.panel.status && window.panel.status.elapsed_s > 1.0",
+        Duration::from_secs(30),
+    );
+    // 10 % with the slider.
+    set_value(&mut b, "feed-override", "10");
+    std::thread::sleep(Duration::from_millis(700));
+    shot(&mut b, "override-10");
+    // 0 % and back to 100 % with the keys.
+    b.key("`", true);
+    b.key("`", false);
+    std::thread::sleep(Duration::from_millis(600));
+    b.key("0", true);
+    b.key("0", false);
+    wait_state(&mut b, "finished", 60);
+    let frames = b.eval(
+        "window.panel.frames.filter(s => s.run_state === 'running').map(s => \
+           [s.elapsed_s, s.feed_actual, s.feed_override, s.overrides_since_s, s.machine_position[0], \
+            s.machine_position[1], s.line])",
+    );
+    let frames: Vec<Vec<f64>> = frames
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| {
+            f.as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    let phase = |pct: f64| -> Vec<&Vec<f64>> {
+        let since = frames
+            .iter()
+            .find(|f| f[2] == pct)
+            .map(|f| f[3])
+            .unwrap_or_else(|| panic!("no frame at {pct} %"));
+        frames
+            .iter()
+            .filter(|f| f[2] == pct && f[0] >= since + 0.050)
+            .collect()
+    };
+    let slow = phase(10.0);
+    assert!(slow.len() >= 5, "{} frames at 10 %", slow.len());
+    for f in &slow {
+        assert!(f[1] > 118.0 && f[1] < 121.0, "10 %: {f:?}");
+        assert_eq!(f[6], 2.0, "the block being executed");
+    }
+    let stopped = phase(0.0);
+    assert!(stopped.len() >= 5, "{} frames at 0 %", stopped.len());
+    let x = stopped[0][4];
+    for f in &stopped {
+        assert_eq!(f[1], 0.0, "0 %: {f:?}");
+        assert_eq!((f[4], f[5]), (x, 0.0), "at rest on the path: {f:?}");
+    }
+    assert!(x > 20.0 && x < 60.0, "{x}");
+    assert_eq!(dro(&mut b), [60.0, 0.0, 0.0]);
+    no_page_errors(&mut b);
+}

@@ -68,7 +68,7 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
     b.eval("refreshList()");
     b.wait_until(
         "[...document.getElementById('program-select').options].some(o => o.value === 'raster.ngc')",
-        Duration::from_secs(10),
+        Duration::from_secs(30),
     );
     set_value(&mut b, "program-select", name);
     // The longest main-thread task from now on.
@@ -145,7 +145,7 @@ fn a_program_of_millions_of_blocks_loads_with_a_bounded_preview_and_a_responsive
         "{slowest_answer:?}"
     );
     if !cfg!(debug_assertions) {
-        assert!(wall < Duration::from_secs(20), "{wall:?}");
+        assert!(wall < Duration::from_secs(60), "{wall:?}");
     }
     shot(&mut b, "large");
     no_page_errors(&mut b);

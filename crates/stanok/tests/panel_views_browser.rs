@@ -81,7 +81,7 @@ fn every_dialect_runs_from_the_selector() {
             "{dialect}"
         );
         b.click("#cycle-start");
-        wait_state(&mut b, "finished", 30);
+        wait_state(&mut b, "finished", 90);
         assert_eq!(
             b.eval("document.getElementById('dialect-used').textContent"),
             dialect
@@ -149,7 +149,7 @@ fn a_lathe_shows_z_right_x_up_with_the_programmed_contour_beside_the_tool_centre
         true
     );
     b.click("#cycle-start");
-    wait_state(&mut b, "finished", 30);
+    wait_state(&mut b, "finished", 90);
     shot(&mut b, "lathe");
     no_page_errors(&mut b);
     let _ = std::fs::remove_file(&tools);
@@ -170,7 +170,7 @@ fn a_five_axis_program_shows_its_tool_axis() {
     let stats = view_stats(&mut b);
     assert!(stats["ticks"].as_u64().unwrap() >= 6, "{stats}");
     b.click("#cycle-start");
-    wait_state(&mut b, "finished", 30);
+    wait_state(&mut b, "finished", 90);
     // The tool is drawn along the tool axis (0, 0.6, 0.8) at the end.
     let axis = view_stats(&mut b)["toolAxis"].clone();
     let a: Vec<f64> = axis

@@ -148,36 +148,6 @@ fn the_panel_runs_holds_resumes_prompts_and_refuses_a_bad_program_in_a_real_brow
     let alarm = b.eval("document.getElementById('alarms').textContent");
     assert!(alarm.as_str().unwrap().starts_with("3:"), "{alarm}");
 
-    // The README's picture: examples/demo-plate.nc in the helical bore (line 21).
-    std::fs::copy(
-        repo("examples/demo-plate.nc"),
-        panel.programs.join("demo-plate.nc"),
-    )
-    .unwrap();
-    b.eval("refreshList()");
-    b.wait_until(
-        "[...document.getElementById('program-select').options].some(o => o.value === 'demo-plate.nc')",
-        Duration::from_secs(30),
-    );
-    set_value(&mut b, "program-select", "demo-plate.nc");
-    b.click("#open");
-    b.wait_until(
-        "window.panel.loaded && window.panel.loaded.name === 'demo-plate.nc'",
-        Duration::from_secs(30),
-    );
-    b.click("#home-all");
-    wait_state(&mut b, "idle", 90);
-    b.click("#cycle-start");
-    // In the helical bore (line 21, or just past it on a slow host): hold there for the picture.
-    b.wait_until(
-        "(() => { const s = window.panel.status; \
-           return s && (s.line >= 21 || s.run_state === 'finished'); })()",
-        Duration::from_secs(120),
-    );
-    b.click("#feed-hold");
-    std::thread::sleep(Duration::from_millis(500));
-    shot(&mut b, "readme");
-    b.click("#stop");
     no_page_errors(&mut b);
     eprintln!("browser test took {:.1} s", t0.elapsed().as_secs_f64());
 }
@@ -402,12 +372,22 @@ fn feed_override_acts_on_the_executing_block_from_the_page() {
     );
     // 10 % with the slider.
     set_value(&mut b, "feed-override", "10");
-    std::thread::sleep(Duration::from_millis(700));
+    // Half a second of machine time at each setting.
+    let held_for = |b: &mut cdp::Browser, pct: u32| {
+        b.wait_until(
+            &format!(
+                "(() => {{ const s = window.panel.status; return s.feed_override === {pct} && \
+                   s.elapsed_s >= s.overrides_since_s + 0.5; }})()"
+            ),
+            Duration::from_secs(60),
+        );
+    };
+    held_for(&mut b, 10);
     shot(&mut b, "override-10");
     // 0 % and back to 100 % with the keys.
     b.key("`", true);
     b.key("`", false);
-    std::thread::sleep(Duration::from_millis(600));
+    held_for(&mut b, 0);
     b.key("0", true);
     b.key("0", false);
     wait_state(&mut b, "finished", 60);
@@ -440,13 +420,13 @@ fn feed_override_acts_on_the_executing_block_from_the_page() {
             .collect()
     };
     let slow = phase(10.0);
-    assert!(slow.len() >= 5, "{} frames at 10 %", slow.len());
+    assert!(slow.len() >= 3, "{} frames at 10 %", slow.len());
     for f in &slow {
         assert!(f[1] > 118.0 && f[1] < 121.0, "10 %: {f:?}");
         assert_eq!(f[6], 2.0, "the block being executed");
     }
     let stopped = phase(0.0);
-    assert!(stopped.len() >= 5, "{} frames at 0 %", stopped.len());
+    assert!(stopped.len() >= 3, "{} frames at 0 %", stopped.len());
     let x = stopped[0][4];
     for f in &stopped {
         assert_eq!(f[1], 0.0, "0 %: {f:?}");

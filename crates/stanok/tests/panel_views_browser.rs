@@ -7,11 +7,13 @@
 //!   the tool drawn along the tool axis at the end;
 //! * the view's grid with coordinates, the program's extents with dimensions, the travel box.
 //!
-//! Screenshots: `target/tmp/panel/{dialect-*,lathe,five-axis}.png`.
+//! Screenshots: `target/tmp/panel/{dialect-*,lathe,five-axis,readme}.png` (`readme.png` is the
+//! picture in docs/panel.png: examples/demo-plate.nc held in its helical bore).
 
 mod cdp;
 mod common;
 mod panel;
+use common::repo;
 use panel::*;
 use std::time::Duration;
 
@@ -203,4 +205,47 @@ fn a_five_axis_program_shows_its_tool_axis() {
     );
     shot(&mut b, "five-axis");
     no_page_errors(&mut b);
+}
+
+#[test]
+fn the_readme_picture_shows_demo_plate_in_its_helical_bore() {
+    let tools =
+        std::env::temp_dir().join(format!("stanok-panel-readme-{}.tbl", std::process::id()));
+    std::fs::write(&tools, "T1 P1 Z50 D10 ;10 mm end mill\n").unwrap();
+    let tools_arg = tools.display().to_string();
+    let panel = Panel::start("readme", &["--time-scale", "4", "--tools", &tools_arg]);
+    std::fs::copy(
+        repo("examples/demo-plate.nc"),
+        panel.programs.join("demo-plate.nc"),
+    )
+    .unwrap();
+    let Some(mut b) = open(&panel, "readme") else {
+        return;
+    };
+    b.wait_until(
+        "[...document.getElementById('program-select').options].some(o => o.value === 'demo-plate.nc')",
+        Duration::from_secs(30),
+    );
+    set_value(&mut b, "program-select", "demo-plate.nc");
+    b.click("#open");
+    b.wait_until(
+        "window.panel.loaded && window.panel.loaded.name === 'demo-plate.nc'",
+        Duration::from_secs(60),
+    );
+    b.click("#cycle-start");
+    // In the helical bore (line 21, or just past it on a slow host): hold there for the picture.
+    b.wait_until(
+        "(() => { const s = window.panel.status; \
+           return s && (s.line >= 21 || s.run_state === 'finished'); })()",
+        Duration::from_secs(120),
+    );
+    b.click("#feed-hold");
+    std::thread::sleep(Duration::from_millis(500));
+    // The tool is drawn at its size from the tool table.
+    let tool = view_stats(&mut b)["tool"].clone();
+    assert_eq!(tool["diameter"], 10.0, "{tool}");
+    assert_eq!(tool["length"], 50.0, "{tool}");
+    shot(&mut b, "readme");
+    no_page_errors(&mut b);
+    let _ = std::fs::remove_file(&tools);
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Compares a LinuxCNC `rs274 -g` trace with `stanok canon` output by the rules of
-crates/stanok-interp/tests/rs274_traces.rs: line by line, numbers within 1e-4; when LinuxCNC
+crates/stanok-rs274/tests/rs274_traces.rs: line by line, numbers within 1e-4; when LinuxCNC
 stopped with an error, Stanok must stop on the same block with nothing moved after the last
 common line (Stanok commits a block all or nothing, LinuxCNC prints the failing block's calls
 up to the error).

@@ -408,7 +408,7 @@ pub fn examine(subject: &Subject, cancel: &Cancel, limits: Option<PreviewLimits>
                 line: 0,
                 g_codes: g_vector_of(&interp, subject.dialect),
                 m_codes: m_vector(&interp, &state, subject.dialect),
-                edge: interp.state().axioma_modes.edge,
+                edge: interp.axioma_modes().map_or(0, |m| m.edge),
                 message: None,
                 state,
             });

@@ -39,7 +39,7 @@ use std::sync::Arc;
 /// parameters, and the machine state the DRO shows.
 #[derive(Debug, Default)]
 pub struct MdiSession {
-    modes: Option<(Dialect, ModalState, Box<Parameters>, MachineState)>,
+    modes: Option<(Dialect, ModalState, Option<Box<Parameters>>, MachineState)>,
 }
 
 fn done(note: impl Into<String>) -> ManualReply {
@@ -383,7 +383,9 @@ fn run_mdi(
             let mut state = *state;
             state.position = Pose::from_array(here.position);
             interp.resume_modal_state(state);
-            *interp.parameters_mut() = (**params).clone();
+            if let (Some(slot), Some(p)) = (interp.parameters_mut(), params) {
+                *slot = (**p).clone();
+            }
             machine_state = shown.clone();
         }
     }
@@ -408,7 +410,7 @@ fn run_mdi(
         session.modes = Some((
             dialect,
             *interp.state(),
-            Box::new(interp.parameters().clone()),
+            interp.parameters().map(|p| Box::new(p.clone())),
             out.state.clone(),
         ));
         here.control = interp.control_data();

@@ -122,7 +122,7 @@ impl Machine<'_> {
             state: next.clone(),
             g_codes: g_vector_of(interp, self.dialect),
             m_codes: m_vector(interp, &next, self.dialect),
-            edge: interp.state().axioma_modes.edge,
+            edge: interp.axioma_modes().map_or(0, |m| m.edge),
             message: self.last_message.clone(),
         };
         let tag = self.tracker.ring.borrow_mut().push(snapshot);

@@ -226,8 +226,9 @@ fn code(group: &str, code: impl Into<String>) -> ActiveCode {
     }
 }
 
-/// The active G codes by modal group (module doc).
-pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
+/// The active G codes by modal group (module doc); `length_comp`: AxiOMA's tool length group
+/// (the others show G49).
+pub fn g_vector(s: &ModalState, length_comp: LengthComp, dialect: Dialect) -> Vec<ActiveCode> {
     let axioma = dialect == Dialect::Axioma;
     let mut v = vec![
         code(
@@ -302,7 +303,7 @@ pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
     ));
     v.push(code(
         "tool length",
-        match s.axioma_modes.length_comp {
+        match length_comp {
             LengthComp::Off => "G49",
             LengthComp::Plus => "G43",
             LengthComp::Minus => "G44",
@@ -325,7 +326,10 @@ pub fn g_vector_of<R: std::io::BufRead + std::io::Seek>(
     dialect: Dialect,
 ) -> Vec<ActiveCode> {
     let Some(lab) = interp.lab_state() else {
-        return g_vector(interp.state(), dialect);
+        let length_comp = interp
+            .axioma_modes()
+            .map_or(LengthComp::Off, |m| m.length_comp);
+        return g_vector(interp.state(), length_comp, dialect);
     };
     let mut v = vec![
         code("motion", format!("G{}", lab.motion)),

@@ -15,6 +15,8 @@ dir="$here/crates/stanok-rs274/tests/rs274"
 tbl="$here/../shared/corpus/rs274ngc/tool.tbl"
 command -v rs274 >/dev/null || { echo "rs274 not found: install linuxcnc-uspace" >&2; exit 1; }
 tmp="$(mktemp -d)"
+# rs274 maps its tool table from $HOME/.tool.mmap: a home of its own keeps other runs out.
+export HOME="$tmp"
 trap 'rm -rf "$tmp"' EXIT
 for prog in "$dir"/*.ngc; do
   name="$(basename "$prog" .ngc)"

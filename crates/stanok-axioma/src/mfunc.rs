@@ -339,7 +339,7 @@ fn tool_change(cx: &mut Ctx<'_>, w: &mut MWords) -> Result<(), Diagnostic> {
         || tool.is_none() && d.is_none() && !other_spindles_only;
     if change {
         let t = cx.st.selected_tool.unwrap_or(t);
-        cx.out.push(Canon::ChangeTool { tool: t });
+        cx.out.push(Canon::ChangeTool { tool: t, slot: t });
         super::tools::tool_change(cx, Some(t), d)?;
     } else if !other_spindles_only {
         super::tools::tool_change(cx, tool, d)?;

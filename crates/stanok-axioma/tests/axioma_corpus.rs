@@ -168,7 +168,7 @@ fn s2_2_block_words() {
                 assert_eq!(tool, 2);
                 "T"
             }
-            Canon::ChangeTool { tool } => {
+            Canon::ChangeTool { tool, .. } => {
                 assert_eq!(tool, 2);
                 "M6"
             }
@@ -192,7 +192,7 @@ fn s2_3_msg_and_dwell() {
                 Canon::Dwell { seconds } => format!("N{n} G04 {seconds}"),
                 Canon::StraightTraverse(m) => format!("N{n} G00 {:?}", m.end.xyz()),
                 Canon::StraightFeed(m) => format!("N{n} G01 {:?} F{}", m.end.xyz(), m.feed),
-                Canon::ChangeTool { tool } => format!("N{n} M6 T{tool}"),
+                Canon::ChangeTool { tool, .. } => format!("N{n} M6 T{tool}"),
                 Canon::ProgramEnd => format!("N{n} M30"),
                 _ => return None,
             })

@@ -46,7 +46,7 @@ fn names(cmds: &[Spanned<Canon>]) -> Vec<String> {
                 Canon::Flood { on } => format!("flood {}", if *on { "on" } else { "off" }),
                 Canon::Mist { on } => format!("mist {}", if *on { "on" } else { "off" }),
                 Canon::SelectTool { tool } => format!("T{tool}"),
-                Canon::ChangeTool { tool } => format!("M6 T{tool}"),
+                Canon::ChangeTool { tool, .. } => format!("M6 T{tool}"),
                 Canon::ChangeSpindleTool { spindle, tool } => format!("M6 T{}={tool}", spindle + 1),
                 Canon::AuxiliaryFunction { number, timing } => format!(
                     "M{number} {}",

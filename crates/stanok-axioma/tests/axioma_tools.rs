@@ -140,7 +140,7 @@ fn s6_11_edges_select_compensation_values() {
     let changes: Vec<(u32, u32)> = cmds
         .iter()
         .filter_map(|c| match c.value {
-            Canon::ChangeTool { tool } => Some((c.block_number.unwrap_or(0), tool)),
+            Canon::ChangeTool { tool, .. } => Some((c.block_number.unwrap_or(0), tool)),
             _ => None,
         })
         .collect();
@@ -283,7 +283,7 @@ fn s6_9_block_forms_and_return_via_b() {
     );
     assert!(cmds
         .iter()
-        .any(|c| matches!(c.value, Canon::ChangeTool { tool: 1 })));
+        .any(|c| matches!(c.value, Canon::ChangeTool { tool: 1, .. })));
 }
 
 #[test]
@@ -320,7 +320,7 @@ fn s6_9_s6_10_s6_11_syntax_fragments_and_two_spindles() {
         assert!(err.is_none(), "{err:?}");
         cmds.iter()
             .filter_map(|c| match c.value {
-                Canon::ChangeTool { tool } => Some(format!("T{tool}")),
+                Canon::ChangeTool { tool, .. } => Some(format!("T{tool}")),
                 Canon::ChangeSpindleTool { spindle, tool } => {
                     Some(format!("S{}:T{tool}", spindle + 1))
                 }

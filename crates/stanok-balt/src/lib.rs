@@ -284,7 +284,10 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 };
                 let number = t.v.trunc() as u32;
                 let corrector = ((t.v.fract() * 10.0).round()) as u32;
-                cx.out.push(Canon::ChangeTool { tool: number });
+                cx.out.push(Canon::ChangeTool {
+                    tool: number,
+                    slot: number,
+                });
                 cx.st.current_tool = number;
                 cx.fe.modes.length = cx
                     .opts

@@ -483,7 +483,10 @@ impl Exec<'_> {
             }
             self.st.tool = Some(t as u32);
             self.out.push(Canon::SelectTool { tool: t as u32 });
-            self.out.push(Canon::ChangeTool { tool: t as u32 });
+            self.out.push(Canon::ChangeTool {
+                tool: t as u32,
+                slot: t as u32,
+            });
         }
         Ok(())
     }

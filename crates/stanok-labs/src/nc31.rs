@@ -619,7 +619,10 @@ fn single(
             }
             st.tool = Some(t as u32);
             out.push(Canon::SelectTool { tool: t as u32 });
-            out.push(Canon::ChangeTool { tool: t as u32 });
+            out.push(Canon::ChangeTool {
+                tool: t as u32,
+                slot: t as u32,
+            });
         }
         b'P' => {
             // A stand-alone P: unconditional jump to frame nnn ([decide] §2.10).

@@ -119,7 +119,9 @@ fn tool_search_example1_two_steps_counter_clockwise() {
     assert!(r.commands_of(17).contains(&&Canon::Comment {
         text: "turret: position 1 -> 3, 2 step(s) counter-clockwise".into()
     }));
-    assert!(r.commands_of(17).contains(&&Canon::ChangeTool { tool: 12 }));
+    assert!(r
+        .commands_of(17)
+        .contains(&&Canon::ChangeTool { tool: 12, slot: 12 }));
 }
 
 #[test]

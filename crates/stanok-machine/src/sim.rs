@@ -339,7 +339,7 @@ impl SimMachine {
             Canon::StopSpindle { spindle } => self.log(line, format!("M5 spindle {spindle} stop")),
             Canon::Mist { on } => self.log(line, if *on { "M7 mist on" } else { "M9 mist off" }),
             Canon::Flood { on } => self.log(line, if *on { "M8 flood on" } else { "M9 flood off" }),
-            Canon::ChangeTool { tool } => {
+            Canon::ChangeTool { tool, .. } => {
                 if !self.report.tools_used.contains(tool) {
                     self.report.tools_used.push(*tool);
                 }

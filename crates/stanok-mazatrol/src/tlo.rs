@@ -87,7 +87,7 @@ pub(crate) fn tool_change(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnos
         None => cx.st.selected_tool.unwrap_or(cx.st.current_tool),
     };
     cx.out.push(Canon::StartToolChange);
-    cx.out.push(Canon::ChangeTool { tool });
+    cx.out.push(Canon::ChangeTool { tool, slot: tool });
     cx.st.current_tool = tool;
     cx.st.selected_tool = None;
     if let Some(next) = cx.words.second.take() {

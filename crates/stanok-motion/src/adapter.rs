@@ -560,7 +560,7 @@ mod tests {
                 },
                 Canon::Dwell { seconds: 2.0 },
                 Canon::ProgramStop { optional: true },
-                Canon::ChangeTool { tool: 3 },
+                Canon::ChangeTool { tool: 3, slot: 3 },
                 Canon::ProgramEnd,
             ],
         );

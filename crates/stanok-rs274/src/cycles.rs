@@ -220,17 +220,28 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     let words = CycleWords::read(cx, code, &g, same_series, incremental, bottom, span)?;
     let direction = cx.fe.modes.spindle_direction;
     match code {
+        // LinuxCNC 2.9's messages: a stopped spindle first, then the wrong direction.
+        740 | 840 if direction.is_none() || !cx.st.spindle_on[0] => {
+            return Err(cx.err(
+                "rs274::tap-spindle",
+                format!(
+                    "Spindle not turning in {}",
+                    if code == 740 { "G74" } else { "G84" }
+                ),
+                span,
+            ))
+        }
         840 if direction != Some(SpindleDirection::Clockwise) => {
             return Err(cx.err(
                 "rs274::g84-spindle",
-                "Spindle not turning clockwise in g84 canned cycle",
+                "Spindle turning counterclockwise in G84",
                 span,
             ))
         }
         740 if direction != Some(SpindleDirection::CounterClockwise) => {
             return Err(cx.err(
                 "rs274::g74-spindle",
-                "Spindle not turning counterclockwise in g74 canned cycle",
+                "Spindle turning clockwise in G74",
                 span,
             ))
         }
@@ -304,7 +315,17 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     // The position is the last hole at the clear level, whatever the cycle's last move.
     place(cx, &f, aa, bb, clear);
     if switch_mode {
-        cx.out.push(super::path_mode_canon(saved_mode, saved_naive));
+        // LinuxCNC's convert_cycle restores the mode and then the naive-CAM tolerance, whatever
+        // the mode (issue 21, reproduction 3: SET_NAIVECAM_TOLERANCE after a cycle under G61.1).
+        let mut restore = super::path_mode_canon(saved_mode, saved_naive);
+        if let Canon::SetPathMode {
+            naive_cam_tolerance,
+            ..
+        } = &mut restore
+        {
+            *naive_cam_tolerance = Some(saved_naive);
+        }
+        cx.out.push(restore);
     }
     let st: &mut Rs274State = &mut cx.fe.modes;
     st.cycle_il = il;
@@ -361,7 +382,9 @@ impl CycleWords {
                         span,
                     ))
                 }
-                None => Some(0.0),
+                // G74/G84 without P dwell the sticky P of any earlier cycle (LinuxCNC's
+                // settings->cycle_p, 0 before any).
+                None => Some(cx.fe.modes.cycle_p),
             };
         }
         if matches!(code, 730 | 830) {
@@ -390,9 +413,17 @@ impl CycleWords {
             let letters = [b'I', b'J', b'K'];
             let (la, lb) = (letters[a], letters[b]);
             let ln = letters[cx.st.plane.axes().2];
+            // LinuxCNC keeps I, J and K of G87 like R and Q: a block repeating the series may
+            // leave them out (its settings->cycle_i/j/k).
             let get = |cx: &mut Ctx<'_>, l: u8| -> Result<f64, Diagnostic> {
+                let at = usize::from(l - b'I');
                 match cx.words.take(l) {
-                    Some(v) => Ok(cx.mm(v.v)),
+                    Some(v) => {
+                        let v = cx.mm(v.v);
+                        cx.fe.modes.cycle_ijk[at] = v;
+                        Ok(v)
+                    }
+                    None if same_series => Ok(cx.fe.modes.cycle_ijk[at]),
                     None => Err(cx.err(
                         "rs274::g87-word-missing",
                         format!("{} word missing with g87", l as char),
@@ -427,6 +458,30 @@ fn feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
     cx.straight(false, p, feed);
 }
 
+/// A feed of G74/G84. LinuxCNC 2.9 issues the tapping feeds with the coordinates of an XY-plane
+/// cycle: in G18 and G19 the move goes to the hole's point with its program X Y Z rotated —
+/// G18 (X, Y, Z) ← (Y, Z, X), G19 ← (Z, X, Y) — and the offsets then added as to any point —
+/// while its interpreter goes on from the true point (rs274 and milltask alike: it is the
+/// interpreter's doing). Stanok moves as LinuxCNC does; the next move starts from the true point,
+/// the second exception to continuous motion beside G88's manual retract.
+fn tap_feed(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
+    let p = point(cx, f, aa, bb, cc);
+    let rotate: Option<fn([f64; 3]) -> [f64; 3]> = match f.n {
+        1 => Some(|v| [v[1], v[2], v[0]]),
+        0 => Some(|v| [v[2], v[0], v[1]]),
+        _ => None,
+    };
+    let Some(rotate) = rotate else {
+        return feed(cx, f, aa, bb, cc);
+    };
+    let mut v = p.to_array();
+    let r = rotate([v[0], v[1], v[2]]);
+    v[..3].copy_from_slice(&r);
+    let p = Pose::from_array(v);
+    let feed = cx.path_feed(0.0);
+    cx.straight(false, p, feed);
+}
+
 /// Moves the state to a point without a move (G88's manual retract).
 fn place(cx: &mut Ctx<'_>, f: &CycleFrame, aa: f64, bb: f64, cc: f64) {
     let p = point(cx, f, aa, bb, cc);
@@ -444,7 +499,11 @@ fn stop_spindle(cx: &mut Ctx<'_>) {
     cx.out.push(Canon::StopSpindle { spindle: 0 });
 }
 
+/// Tapping switches the overrides off and back on, but not on if M49 had them off (LinuxCNC).
 fn overrides(cx: &mut Ctx<'_>, enabled: bool) {
+    if enabled && cx.fe.modes.feed_override_disabled {
+        return;
+    }
     cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
     cx.out.push(Canon::SetSpindleOverrideEnabled {
         spindle: 0,
@@ -516,21 +575,22 @@ fn hole(
                 SpindleDirection::CounterClockwise => SpindleDirection::Clockwise,
             };
             overrides(cx, false);
-            feed(cx, f, aa, bb, f.bottom);
+            tap_feed(cx, f, aa, bb, f.bottom);
             stop_spindle(cx);
             spindle(cx, reverse);
             cx.out.push(Canon::Dwell { seconds: dwell });
-            feed(cx, f, aa, bb, f.clear);
+            tap_feed(cx, f, aa, bb, f.clear);
             stop_spindle(cx);
             spindle(cx, dir);
             overrides(cx, true);
+            // The interpreter's position is the hole's clear point (see `tap_feed`).
+            place(cx, f, aa, bb, f.clear);
         }
         850 => {
             feed(cx, f, aa, bb, f.bottom);
             feed(cx, f, aa, bb, f.r);
-            if f.clear != f.r {
-                traverse(cx, f, aa, bb, f.clear);
-            }
+            // LinuxCNC's convert_cycle_g85 traverses to the clear level even when it is R.
+            traverse(cx, f, aa, bb, f.clear);
         }
         860 => {
             feed(cx, f, aa, bb, f.bottom);
@@ -541,10 +601,15 @@ fn hole(
         }
         870 => {
             let (oa, ob) = (aa + w.offset[0], bb + w.offset[1]);
+            // LinuxCNC orients in the spindle's sense: 2 under M3, 3 under M4 (rs274's trace).
             let orient = Canon::OrientSpindle {
                 spindle: 0,
                 degrees: 0.0,
-                direction: 2,
+                direction: if dir == SpindleDirection::CounterClockwise {
+                    3
+                } else {
+                    2
+                },
                 timeout: None,
             };
             traverse(cx, f, oa, ob, f.r);

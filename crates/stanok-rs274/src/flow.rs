@@ -325,7 +325,12 @@ impl Flow {
                     return Err(flow_err(
                         block,
                         "flow::else-without-if",
-                        format!("{name} elseif/else without a matching if"),
+                        // LinuxCNC's words: it looks the label up among the open ifs.
+                        format!(
+                            "{}: undefined O-word label: '{}'",
+                            block.line,
+                            block.text.trim()
+                        ),
                     ));
                 }
                 self.skip = Some(Skip::ToEndIf(label));
@@ -336,7 +341,12 @@ impl Flow {
                     return Err(flow_err(
                         block,
                         "flow::endif-without-if",
-                        format!("{name} endif without a matching if"),
+                        // LinuxCNC's words: it looks the label up among the open ifs.
+                        format!(
+                            "{}: undefined O-word label: '{}'",
+                            block.line,
+                            block.text.trim()
+                        ),
                     ));
                 }
                 self.ifs.pop();

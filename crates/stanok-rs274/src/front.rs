@@ -108,9 +108,38 @@ pub struct Rs274 {
     first_line: bool,
     /// The block's assignments, evaluated with the old values, written when it commits.
     pending: Vec<(Slot, f64)>,
+    /// Cutter compensation: the queue length at the block's start and how many commands of
+    /// earlier blocks were held then (for `restamp_released`).
+    held_at_begin: Option<(usize, usize)>,
 }
 
 impl Rs274 {
+    /// Cutter compensation: commands an earlier block produced and this one released (the held
+    /// commands before the block's own that are no longer held) carry this block's N label, as
+    /// rs274 prints them: LinuxCNC issues a queued compensated move while it executes the block
+    /// that completes its corner, and prints the label of the line it executes.
+    #[cold]
+    fn restamp_released<R: BufRead + Seek>(&self, core: &mut Core<R>, mark: usize, held: usize) {
+        let still_held = self.held(&core.queue, false);
+        let first_kept = core.queue.len().saturating_sub(still_held);
+        let number = core.block.number;
+        let digits = core.block.number_span.map_or(0, |s| {
+            core.block
+                .slice(s)
+                .bytes()
+                .filter(u8::is_ascii_digit)
+                .count()
+                .min(9) as u8
+        });
+        for c in core
+            .queue
+            .range_mut(mark.saturating_sub(held)..mark.min(first_kept))
+        {
+            c.block_number = number;
+            c.label_digits = digits;
+        }
+    }
+
     /// The front end at power-on; sets the common state's RS274/NGC defaults (no motion mode,
     /// the machine's units, the stored G5x system with its rotation, G92).
     pub fn new(opts: &CoreOptions, rs: Rs274Options, state: &mut ModalState) -> Self {
@@ -144,6 +173,7 @@ impl Rs274 {
             percent_open: false,
             first_line: true,
             pending: Vec::new(),
+            held_at_begin: None,
         }
     }
 
@@ -321,8 +351,10 @@ impl FrontEnd for Rs274 {
         if self.part.modes.comp.on() {
             let len = core.queue.len();
             let h = self.held(&core.queue, false).min(len);
+            self.held_at_begin = Some((len, h));
             core.queue.iter().skip(len - h).cloned().collect()
         } else {
+            self.held_at_begin = None;
             Vec::new()
         }
     }
@@ -371,6 +403,11 @@ impl FrontEnd for Rs274 {
         _outcome: Outcome,
     ) -> Result<(), Diagnostic> {
         self.params.commit();
+        if let Some((mark, held)) = self.held_at_begin.take() {
+            if held > 0 {
+                self.restamp_released(core, mark, held);
+            }
+        }
         if !self.pending.is_empty() {
             for (slot, v) in self.pending.drain(..) {
                 self.params.write(&slot, v);

@@ -36,9 +36,8 @@ pub(crate) struct LatheCapture {
     position: stanok_canon::Pose,
     /// Call depth at the G7x block; the profile is over when the depth is back to it.
     depth: usize,
-    /// The G7x block: the cycle's commands carry its span and number.
+    /// The G7x block: the cycle's commands carry its span (and the endsub line's N label).
     span: Span,
-    number: Option<u32>,
     /// Feed and spindle speeds before the profile (F and S in a profile are ignored).
     feed: f64,
     spindle_speed: [f64; 4],
@@ -99,7 +98,6 @@ impl Rs274 {
                 crate::FlowAction::Seek(_) | crate::FlowAction::CallFile { .. }
             ))),
             span: core.block.span(),
-            number: core.block.number,
             feed: st.feed,
             spindle_speed: st.spindle_speed,
             css_mm_per_min: self.part.modes.css_mm_per_min,
@@ -146,7 +144,10 @@ impl Rs274 {
         self.part.modes.css_law = cap.css_law;
         core.state.position = cap.position;
         let whole = ColSpan::new(0, core.block.text.len());
-        let mut cx = core.parts(cap.span, cap.number).with(&mut self.part);
+        // rs274 prints the label of the line it executes when it issues the cycle: the
+        // profile's endsub line, not the G7x line.
+        let number = core.block.number;
+        let mut cx = core.parts(cap.span, number).with(&mut self.part);
         let result = match profile {
             Ok(p) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
             Err(msg) => Err(cx.err("rs274::g7x-profile", msg, whole)),

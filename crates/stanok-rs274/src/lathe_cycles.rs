@@ -127,8 +127,10 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
     let start = cx.end_point();
     cx.st.distance = distance;
     let (start, _) = start?;
+    // Defaults are in program units, as LinuxCNC reads them (I 1, R 0.5: inches under G20).
     let word = |cx: &mut Ctx<'_>, letter: u8, default: f64| {
-        cx.words.take(letter).map_or(default, |w| cx.mm(w.v))
+        let v = cx.words.take(letter).map_or(default, |w| w.v);
+        cx.mm(v)
     };
     let d = word(cx, b'D', 0.0);
     let (mut e, mut i, mut r, mut passes) = (0.0, 1.0, 0.5, 1);

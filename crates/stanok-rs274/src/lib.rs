@@ -89,6 +89,13 @@ pub struct Rs274State {
     pub cycle_p: f64,
     /// Canned cycles: the sticky peck Q, mm.
     pub cycle_q: f64,
+    /// The units F was last programmed in: LinuxCNC keeps the F number across G20/G21, and
+    /// `#<_feed>` reads that number (None: no F yet, the current units).
+    pub feed_units: Option<LengthUnits>,
+    /// After G5.3 LinuxCNC has no motion mode (-1); cleared by the next motion block.
+    pub motion_unset: bool,
+    /// G87: the sticky I, J, K (mm, as written): a repeat block may leave them out.
+    pub cycle_ijk: [f64; 3],
     /// Canned cycles: the drilling-axis level when the series began (program mm).
     pub cycle_il: f64,
     /// `cycle_il` is set (a series is running).
@@ -124,9 +131,13 @@ pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
             tolerance: blend_tolerance,
         },
     };
+    // rs274 prints the naive-CAM tolerance after G64 only (and after a canned cycle, which
+    // restores it in any mode: `cycles.rs`).
+    let naive_cam_tolerance =
+        matches!(mode, stanok_canon::PathMode::Continuous { .. }).then_some(naive_cam);
     Canon::SetPathMode {
         mode,
-        naive_cam_tolerance: Some(naive_cam),
+        naive_cam_tolerance,
     }
 }
 
@@ -390,6 +401,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             return Err(cx.err("rs274::negative-f", "Negative F word found", f.span));
         }
         let feed = cx.mm(f.v);
+        cx.fe.modes.feed_units = Some(cx.st.units);
         cx.st.feed = if cx.st.feed_mode == FeedMode::InverseTime {
             f.v
         } else {
@@ -447,11 +459,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 8. Dwell.
     if let Some((40, span)) = g.get(Group::NonModal, cx) {
         let Some(p) = cx.words.take(b'P') else {
-            return Err(cx.err(
-                "rs274::dwell-p-missing",
-                "Dwell time P word missing with G4",
-                span,
-            ));
+            return Err(cx.err("rs274::dwell-p-missing", "Dwell time missing with g4", span));
         };
         if p.v < 0.0 {
             return Err(cx.err(
@@ -618,7 +626,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 20. Motion.
     let motion = match g.get(Group::Motion, cx) {
         Some((code, span)) => Some((code, span, true)),
-        None if cx.has_axis_words() && !axis_words_used_by_modal_0 => {
+        // LinuxCNC's enhance_block: a block with centre words and no axis words under modal G2/G3
+        // is an arc too (a full circle), as is a block with axis words under any motion mode.
+        None if !axis_words_used_by_modal_0
+            && (cx.has_axis_words()
+                || (matches!(cx.st.motion, MotionMode::ArcCw | MotionMode::ArcCcw)
+                    && cx.fe.modes.motion_code.is_none()
+                    && (cx.words.has(b'I') || cx.words.has(b'J') || cx.words.has(b'K')))) =>
+        {
             let code = match cx.st.motion {
                 _ if cx.fe.modes.motion_code.is_some() => cx.fe.modes.motion_code.unwrap_or(800),
                 MotionMode::Rapid => 0,
@@ -656,7 +671,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         match code {
             0 => cx.out.push(Canon::ProgramStop { optional: false }),
             1 => cx.out.push(Canon::ProgramStop { optional: true }),
-            60 => return Err(unsupported(cx, "M60", "RS274/NGC completeness", span)),
+            // M60: exchange the pallets, then stop as M0 (LinuxCNC's convert_stop).
+            60 => {
+                let _ = span;
+                cx.out.push(Canon::PalletShuttle);
+                cx.out.push(Canon::ProgramStop { optional: false });
+            }
             _ => {
                 program_end(cx, params, code == 30);
                 publish_css_law(cx);

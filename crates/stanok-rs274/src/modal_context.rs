@@ -29,6 +29,7 @@ pub struct SavedContext {
     units: LengthUnits,
     feed_mode: FeedMode,
     feed: f64,
+    feed_units: Option<LengthUnits>,
     speed: f64,
     spindle: Option<SpindleDirection>,
     plane: Plane,
@@ -48,6 +49,7 @@ fn capture(cx: &Ctx<'_>, auto_restore: bool) -> SavedContext {
         units: st.units,
         feed_mode: st.feed_mode,
         feed: st.feed,
+        feed_units: cx.fe.modes.feed_units,
         speed: st.spindle_speed[0],
         spindle: if st.spindle_on[0] {
             cx.fe.modes.spindle_direction
@@ -94,10 +96,18 @@ pub(super) fn m70_73(
 
 /// Puts the saved state back, announcing what changes (module doc for the order).
 pub fn restore(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) {
+    // rs274 prints the restoring calls without the block's N label (observed for M72).
+    let number = cx.out.number.take();
+    restore_state(cx, params, saved);
+    cx.out.number = number;
+}
+
+fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) {
     if cx.st.units != saved.units {
         cx.st.units = saved.units;
         cx.out.push(Canon::UseLengthUnits { units: saved.units });
     }
+    cx.fe.modes.feed_units = saved.feed_units;
     if cx.st.feed_mode != saved.feed_mode {
         super::set_feed_mode(cx, saved.feed_mode);
     } else if cx.st.feed != saved.feed {

@@ -24,6 +24,7 @@ pub(super) fn motion_block(
     if cx.fe.modes.in_profile && matches!(code, 0 | 10 | 20 | 30) {
         return motion_in_profile(cx, params, code, span, explicit, g53, f_in_block);
     }
+    cx.fe.modes.motion_unset = false;
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 
@@ -128,9 +129,11 @@ fn motion_block_inner(
                         g53_span,
                     ));
                 }
-                // G53: the words are machine coordinates (tool length offset still applies).
+                // G53: the words are machine coordinates of the controlled point, the tool length
+                // offset not added (LinuxCNC's find_ends takes the offset off the word and canon
+                // adds it back: rs274 prints machine Z0 under G43 H4 as Z = -offset; issue 21,
+                // reproduction 1). Words not given keep the current machine position.
                 let mut m = cx.st.position.to_array();
-                let tlo = cx.st.frame.tlo().to_array();
                 for (k, &letter) in AXIS_WORDS.iter().enumerate() {
                     if let Some(v) = cx.words.take(letter) {
                         let v = if crate::ctx::is_linear(k) {
@@ -138,7 +141,7 @@ fn motion_block_inner(
                         } else {
                             v.v
                         };
-                        m[k] = v + tlo[k];
+                        m[k] = v;
                     }
                 }
                 cx.st.frame.to_program(&Pose::from_array(m))
@@ -217,8 +220,17 @@ fn feed_for(
             Ok(cx.st.feed)
         }
         FeedMode::UnitsPerRevolution => {
+            // LinuxCNC's messages are those of G94.
             if cx.st.feed <= 0.0 {
-                return Err(cx.err("rs274::zero-feed", "Cannot feed with zero feed rate", span));
+                return Err(cx.err(
+                    "rs274::zero-feed",
+                    if arc {
+                        "Cannot make arc with zero feed rate"
+                    } else {
+                        "Cannot do g1 with zero feed rate"
+                    },
+                    span,
+                ));
             }
             if cx.st.spindle_speed[0] <= 0.0 {
                 return Err(cx.err(

@@ -372,7 +372,11 @@ impl Parameters {
 
     fn named(&self, name: &str, global: bool) -> Option<f64> {
         if global {
-            self.globals.get(name).copied()
+            // LinuxCNC defines the return value of a subroutine, 0, before any call.
+            self.globals
+                .get(name)
+                .copied()
+                .or_else(|| matches!(name, "_value" | "_value_returned").then_some(0.0))
         } else {
             self.locals.last().and_then(|s| s.get(name).copied())
         }
@@ -588,7 +592,7 @@ impl Evaluator<'_> {
         Ok(match op {
             BinOp::Pow => {
                 if a < 0.0 && b.fract() != 0.0 {
-                    return Err(self.domain(id, "Attempt to raise negative to non-integer power"));
+                    return Err(self.domain(id, "Attempt to raise negative to non integer power"));
                 }
                 a.powf(b)
             }
@@ -600,8 +604,9 @@ impl Evaluator<'_> {
                 a / b
             }
             BinOp::Mod => {
+                // LinuxCNC computes fmod(a, 0) = NaN and then refuses the NaN.
                 if b == 0.0 {
-                    return Err(self.domain(id, "Attempt to divide by zero"));
+                    return Err(self.domain(id, "Calculation resulted in 'not a number'"));
                 }
                 let r = a % b;
                 if r < 0.0 {

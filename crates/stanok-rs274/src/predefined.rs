@@ -56,6 +56,7 @@ pub fn predefined(
                 MotionMode::Linear => 10.0,
                 MotionMode::ArcCw => 20.0,
                 MotionMode::ArcCcw => 30.0,
+                MotionMode::None if rs.motion_unset => -1.0,
                 MotionMode::None => 800.0,
             },
         },
@@ -102,7 +103,7 @@ pub fn predefined(
             if st.feed_mode == FeedMode::InverseTime {
                 st.feed
             } else {
-                st.feed / units
+                st.feed / rs.feed_units.map_or(units, |u| u.mm_per_unit())
             }
         }
         "_rpm" => st.spindle_speed[0],
@@ -125,11 +126,15 @@ pub fn predefined(
         "_abs_v" => abs_axis(7),
         "_abs_w" => abs_axis(8),
         "_current_tool" => st.current_tool as f64,
-        "_current_pocket" => params.tool_slot(st.current_tool).unwrap_or(0) as f64,
+        // The tool's pocket as its table gives it (LinuxCNC's `P`; rs274 prints 10 for T10 P10).
+        "_current_pocket" => params
+            .tools()
+            .get(st.current_tool)
+            .map_or(0.0, |t| t.pocket as f64),
         "_selected_tool" => st.selected_tool.map_or(-1.0, |t| t as f64),
-        "_selected_pocket" => st
-            .selected_tool
-            .map_or(-1.0, |t| params.tool_slot(t).unwrap_or(0) as f64),
+        "_selected_pocket" => st.selected_tool.map_or(-1.0, |t| {
+            params.tools().get(t).map_or(0.0, |t| t.pocket as f64)
+        }),
         // Standalone interpretation (LinuxCNC's preview/rs274: 0; 1 = running on a machine).
         "_task" => 0.0,
         "_remap_level" => 0.0,

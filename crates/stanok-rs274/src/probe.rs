@@ -15,7 +15,11 @@
 //! standalone `rs274` does (its simulated probe reports failure silently).
 //!
 //! Checks before anything moves (LinuxCNC's): feed not zero, cutter compensation off, the target at
-//! least 0.01 in (0.254 mm) away, the probe not already in the requested state.
+//! least 0.01 in (0.254 mm) away for G38.2/G38.4, the probe not already in the requested state.
+//!
+//! With no surface configured (LinuxCNC's standalone `rs274`), the probe stands 0.254 mm short of
+//! the programmed point along the move afterwards, as rs274's simulated probe puts it; the result
+//! parameters hold the programmed point and #5070 = 0.
 
 use crate::ctx::{Ctx, AXIS_WORDS};
 use crate::params::Parameters;
@@ -66,7 +70,8 @@ pub(super) fn straight_probe(
         let (a, b) = (start_m.xyz(), end_m.xyz());
         (0..3).map(|i| (b[i] - a[i]).powi(2)).sum::<f64>().sqrt()
     };
-    if d < MIN_PROBE_DISTANCE_MM {
+    // LinuxCNC checks the distance for the probes that must change state (G38.2, G38.4) only.
+    if d < MIN_PROBE_DISTANCE_MM && matches!(code, 382 | 384) {
         return Err(cx.err(
             "rs274::probe-too-close",
             "Start point too close to probe point",
@@ -81,6 +86,7 @@ pub(super) fn straight_probe(
     };
     let want_contact = matches!(kind, ProbeKind::TowardErrorIfNone | ProbeKind::Toward);
     let surfaces = &cx.opts.control.probe_surfaces;
+    let no_surfaces = surfaces.is_empty();
     let in_contact = |p: &Pose| surfaces.iter().any(|s| s.contact(p));
     if !surfaces.is_empty() && in_contact(&start_m) == want_contact {
         return Err(cx.err(
@@ -127,6 +133,26 @@ pub(super) fn straight_probe(
     if cx.st.feed_mode == FeedMode::InverseTime {
         cx.out.push(Canon::SetFeedRate { feed });
     }
+    // Where the probe's result points are: the trip point, or the programmed point.
+    cx.st.position = trip.unwrap_or(end_m);
+    let work = cx.st.program_position().to_array();
+    // With no surface configured (LinuxCNC's standalone rs274), the probe "stops" 0.254 mm
+    // (0.01 in) short of the programmed point along the move, as rs274's simulated canon backs it
+    // off (its STRAIGHT_PROBE); the result parameters still hold the programmed point.
+    let contact = match trip {
+        None if no_surfaces => {
+            let (a, b) = (start_m.to_array(), end_m.to_array());
+            let d = (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+            (d > 0.0).then(|| {
+                let mut p = b;
+                for k in 0..3 {
+                    p[k] += MIN_PROBE_DISTANCE_MM * (a[k] - b[k]) / d;
+                }
+                Pose::from_array(p)
+            })
+        }
+        t => t,
+    };
     cx.out.push(Canon::StraightProbe {
         motion: LineMove {
             start: start_m,
@@ -134,17 +160,15 @@ pub(super) fn straight_probe(
             feed,
         },
         probe: kind,
-        contact: trip,
+        contact,
     });
-    let stop = trip.unwrap_or(end_m);
-    cx.st.position = stop;
-    let work = cx.st.program_position().to_array();
     let k = cx.st.units.mm_per_unit();
     for (i, v) in work.iter().enumerate() {
         let v = if crate::ctx::is_linear(i) { v / k } else { *v };
         params.set(5061 + i, v);
     }
     params.set(5070, if trip.is_some() { 1.0 } else { 0.0 });
+    cx.st.position = contact.unwrap_or(end_m);
     cx.fe.modes.motion_code = Some(code);
     Ok(())
 }

@@ -127,31 +127,23 @@ fn pair(cx: &mut Ctx<'_>, a: u8, b: u8) -> (Option<f64>, Option<f64>) {
 /// G5.
 pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5", span)?;
-    let continuing = cx.fe.modes.motion_code == Some(50);
     let (i, j) = pair(cx, b'I', b'J');
     let (p, q) = pair(cx, b'P', b'Q');
-    let (Some(p), Some(q)) = (p, q) else {
-        return Err(cx.err("rs274::g5-pq", "Must specify both P and Q in G5", span));
-    };
+    // LinuxCNC 2.9's convert_spline: without I and J the first control point continues the
+    // previous G5 (its -P, -Q, kept however long ago it was; 0 before any G5).
     let (i, j) = match (i, j) {
         (Some(i), Some(j)) => (i, j),
-        (None, None) if continuing => (-cx.fe.modes.g5_pq[0], -cx.fe.modes.g5_pq[1]),
-        (None, None) => {
-            return Err(cx
-                .err(
-                    "rs274::g5-ij-first",
-                    "I and J are required on the first G5 of a series",
-                    span,
-                )
-                .with_note("later G5 blocks may omit both: the curve then continues tangentially"))
-        }
+        (None, None) => (-cx.fe.modes.g5_pq[0], -cx.fe.modes.g5_pq[1]),
         _ => {
             return Err(cx.err(
                 "rs274::g5-ij",
-                "Must specify both I and J, or neither, in G5",
+                "Must specify both I and J, or neither",
                 span,
             ))
         }
+    };
+    let (Some(p), Some(q)) = (p, q) else {
+        return Err(cx.err("rs274::g5-pq", "Must specify both P and Q with G5", span));
     };
     let f = feed(cx, "G5", f_in_block, span)?;
     let s = cx.st.program_position();
@@ -159,7 +151,8 @@ pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result
     let pts = [[s.x, s.y], [s.x + i, s.y + j], [e[0] + p, e[1] + q], e];
     emit(cx, &pts, vec![1.0; 4], stanok_geom::bezier_knots(3), f);
     cx.fe.modes.g5_pq = [p, q];
-    cx.fe.modes.motion_code = Some(50);
+    // LinuxCNC leaves the motion mode as it was: axis words alone after a G5 block repeat the
+    // mode before it, and #<_motion_mode> reads that mode.
     Ok(())
 }
 
@@ -170,24 +163,18 @@ pub(super) fn quadratic(
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.1", span)?;
-    let (i, j) = pair(cx, b'I', b'J');
-    if i.unwrap_or(0.0) == 0.0 && j.unwrap_or(0.0) == 0.0 {
+    let (Some(i), Some(j)) = pair(cx, b'I', b'J') else {
         return Err(cx.err(
             "rs274::g5-1-ij",
-            "Must specify I or J (not both zero) with G5.1",
+            "Must specify both I and J with G5.1",
             span,
         ));
-    }
+    };
     let f = feed(cx, "G5.1", f_in_block, span)?;
     let s = cx.st.program_position();
     let (e, _) = end_xy(cx)?;
-    let pts = [
-        [s.x, s.y],
-        [s.x + i.unwrap_or(0.0), s.y + j.unwrap_or(0.0)],
-        e,
-    ];
+    let pts = [[s.x, s.y], [s.x + i, s.y + j], e];
     emit(cx, &pts, vec![1.0; 3], stanok_geom::bezier_knots(2), f);
-    cx.fe.modes.motion_code = Some(51);
     Ok(())
 }
 
@@ -200,8 +187,11 @@ pub(super) fn nurbs_point(
 ) -> Result<(), Diagnostic> {
     check_plane_and_axes(cx, "G5.2", span)?;
     let opening = explicit || cx.fe.modes.motion_code != Some(52);
-    let weight = match cx.words.take(b'P') {
+    // LinuxCNC's convert_nurbs: every point after the first (the current point) needs P > 0.
+    let p_word = cx.words.take(b'P');
+    let weight = match p_word {
         Some(p) if p.v > 0.0 => p.v,
+        _ if opening => 1.0,
         Some(p) => {
             return Err(cx.err(
                 "rs274::nurbs-weight",
@@ -209,7 +199,13 @@ pub(super) fn nurbs_point(
                 p.span,
             ))
         }
-        None => 1.0,
+        None => {
+            return Err(cx.err(
+                "rs274::nurbs-weight",
+                "Must specify positive weight P for every Control Point",
+                span,
+            ))
+        }
     };
     let order = cx.words.take(b'L').map(|l| l.v);
     let has_x = cx.words.has(b'X');
@@ -223,8 +219,10 @@ pub(super) fn nurbs_point(
     }
     let here = cx.st.program_position();
     if opening {
+        // LinuxCNC takes L only above 3 (order 3 otherwise).
         let k = match order {
-            Some(l) if l >= 2.0 && l.fract() == 0.0 && l <= 16.0 => l as u32,
+            Some(l) if l > 3.0 && l.fract() == 0.0 && l <= 16.0 => l as u32,
+            Some(l) if l <= 3.0 => 3,
             Some(_) => {
                 return Err(cx.err(
                     "rs274::nurbs-order",
@@ -251,14 +249,11 @@ pub(super) fn nurbs_point(
     if has_x {
         let x = cx.words.take(b'X').map_or(0.0, |v| cx.mm(v.v));
         let y = cx.words.take(b'Y').map_or(0.0, |v| cx.mm(v.v));
-        let last = params
-            .nurbs()
-            .points
-            .last()
-            .map_or([here.x, here.y, here.z], |p| p.0);
+        // Incremental points are relative to the current point, which stays where the G5.2
+        // block began until G5.3 (LinuxCNC's find_ends on an unmoved current point).
         let (x, y) = match cx.st.distance {
             DistanceMode::Absolute => (x, y),
-            DistanceMode::Incremental => (last[0] + x, last[1] + y),
+            DistanceMode::Incremental => (here.x + x, here.y + y),
         };
         let buf = params.nurbs_mut();
         if buf.points.len() >= MAX_NURBS_POINTS {
@@ -284,7 +279,7 @@ pub(super) fn nurbs_end(
     if cx.fe.modes.motion_code != Some(52) {
         return Err(cx.err(
             "rs274::g5-3-without-g5-2",
-            "G5.3 without a G5.2 block to close",
+            "Cannot use G5.3 without G5.2 first",
             span,
         ));
     }
@@ -294,7 +289,9 @@ pub(super) fn nurbs_end(
     if n_points < k {
         return Err(cx.err(
             "rs274::nurbs-too-few",
-            format!("G5.2 needs at least L = {k} control points, got {n_points}"),
+            format!(
+                "You must specify a number of control points at least equal to the order L = {k}"
+            ),
             span,
         ));
     }
@@ -318,5 +315,7 @@ pub(super) fn nurbs_end(
     params.nurbs_mut().points.clear();
     cx.fe.modes.motion_code = None;
     cx.st.motion = crate::state::MotionMode::None;
+    // LinuxCNC leaves no motion mode at all (-1, not G80's 80): #<_motion_mode> reads -1.
+    cx.fe.modes.motion_unset = true;
     Ok(())
 }

@@ -139,12 +139,15 @@ fn thread_words(cx: &mut Ctx<'_>, span: ColSpan) -> Result<ThreadWords, Diagnost
     let spring = opt(cx, b'H', 0.0);
     let taper = opt(cx, b'E', 0.0);
     let ends = opt(cx, b'L', 0.0);
-    if j <= 0.0 || k <= 0.0 {
-        return Err(cx.err(
-            "rs274::g76-depth",
-            "Must specify positive J and K with G76",
-            span,
-        ));
+    // LinuxCNC 2.9's checks and words, in its order.
+    if i == 0.0 {
+        return Err(cx.err("rs274::g76-i", "In G76, I must not be 0", span));
+    }
+    if j <= 0.0 {
+        return Err(cx.err("rs274::g76-depth", "In G76, J must be greater than 0", span));
+    }
+    if k <= j {
+        return Err(cx.err("rs274::g76-depth", "In G76, K must be greater than J", span));
     }
     if degression < 1.0 {
         return Err(cx.err("rs274::g76-degression", "R must be >= 1.0 with G76", span));

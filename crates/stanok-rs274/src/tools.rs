@@ -84,7 +84,9 @@ pub(super) fn change_tool(cx: &mut Ctx<'_>, params: &mut Parameters) {
     cx.out.push(Canon::StartToolChange);
     cx.out.push(Canon::StopSpindle { spindle: 0 });
     cx.st.spindle_on[0] = false;
-    cx.out.push(Canon::ChangeTool { tool });
+    // rs274 prints the tool's slot in its table (0: no tool).
+    let slot = params.tool_slot(tool).unwrap_or(0);
+    cx.out.push(Canon::ChangeTool { tool, slot });
     cx.st.current_tool = tool;
     load_tool_parameters(params, tool);
 }

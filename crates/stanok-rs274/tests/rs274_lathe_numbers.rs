@@ -2,7 +2,7 @@
 //! retracts, entry points, pocket levels and finishing-pass distances of small profiles, each
 //! worked out by hand from the rules in `rs274/lathe_cycles.rs` (module comment) and checked to
 //! agree with LinuxCNC 2.9's `rs274` on the same program (the same programs' traces were compared
-//! with `scripts/linuxcnc_compare.py`; the goldens of `tests/rs274/stanok-g7x-*.ngc` hold more).
+//! with the shared trace comparison (`stanok_canon::linuxcnc_trace`); the goldens of `tests/rs274/stanok-g7x-*.ngc` hold more).
 //!
 //! Tolerance: `TOL` = 1e-9 mm. Every expected value is a closed formula of the program's words
 //! (no iteration), so only floating-point rounding separates it from the interpreter's result.

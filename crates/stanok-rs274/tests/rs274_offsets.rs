@@ -85,7 +85,7 @@ fn t_words_are_checked_only_against_a_tool_table() {
     assert!(err.is_none(), "{err:?}");
     assert!(cmds
         .iter()
-        .any(|c| matches!(c.value, Canon::ChangeTool { tool: 7 })));
+        .any(|c| matches!(c.value, Canon::ChangeTool { tool: 7, .. })));
     // …but G43 H7 needs the tool's data.
     let (_, err) = run_with("G21\nG43 H7\nM2\n", InterpOptions::new(Dialect::Rs274ngc));
     assert!(err.is_some());

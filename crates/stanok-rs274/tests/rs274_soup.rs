@@ -2,7 +2,8 @@
 //! cycles, G33/G76, probing, splines, cutter compensation, M70–M73, polar words, mode switches —
 //! with random (often wrong) values:
 //! * the interpreter never panics and always stops (an error is fine; a panic or hang is not);
-//! * every motion it emits starts where the previous one ended (one exception: G88, whose retract
+//! * every motion it emits starts where the previous one ended (exceptions: G74/G84 in G18/G19,
+//!   whose feeds LinuxCNC rotates, and G88, whose retract
 //!   is the operator's, as in LinuxCNC), and every coordinate is finite.
 
 #[path = "../../stanok-interp/tests/common/mod.rs"]
@@ -108,9 +109,27 @@ proptest! {
         let (cmds, _err) = run(&text, Dialect::Rs274ngc);
         let mut prev: Option<[f64; 9]> = None;
         let mut after_g88 = false;
+        // G74/G84 in G18/G19 feed to LinuxCNC's plane-rotated points (cycles.rs `tap_feed`):
+        // jumps are allowed from the overrides' disabling to the first move after re-enabling.
+        let mut plane_xy = true;
+        let mut rotated_tap = false;
         for c in &cmds {
             if let Canon::ProgramStop { .. } = c.value {
                 // G88 stops for the operator, who retracts by hand.
+                after_g88 = true;
+            }
+            match c.value {
+                Canon::SelectPlane { plane } => plane_xy = plane == stanok_canon::Plane::XY,
+                Canon::SetFeedOverrideEnabled { enabled: false } if !plane_xy => {
+                    rotated_tap = true;
+                }
+                Canon::SetFeedOverrideEnabled { enabled: true } if rotated_tap => {
+                    after_g88 = true;
+                    rotated_tap = false;
+                }
+                _ => {}
+            }
+            if rotated_tap {
                 after_g88 = true;
             }
             let Some(m) = c.value.motion() else { continue };

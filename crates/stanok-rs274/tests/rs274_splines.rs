@@ -60,9 +60,17 @@ fn g5_without_ij_continues_tangentially() {
 }
 
 #[test]
-fn g5_first_of_a_series_needs_ij() {
-    let (_, err) = run("G20 F10 G17\nG5 P0 Q-3 X1 Y1\nM2\n", Dialect::Rs274ngc);
-    assert!(err.unwrap().message.contains("first G5"));
+fn g5_first_without_ij_starts_along_no_tangent() {
+    // LinuxCNC 2.9 (rs274) takes I, J from its last G5's P, Q, 0 before any: the first control
+    // point is the start point.
+    let s = splines("G20 F10 G17\nG5 P0 Q-3 X1 Y1\nM2\n");
+    let p = &s[0].control_points;
+    assert!(close([p[1][0], p[1][1]], [p[0][0], p[0][1]]));
+    let (_, err) = run("G20 F10 G17\nG5 I1 P0 Q-3 X1 Y1\nM2\n", Dialect::Rs274ngc);
+    assert_eq!(
+        err.unwrap().message,
+        "Must specify both I and J, or neither"
+    );
 }
 
 #[test]
@@ -100,10 +108,10 @@ fn g5_2_nurbs_has_the_header_points() {
 #[test]
 fn a_failing_g5_3_keeps_the_collected_points() {
     // Zero feed at G5.3 fails the block; the points stay and a later G5.3 with F emits them.
-    let s = splines("G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1\n X2 Y2\nF10 G5.3\nM2\n");
+    let s = splines("G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF10 G5.3\nM2\n");
     assert_eq!(s[0].control_points.len(), 3);
     let (_, err) = run(
-        "G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1\n X2 Y2\nG5.3\nM2\n",
+        "G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nG5.3\nM2\n",
         Dialect::Rs274ngc,
     );
     assert!(err.unwrap().message.contains("zero feed"));

@@ -323,6 +323,51 @@ corpus_tests! {
     g98_retract_example_1: "g98-retract-example-1";
 }
 
+/// One of Stanok's own programs under tests/rs274 against its LinuxCNC golden.
+fn own_case(name: &str) {
+    let dir = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/rs274"));
+    let program = std::fs::read_to_string(dir.join(format!("{name}.ngc"))).unwrap();
+    let trace = std::fs::read_to_string(dir.join(format!("expected/{name}.canon.txt")))
+        .unwrap_or_else(|_| panic!("{name}: no golden; run scripts/regen-linuxcnc-goldens.sh"));
+    check(name, &program, &trace, Expect::LinuxCnc);
+}
+
+macro_rules! own_tests {
+    ($($test:ident: $name:literal;)*) => {$(
+        #[test]
+        fn $test() {
+            own_case($name);
+        }
+    )*};
+}
+
+// The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
+// each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
+own_tests! {
+    err_parity_g4: "stanok-err-parity-g4";
+    err_parity_g5_1: "stanok-err-parity-g5-1";
+    err_parity_mod_zero: "stanok-err-parity-mod-zero";
+    err_parity_nested_comment: "stanok-err-parity-nested-comment";
+    err_parity_pow: "stanok-err-parity-pow";
+    err_parity_unclosed_comment: "stanok-err-parity-unclosed-comment";
+    parity_change_tool_slot: "stanok-parity-change-tool-slot";
+    parity_comp_labels: "stanok-parity-comp-labels";
+    parity_css_inch: "stanok-parity-css-inch";
+    parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
+    parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
+    parity_g5_feed_units: "stanok-parity-g5-feed-units";
+    parity_g53_tlo: "stanok-parity-g53-tlo";
+    parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
+    parity_g7x_labels: "stanok-parity-g7x-labels";
+    parity_g87_repeat: "stanok-parity-g87-repeat";
+    parity_m60: "stanok-parity-m60";
+    parity_modal_centre_words: "stanok-parity-modal-centre-words";
+    parity_predefined: "stanok-parity-predefined";
+    parity_probe_backoff: "stanok-parity-probe-backoff";
+    parity_tapping_offsets: "stanok-parity-tapping-offsets";
+    parity_tapping_planes: "stanok-parity-tapping-planes";
+}
+
 /// Stanok's own programs with LinuxCNC goldens.
 #[test]
 fn own_programs_match_linuxcnc() {
@@ -434,4 +479,77 @@ fn an_error_inside_a_subroutine_file_is_located_in_that_file() {
         err.file
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The machine position (mm) where the last straight move ends.
+fn last_straight_end(cmds: &[stanok_canon::Spanned<stanok_canon::Canon>]) -> [f64; 3] {
+    cmds.iter()
+        .rev()
+        .find_map(|c| match &c.value {
+            stanok_canon::Canon::StraightTraverse(m) | stanok_canon::Canon::StraightFeed(m) => {
+                Some(m.end.xyz())
+            }
+            _ => None,
+        })
+        .expect("a straight move")
+}
+
+fn assert_at(cmds: &[stanok_canon::Spanned<stanok_canon::Canon>], want: [f64; 3], why: &str) {
+    let end = last_straight_end(cmds);
+    for k in 0..3 {
+        assert!(
+            (end[k] - want[k]).abs() < 1e-9,
+            "{why}: ends at {end:?}, not {want:?}"
+        );
+    }
+}
+
+// Known differences from the standalone rs274 (docs/linuxcnc.md): Stanok does what LinuxCNC's
+// task (`milltask`, run headless by ../shared/tools/lcnc-sim) does. Each program below ran there;
+// the final machine position of its trace is the number asserted.
+
+/// `T1 M6 G43` in one block, then `G10 L10 P1 Z45` and `G43`: milltask's spindle stays at machine
+/// Z 50 (the new offset is 50 − 45 = 5); rs274 resynchronises after M6 without the offset, takes
+/// 15 and would end at Z 60.
+#[test]
+fn known_difference_t_m6_g43_in_one_block_as_milltask() {
+    let program = "G21 G90 G94 F3000\nG10 L1 P1 Z10\nG0 X0 Y0 Z50\nT1 M6 G43\nG10 L10 P1 Z45\nG43\nG0 X1\nG0 Z45\nG0 X2\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(&cmds, [2.0, 0.0, 50.0], "milltask ends at X2 Z50");
+}
+
+/// Before any M6 the spindle is empty: `#<_current_tool>` is 0 and `G43` applies no offset even
+/// after `G10 L1 P1 Z7`; milltask ends at machine Y 1, Z 20. rs274 starts with table slot 1 in the
+/// spindle (G43 takes 7: Z 27).
+#[test]
+fn known_difference_the_spindle_is_empty_at_start_as_milltask() {
+    let program =
+        "G21 G90 G94 F3000\nG0 Y[#<_current_tool> + 1]\nG10 L1 P1 Z7\nG43\nG0 Z20\nG0 X5\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(&cmds, [5.0, 1.0, 20.0], "milltask ends at X5 Y1 Z20");
+}
+
+/// `M61 Q1` declares tool 1 loaded: `#<_current_tool>` = 1, #5400 = 1 and G43 takes its offset 7;
+/// milltask ends at machine X 5, Y 2, Z 27. rs274 leaves its tool data as they were.
+#[test]
+fn known_difference_m61_loads_the_tool_data_as_milltask() {
+    let program = "G21 G90 G94 F3000\nG10 L1 P1 Z7\nM61 Q1\nG43\nG0 X[#<_current_tool> + 1] Y[#5400 + 1] Z20\nG0 X5\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(&cmds, [5.0, 2.0, 27.0], "milltask ends at X5 Y2 Z27");
+}
+
+/// G84 with the spindle counterclockwise: LinuxCNC's message, on the G84 block; rs274 has already
+/// issued the cycle's first rapid when it finds the error, Stanok's block leaves nothing
+/// (ARCHITECTURE.md invariant 4).
+#[test]
+fn known_difference_an_error_inside_a_cycle_leaves_nothing_of_its_block() {
+    let program = "G21 F100\nM4 S100\nG84 X1 R2 Z-3\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    let err = err.expect("refused");
+    assert_eq!(err.message, "Spindle turning counterclockwise in G84");
+    assert_eq!(err.span.line, 3);
+    assert!(!cmds.iter().any(|c| c.value.motion().is_some()));
 }

@@ -151,7 +151,7 @@ impl MachineState {
             Canon::Mist { on } => self.mist = *on,
             Canon::Flood { on } => self.flood = *on,
             Canon::SelectTool { tool } => self.selected_tool = *tool,
-            Canon::ChangeTool { tool } => self.tool = *tool,
+            Canon::ChangeTool { tool, .. } => self.tool = *tool,
             Canon::SetPathMode { mode, .. } => {
                 self.path_mode = match mode {
                     PathMode::ExactStop => "ExactStop".into(),
@@ -429,7 +429,7 @@ mod tests {
         });
         s.apply(&Canon::Flood { on: true });
         s.apply(&Canon::SelectTool { tool: 7 });
-        s.apply(&Canon::ChangeTool { tool: 7 });
+        s.apply(&Canon::ChangeTool { tool: 7, slot: 7 });
         s.apply(&Canon::StraightFeed(stanok_canon::LineMove {
             start: pose(0.0, 0.0, 0.0),
             end: pose(5.0, 6.0, 7.0),

@@ -6,8 +6,9 @@
 //!
 //! Size: 10 million blocks in an optimised build (`cargo test --release`), where the load must
 //! take under 20 s; 1 million in a debug build, where the interpreter runs 6–10 times slower and a
-//! wall-clock limit would measure the build, not the panel (the figures of both are in
-//! docs/performance.md). Screenshot: `target/tmp/panel/large.png`.
+//! wall-clock limit would measure the build, not the panel (the test prints its wall and CPU
+//! times; the optimised figure is not yet recorded in docs/performance.md). Screenshot:
+//! `target/tmp/panel/large.png`.
 
 mod cdp;
 mod common;

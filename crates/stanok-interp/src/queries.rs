@@ -26,6 +26,15 @@ impl<R: BufRead + Seek> Interpreter<R> {
         &self.run.core().state
     }
 
+    /// Starts in `state` instead of the power-on state: an operator's MDI session, where each
+    /// block is a new interpreter that continues in the modes the previous block left (with
+    /// `state.position` set to where the machine stands now, after any jog). The common modal
+    /// state only (a front end's own modes start at power-on); call it before the first command;
+    /// the lab dialects keep their own state and ignore it.
+    pub fn resume_modal_state(&mut self, state: ModalState) {
+        self.run.core_mut().state = state;
+    }
+
     /// Counters.
     pub fn stats(&self) -> Stats {
         self.run.core().stats

@@ -14,6 +14,9 @@
 //!   runs it through the look-ahead planner and servo interpolator of `stanok-motion`
 //!   (`sim_motion.rs`: setpoints checked against travel and dynamic limits), and builds the
 //!   [`RunReport`] with the planned cycle time beside the nominal one.
+//! * [`TravelCheck`]: the travel limits and missing axes of a Canon stream (joints under
+//!   tool-centre-point control) — what `SimMachine` refuses, and what `stanok check` and the
+//!   panel's preview list before a program starts.
 //!
 //! Planned here later: built-in lathe and 5-axis machines.
 //!
@@ -29,6 +32,7 @@ pub mod linuxcnc;
 mod sim;
 mod sim_motion;
 pub mod time_bound;
+mod travel;
 
 pub use control_write::perm_to_toml;
 pub use data::{
@@ -43,3 +47,4 @@ pub use sim_motion::{
 };
 pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;
+pub use travel::TravelCheck;

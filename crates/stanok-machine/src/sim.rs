@@ -9,13 +9,9 @@
 //!
 //! `SimMachine::apply` first checks everything that can refuse the command and only then changes
 //! state, so a refused command leaves no trace in the report:
-//! 1. **Axes.** A move may only change axes the machine has (`machine::missing-axis`).
-//! 2. **Travel limits** (`machine::travel-limit`). A straight move is checked at its end point (its
-//!    start is the previous end, already checked; the `Init` position is checked on its own). An arc
-//!    is checked over its tight bounding box from `stanok-geom`, so an arc whose end points are inside
-//!    but whose bulge is not is refused. Non-XYZ axes of an arc move linearly and are checked at the
-//!    end. A limit may be touched: positions within 1e-9 mm (deg) of it pass, so that rounding in the
-//!    interpreter does not refuse a move programmed exactly to the limit.
+//! 1. **Axes** and 2. **travel limits** ([`TravelCheck`](crate::TravelCheck), `travel.rs`: the
+//!    moved axes exist; end points, arc bulges, spline tessellations and, under tool-centre-point
+//!    control, the joints along the move are within the travel).
 //! 3. **Commit.** Counters, distances, nominal time (`stanok_motion::nominal`), bounding box, the
 //!    M-function and message logs, the position.
 //!
@@ -31,21 +27,17 @@
 //! Invariant: the report only grows by commands that were accepted; no input makes `apply` panic or
 //! put a NaN or ∞ into the times (degenerate geometry is the interpreter's to refuse).
 
-use crate::data::{AxisData, AxisKind, MachineData};
+use crate::data::{AxisData, MachineData};
 use crate::sim_motion::{AxisMotion, MotionRun, SetpointSink, SimOptions};
 use crate::time_bound;
+use crate::travel::TravelCheck;
 use serde::Serialize;
 use stanok_canon::{
-    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Span, Spanned, SpindleDirection,
-    SplineMove, AXIS_LETTERS,
+    ArcMove, AuxTiming, Canon, Diagnostic, LineMove, Pose, Spanned, SpindleDirection, SplineMove,
 };
 use stanok_geom::{Helix, Nurbs};
-use stanok_kin::{FiveAxis, Kinematics};
 use stanok_motion::nominal::{self, AxisLimits};
 use std::collections::BTreeMap;
-
-/// Positions within this distance beyond a limit (mm or deg) still pass.
-const LIMIT_SLACK: f64 = 1e-9;
 
 /// An axis-aligned box in machine X Y Z, mm.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -159,9 +151,8 @@ pub struct SimMachine {
     spindle_rpm: BTreeMap<u8, f64>,
     report: RunReport,
     motion: MotionRun,
-    /// The kinematics with the active tool while tool-centre-point control is on: motion
-    /// positions are then tool poses, and the travel limits are checked on their joints.
-    tcp: Option<FiveAxis>,
+    /// Rules 1 and 2 of the module doc (it also follows tool-centre-point control).
+    travel: TravelCheck,
     /// Bound on simulated machine time, s (`time_bound.rs`).
     max_machine_time_s: f64,
     /// `machine::long-block` warnings (at most [`MAX_WARNINGS`]).
@@ -188,13 +179,6 @@ const COOLANT_OFF: &str = "M9 coolant off";
 enum LineKind {
     Rapid,
     Feed,
-}
-
-fn unit(axis: &AxisData) -> &'static str {
-    match axis.kind {
-        AxisKind::Linear => "mm",
-        AxisKind::Rotary => "deg",
-    }
 }
 
 /// Length a rate applies to, and whether it is in mm (module doc).
@@ -259,13 +243,14 @@ impl SimMachine {
             feed_hold: None,
         };
         let motion = MotionRun::new(&machine, &options);
+        let travel = TravelCheck::new(&machine);
         SimMachine {
             machine,
             axes,
             spindle_rpm: BTreeMap::new(),
             report,
             motion,
-            tcp: None,
+            travel,
             max_machine_time_s: options.max_machine_time_s,
             warnings: Vec::new(),
         }
@@ -379,22 +364,18 @@ impl SimMachine {
 
     /// Checks a command and updates the counters and logs (module doc, steps 1–3).
     fn check_and_log(&mut self, cmd: &Spanned<Canon>) -> Result<(), Diagnostic> {
-        let span = cmd.span;
-        let line = span.line;
+        self.travel.check(cmd)?;
+        let line = cmd.span.line;
         match &cmd.value {
-            Canon::Init { position, .. } => {
-                let p = position.to_array();
-                self.check_limits(&p, &p, span)?;
-                self.report.final_position = *position;
-            }
-            Canon::StraightTraverse(m) => self.apply_line(m, LineKind::Rapid, span)?,
-            Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed, span)?,
-            Canon::ArcFeed(a) => self.apply_arc(a, span)?,
-            Canon::SplineFeed(sp) => self.apply_spline(sp, span)?,
+            Canon::Init { position, .. } => self.report.final_position = *position,
+            Canon::StraightTraverse(m) => self.apply_line(m, LineKind::Rapid),
+            Canon::StraightFeed(m) => self.apply_line(m, LineKind::Feed),
+            Canon::ArcFeed(a) => self.apply_arc(a),
+            Canon::SplineFeed(sp) => self.apply_spline(sp),
             // The probe stops where it makes (or loses) contact.
             Canon::StraightProbe {
                 motion, contact, ..
-            } => self.apply_line(&motion.stopped_at(*contact), LineKind::Feed, span)?,
+            } => self.apply_line(&motion.stopped_at(*contact), LineKind::Feed),
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,
@@ -402,15 +383,14 @@ impl SimMachine {
                     feed: 0.0,
                     law: stanok_canon::FeedLaw::PerMinute,
                 };
-                self.check_move(start, end, &end.to_array(), &end.to_array(), span)?;
-                self.apply_line(&down, LineKind::Feed, span)?;
+                self.apply_line(&down, LineKind::Feed);
                 let up = LineMove {
                     start: *end,
                     end: *start,
                     feed: 0.0,
                     law: stanok_canon::FeedLaw::PerMinute,
                 };
-                self.apply_line(&up, LineKind::Feed, span)?;
+                self.apply_line(&up, LineKind::Feed);
             }
             Canon::OrientSpindle {
                 spindle, degrees, ..
@@ -544,10 +524,8 @@ impl SimMachine {
             | Canon::ReloadToolTable
             | Canon::SetOrientationInterpolation { .. }
             | Canon::Comment { .. } => {}
-            Canon::SetToolCentrePoint {
-                active,
-                tool_offset,
-            } => self.switch_tcp(*active, *tool_offset, span)?,
+            // Checked (and followed) by the travel check above.
+            Canon::SetToolCentrePoint { .. } => {}
         }
         Ok(())
     }
@@ -567,109 +545,8 @@ impl SimMachine {
         });
     }
 
-    /// Rules 1 and 2 of the module doc for a move that spans `lo..=hi` per axis and goes start → end.
-    fn check_move(
-        &self,
-        start: &Pose,
-        end: &Pose,
-        lo: &[f64; 9],
-        hi: &[f64; 9],
-        span: Span,
-    ) -> Result<(), Diagnostic> {
-        let (s, e) = (start.to_array(), end.to_array());
-        for i in 0..9 {
-            if self.axes[i].is_none() && (s[i] != e[i] || lo[i] != hi[i]) {
-                let letter = AXIS_LETTERS[i];
-                return Err(Diagnostic::error(
-                    "machine::missing-axis",
-                    format!(
-                        "machine {} has no {letter} axis, but this block moves {letter} from {} to {}",
-                        self.machine.name, s[i], e[i]
-                    ),
-                    span,
-                ));
-            }
-        }
-        match &self.tcp {
-            None => self.check_limits(lo, hi, span),
-            Some(kin) => {
-                // The joints of the poses along the move (the straight interpolation of the
-                // pose; the servo trace is checked setpoint by setpoint by the motion monitor).
-                const SAMPLES: usize = 64;
-                let mut jlo = [f64::INFINITY; 9];
-                let mut jhi = [f64::NEG_INFINITY; 9];
-                for k in 0..=SAMPLES {
-                    let f = k as f64 / SAMPLES as f64;
-                    let p: [f64; 9] = std::array::from_fn(|i| s[i] + (e[i] - s[i]) * f);
-                    let j = kin.inverse(&Pose::from_array(p)).unwrap_or(p);
-                    for i in 0..9 {
-                        jlo[i] = jlo[i].min(j[i]);
-                        jhi[i] = jhi[i].max(j[i]);
-                    }
-                }
-                self.check_limits(&jlo, &jhi, span)
-            }
-        }
-    }
-
-    /// Tool-centre-point control on or off (the interpreter has checked that the machine has
-    /// the kinematics; a machine without them refuses here too).
-    fn switch_tcp(
-        &mut self,
-        active: bool,
-        tool_offset: [f64; 3],
-        span: Span,
-    ) -> Result<(), Diagnostic> {
-        if !active {
-            self.tcp = None;
-            return Ok(());
-        }
-        match self.machine.five_axis() {
-            Some(k) => {
-                self.tcp = Some(k.with_tool_offset(tool_offset));
-                Ok(())
-            }
-            None => Err(Diagnostic::error(
-                "machine::no-kinematics",
-                format!(
-                    "machine {} has no 5-axis kinematics for tool-centre-point control",
-                    self.machine.name
-                ),
-                span,
-            )),
-        }
-    }
-
-    /// Travel limits for positions spanning `lo..=hi` per axis.
-    fn check_limits(&self, lo: &[f64; 9], hi: &[f64; 9], span: Span) -> Result<(), Diagnostic> {
-        for (i, axis) in self.axes.iter().enumerate() {
-            let Some(axis) = axis else { continue };
-            let u = unit(axis);
-            let violation = if lo[i].is_nan() || hi[i].is_nan() {
-                Some(format!("{} position is not a number", axis.name))
-            } else if lo[i] < axis.min - LIMIT_SLACK {
-                Some(format!(
-                    "{} would reach {:.4} {u}, beyond its minimum {:.4} {u}",
-                    axis.name, lo[i], axis.min
-                ))
-            } else if hi[i] > axis.max + LIMIT_SLACK {
-                Some(format!(
-                    "{} would reach {:.4} {u}, beyond its maximum {:.4} {u}",
-                    axis.name, hi[i], axis.max
-                ))
-            } else {
-                None
-            };
-            if let Some(message) = violation {
-                return Err(Diagnostic::error("machine::travel-limit", message, span));
-            }
-        }
-        Ok(())
-    }
-
-    fn apply_line(&mut self, m: &LineMove, kind: LineKind, span: Span) -> Result<(), Diagnostic> {
+    fn apply_line(&mut self, m: &LineMove, kind: LineKind) {
         let (s, e) = (m.start.to_array(), m.end.to_array());
-        self.check_move(&m.start, &m.end, &e, &e, span)?;
         let (length, in_mm) = line_length(&m.start, &m.end);
         let distance = if in_mm { length } else { 0.0 };
         let r = &mut self.report;
@@ -699,10 +576,9 @@ impl SimMachine {
         BoundingBox::include(&mut r.bounding_box, ps, ps);
         BoundingBox::include(&mut r.bounding_box, pe, pe);
         r.final_position = m.end;
-        Ok(())
     }
 
-    fn apply_arc(&mut self, a: &ArcMove, span: Span) -> Result<(), Diagnostic> {
+    fn apply_arc(&mut self, a: &ArcMove) {
         let helix = Helix {
             start: a.start.xyz(),
             end: a.end.xyz(),
@@ -711,17 +587,6 @@ impl SimMachine {
             turns: a.turns,
         };
         let (box_lo, box_hi) = helix.bounding_box();
-        let (s, e) = (a.start.to_array(), a.end.to_array());
-        let mut lo = [0.0; 9];
-        let mut hi = [0.0; 9];
-        for i in 0..9 {
-            (lo[i], hi[i]) = if i < 3 {
-                (box_lo[i], box_hi[i])
-            } else {
-                (s[i].min(e[i]), s[i].max(e[i]))
-            };
-        }
-        self.check_move(&a.start, &a.end, &lo, &hi, span)?;
         let length = helix.length();
         let r = &mut self.report;
         r.arc_segments += 1;
@@ -730,13 +595,12 @@ impl SimMachine {
         r.nominal_time_s += nominal::feed_time(length, clamp_feed(a.feed, self.machine.max_feed));
         BoundingBox::include(&mut r.bounding_box, box_lo, box_hi);
         r.final_position = a.end;
-        Ok(())
     }
 }
 
 impl SimMachine {
     /// A spline: checked and measured over its tessellation (chord tolerance 1 µm).
-    fn apply_spline(&mut self, sp: &SplineMove, span: Span) -> Result<(), Diagnostic> {
+    fn apply_spline(&mut self, sp: &SplineMove) {
         let curve = Nurbs::new(sp.degree, &sp.control_points, &sp.weights, &sp.knots);
         let mut pts = Vec::new();
         curve.tessellate(1e-3, &mut pts);
@@ -752,7 +616,6 @@ impl SimMachine {
                 hi[i] = hi[i].max(p[i]);
             }
         }
-        self.check_move(&sp.start, &sp.end, &lo, &hi, span)?;
         let length: f64 = pts
             .windows(2)
             .map(|w| stanok_geom::norm(stanok_geom::sub(w[1], w[0])))
@@ -768,7 +631,6 @@ impl SimMachine {
             [hi[0], hi[1], hi[2]],
         );
         r.final_position = sp.end;
-        Ok(())
     }
 }
 

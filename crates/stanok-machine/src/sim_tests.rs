@@ -1,6 +1,7 @@
 //! Unit tests of the simulated machine (`sim.rs`).
 
 use super::*;
+use stanok_canon::Span;
 use stanok_canon::{LengthUnits, Plane};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
 

@@ -3,41 +3,58 @@
 //! A web HMI that runs programs on the simulated machine in real time:
 //!
 //! ```text
-//!  browser ──HTTP JSON──▶ http.rs (axum) ──switches, events──▶ machine.rs (its own thread)
-//!     ▲                      │ check.rs (check, preview)            │ Interpreter → BlockSearch
-//!     │                      │ files.rs (the program directory)     │ → SimMachine (planner,
-//!     └──WebSocket ~30/s─────┴──────────── Mutex<Status> ◀──────────┘   interpolator), paced
+//!  browser ──HTTP JSON──▶ guard.rs (Host, size, token, Origin) ─▶ http*.rs (axum) ──events──▶ machine thread
+//!     ▲                      │ jobs.rs: check.rs (check, preview, travel) on       │ run.rs, manual.rs:
+//!     │                      │   budgeted, cancellable threads                     │ Interpreter → tag →
+//!     │                      │ files.rs (the program directory)                    │ SimMachine (paced.rs)
+//!     └──WebSocket ~30/s─────┴──────────── Mutex<Status> ◀─────────────────────────┘
 //! ```
 //!
-//! * [`machine`]: the machine thread; pacing against the wall clock with a time scale; feed hold,
-//!   stop, single block, program stops, overrides; the published [`machine::Status`].
+//! * [`machine`]: the machine thread's types and loop; [`run`]: a program (or MDI block) through
+//!   interpreter → block search → simulated machine; [`paced`]: pacing, publishing, stop on the
+//!   path; [`executing`]: the state of the block being executed travels with its motion;
+//!   [`manual`]: jog, reference return, touch-off, MDI.
 //! * [`search`]: block search (start at line N with a full run's state there).
 //! * [`state`]: the machine state read off the executed Canon stream; G and M vectors.
-//! * [`check`]: diagnostics for the editor; the programmed path and planned time for the 3D view.
+//! * [`check`]: diagnostics, travel checks and the preview (path at a level of detail, [`lod`];
+//!   planned time), run as [`jobs`] under a time budget on threads with a known stack.
 //! * [`files`]: the program directory and its name rules.
-//! * [`http`]: routes, the token rule, the upload limit, the WebSocket.
-//! * `assets/`: the page (HTML, CSS, JS, no third-party code), embedded at build time.
+//! * [`guard`]: the access rules; [`http`], [`http_program`], [`http_manual`]: the routes.
+//! * `assets/`: the page (HTML, CSS, JS), embedded at build time; three.js (pinned in
+//!   `package.json`, installed by `npm ci`, embedded by `build.rs`) draws the view when present.
 //!
 //! Architecture invariants: this is the only crate that knows HTTP, tokio or the browser; it uses
 //! the pipeline crates exactly as `stanok run` does (interpreter → machine, one way), plus the
 //! motion stage's [`HoldSwitch`](stanok_motion::hold::HoldSwitch). The machine thread never waits
 //! for a client. Bound to a non-loopback address the server refuses to start without a token
-//! ([`check_bind`]).
+//! ([`check_bind`]). No request can stop the server: its work runs in jobs that catch panics and
+//! have their own stacks, budgets and cancellation.
 #![deny(missing_docs)]
 
 pub mod check;
+pub mod executing;
 pub mod files;
+pub mod guard;
 pub mod http;
+pub mod http_manual;
+pub mod http_program;
+pub mod jobs;
+pub mod lod;
 pub mod machine;
+pub mod manual;
+pub mod paced;
+pub mod run;
 pub mod search;
 pub mod state;
 
 use files::ProgramDir;
+use jobs::{JobLimits, Jobs};
 use machine::{MachineConfig, Shared};
 use stanok_machine::MachineData;
 use std::net::SocketAddr;
 use std::path::PathBuf;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::Duration;
 
 /// Default request body limit (uploads), bytes: 64 MB.
 pub const DEFAULT_UPLOAD_LIMIT: usize = 64 * 1024 * 1024;
@@ -52,6 +69,8 @@ pub struct ServeOptions {
     pub bind: SocketAddr,
     /// Access token; required off loopback.
     pub token: Option<String>,
+    /// Host names accepted besides the bound address (`--allowed-host`; see `guard.rs`).
+    pub allowed_hosts: Vec<String>,
     /// The program directory.
     pub programs: PathBuf,
     /// Machine data.
@@ -62,19 +81,27 @@ pub struct ServeOptions {
     pub time_scale: f64,
     /// Servo period, s.
     pub servo_period_s: f64,
+    /// Wall-time budget of one check, load or preview (`--job-budget`).
+    pub job_budget: Duration,
+    /// Points a preview sends to the page at most.
+    pub preview_points: usize,
 }
 
 impl ServeOptions {
-    /// Defaults: loopback port 8080, no token, 64 MB uploads, real time, 1 ms servo period.
+    /// Defaults: loopback port 8080, no token, 64 MB uploads, real time, 1 ms servo period, 60 s
+    /// per job, 300,000 preview points.
     pub fn new(machine: MachineData, programs: PathBuf) -> Self {
         ServeOptions {
             bind: SocketAddr::from(([127, 0, 0, 1], 8080)),
             token: None,
+            allowed_hosts: Vec::new(),
             programs,
             machine,
             upload_limit: DEFAULT_UPLOAD_LIMIT,
             time_scale: 1.0,
             servo_period_s: 0.001,
+            job_budget: JobLimits::default().wall,
+            preview_points: lod::DEFAULT_BUDGET,
         }
     }
 }
@@ -94,7 +121,7 @@ pub fn check_bind(bind: &SocketAddr, token: Option<&str>) -> Result<(), String> 
     }
 }
 
-/// The running panel: options, program directory, machine thread, loaded program.
+/// The running panel: options, program directory, machine thread, jobs, loaded program.
 #[derive(Debug)]
 pub struct App {
     /// How it runs.
@@ -103,7 +130,10 @@ pub struct App {
     pub programs: ProgramDir,
     /// The machine thread's shared state.
     pub machine: Arc<Shared>,
-    loaded: Mutex<Option<http::Loaded>>,
+    /// Checks, loads and previews.
+    pub jobs: Jobs,
+    bound: OnceLock<SocketAddr>,
+    loaded: Mutex<Option<http_program::Loaded>>,
 }
 
 impl App {
@@ -113,6 +143,9 @@ impl App {
         if !(options.time_scale >= 0.0 && options.time_scale.is_finite()) {
             return Err("--time-scale must be 0 (unpaced) or more".into());
         }
+        if options.job_budget.is_zero() {
+            return Err("--job-budget must be more than 0 s".into());
+        }
         let programs = ProgramDir::new(&options.programs)?;
         let machine = machine::spawn(MachineConfig {
             machine: options.machine.clone(),
@@ -120,16 +153,26 @@ impl App {
             time_scale: options.time_scale,
             servo_period_s: options.servo_period_s,
         });
+        let jobs = Jobs::new(JobLimits {
+            wall: options.job_budget,
+        });
         Ok(Arc::new(App {
             options,
             programs,
             machine,
+            jobs,
+            bound: OnceLock::new(),
             loaded: Mutex::new(None),
         }))
     }
 
     fn subroutine_path(&self) -> Vec<PathBuf> {
         vec![self.programs.root().to_path_buf()]
+    }
+
+    /// The address the server listens on (the configured one until it is bound).
+    pub fn bound_addr(&self) -> SocketAddr {
+        self.bound.get().copied().unwrap_or(self.options.bind)
     }
 }
 
@@ -139,6 +182,7 @@ pub async fn serve(app: Arc<App>, on_listening: impl FnOnce(SocketAddr)) -> Resu
         .await
         .map_err(|e| format!("cannot listen on {}: {e}", app.options.bind))?;
     let addr = listener.local_addr().map_err(|e| e.to_string())?;
+    let _ = app.bound.set(addr);
     on_listening(addr);
     axum::serve(listener, http::router(app))
         .await

@@ -1,60 +1,76 @@
-//! The machine thread: one program at a time through interpreter → simulated machine (planner,
-//! interpolator, servo setpoints), paced against the wall clock.
+//! The machine thread: one action at a time — a program, an MDI block, a jog, a reference return,
+//! a touch-off — on the simulated machine (planner, interpolator, servo setpoints), paced against
+//! the wall clock.
 //!
 //! ## Design
 //! ```text
-//!  HTTP handlers ──Event (start, cycle start, acknowledge)──▶ machine thread
-//!        │          atomics (hold, stop, single block, M01, overrides)   │ Interpreter::next
-//!        │                                                               │ BlockSearch::filter
-//!        ▼                                                               │ SimMachine::apply
-//!  Mutex<Status> ◀── setpoint sink: pace, publish (every servo period) ──┘   └─ MotionStage
-//!        │
+//!  HTTP handlers ──Event (start, cycle start, acknowledge, manual)──▶ machine thread
+//!        │          atomics (hold, stop, single block, M01, overrides, jog)   │ run.rs: Interpreter
+//!        │                                                                    │  → BlockSearch → tag
+//!        ▼                                                                    │  → SimMachine
+//!  Mutex<Status> ◀── setpoint sink (paced.rs): pace, snapshot of the executing ┘  (manual.rs: jog,
+//!        │            block (executing.rs), publish (every servo period)            home, MDI)
 //!        └─▶ WebSocket tasks copy the latest snapshot ~30 times a second
 //! ```
-//! * **Pacing.** The setpoint sink sleeps until wall time `origin + (t − t₀) / time_scale` of
-//!   each setpoint. When it finds itself more than 50 ms late (after a program stop or a single
-//!   block wait, where machine time stood still, or on a busy host) it re-bases instead of
-//!   rushing. `time_scale` 1 = real time; 10 = ten times faster (the tests); 0 = unpaced.
-//! * **Back-pressure only downstream.** The thread never waits for a client: it writes the latest
-//!   state into one `Mutex<Status>` (held for a copy's time) and every WebSocket task reads it at
-//!   its own rate, so a slow client loses frames, never the machine.
-//! * **Feed hold** is the motion stage's own ([`HoldSwitch`]): the interpolator brakes on the
-//!   path, stands while held, resumes on release. **Stop** presses hold, and at rest abandons the
-//!   run: the rest of the planner's window is computed unobserved and unpaced, the machine stays
-//!   where it stopped. **Program stops** (M00, M01 with the optional-stop switch on) and **single
-//!   block** drain the planner so that the machine is at rest at the block end, then wait for
-//!   cycle start / acknowledge.
-//! * **Overrides** are read before every command and apply to the commands planned from then on
-//!   (the planner's window is `SERVE_LOOKAHEAD` pieces, so a change shows within that many).
+//! * **The machine persists between actions** ([`MachineContext`]): where it stands, the stored
+//!   control data (offsets, tool table — changed by touch-off and by what programs write, as
+//!   LinuxCNC keeps its `.var` file), which axes are referenced. Every program and MDI block
+//!   starts where the machine stands (`InterpOptions::initial_position`) with that data; checks
+//!   and previews read the same context, so they see what the run will see.
+//! * **The state shown is the executing block's** (`executing.rs`): commands are tagged with a
+//!   snapshot of the state they leave, the interpolator hands the tag back with each setpoint.
+//! * **Pacing, back-pressure, feed hold, stop, program stops, single block** as described in
+//!   `paced.rs` and `run.rs`. The thread never waits for a client.
+//! * **Overrides** are the motion stage's [`OverrideSwitch`], read by the interpolator at every
+//!   servo instant: a change acts on the motion being executed and on everything planned.
 //!
 //! Invariant: a program with an error never starts (the HTTP layer checks it first); an error
-//! found while running (a travel limit) stops the run at that block, nothing after it moves.
+//! found while running (a travel limit) stops the run at that block, nothing after it moves; a
+//! panic inside an action is caught, reported as an alarm, and the thread goes on.
 
-use crate::search::BlockSearch;
-use crate::state::{g_vector, m_vector, ActiveCode, MachineState, SpindleState};
+use crate::executing::Snapshot;
+use crate::jobs::Cancel;
+use crate::state::{ActiveCode, MachineState, SpindleState};
 use serde::Serialize;
-use stanok_canon::{Canon, Diagnostic, Spanned};
-use stanok_interp::{InterpOptions, Interpreter, LengthComp};
-use stanok_machine::{MachineData, SimMachine, SimOptions};
+use stanok_canon::setup::ControlData;
+use stanok_canon::{Diagnostic, Pose};
+use stanok_interp::InterpOptions;
+use stanok_machine::MachineData;
+use stanok_machine::OverrideSwitch;
 use stanok_motion::hold::HoldSwitch;
-use stanok_motion::Setpoint;
 use stanok_syntax::Dialect;
-use std::cell::Cell;
 use std::path::PathBuf;
-use std::rc::Rc;
-use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, Sender};
 use std::sync::{Arc, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-/// Planner look-ahead of the panel's runs, pieces (see module doc, overrides).
-pub const SERVE_LOOKAHEAD: usize = 64;
+/// Planner look-ahead of the panel's runs and previews, pieces (the motion stage's default:
+/// overrides act on everything planned, so the window need not be short for them).
+pub const SERVE_LOOKAHEAD: usize = stanok_motion::limits::DEFAULT_LOOKAHEAD;
+
+/// Every dialect the panel runs, in the selector's order.
+pub const DIALECTS: [Dialect; 8] = [
+    Dialect::Axioma,
+    Dialect::Rs274ngc,
+    Dialect::Balt,
+    Dialect::Mazatrol,
+    Dialect::Nc31,
+    Dialect::P2p32,
+    Dialect::Mc2101,
+    Dialect::Gost20999,
+];
+
+/// The dialect with this id (`Dialect::id`).
+pub fn dialect_by_id(id: &str) -> Option<Dialect> {
+    DIALECTS.iter().copied().find(|d| d.id() == id)
+}
 
 /// Where the run is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RunState {
-    /// No program running.
+    /// Nothing running.
     Idle,
     /// Cycle start accepted, the thread is setting up.
     Starting,
@@ -70,6 +86,28 @@ pub enum RunState {
     Stopped,
     /// Stopped by an error.
     Alarm,
+    /// A jog is moving.
+    Jogging,
+    /// A reference return is moving.
+    Homing,
+    /// An MDI block is executing.
+    Mdi,
+}
+
+impl RunState {
+    /// A program is in progress (started and not ended): nothing else may run or be loaded.
+    pub fn program_active(self) -> bool {
+        matches!(
+            self,
+            RunState::Starting | RunState::Running | RunState::BlockEnd | RunState::Prompt
+        )
+    }
+
+    /// The machine is busy with anything (a program or a manual action).
+    pub fn busy(self) -> bool {
+        self.program_active()
+            || matches!(self, RunState::Jogging | RunState::Homing | RunState::Mdi)
+    }
 }
 
 /// A diagnostic as the page shows it.
@@ -98,6 +136,17 @@ impl Alarm {
             message: d.message.clone(),
         }
     }
+
+    /// An error of the panel itself (no program location: line 0 unless given).
+    pub fn panel(code: &str, line: u32, message: impl Into<String>) -> Self {
+        Alarm {
+            line,
+            column: 1,
+            severity: "error".into(),
+            code: code.into(),
+            message: message.into(),
+        }
+    }
 }
 
 /// Everything the page shows, sent as JSON over the WebSocket and by `GET /api/state`.
@@ -107,9 +156,11 @@ pub struct Status {
     pub seq: u64,
     /// Run state.
     pub run_state: RunState,
-    /// Name of the running (or last) program.
+    /// Name of the running (or loaded) program.
     pub program: String,
-    /// Source line of the block the machine executes (the current setpoint's).
+    /// Its dialect (`Dialect::id`).
+    pub dialect: String,
+    /// Source line of the block the machine executes (the current setpoint's); 0 = none.
     pub line: u32,
     /// The machine's axis letters, in `Pose` order.
     pub axes: Vec<char>,
@@ -117,47 +168,59 @@ pub struct Status {
     pub machine_position: [f64; 9],
     /// Actual position in work coordinates (offsets in force).
     pub work_position: [f64; 9],
-    /// Programmed feed, mm/min.
+    /// Programmed feed of the executing block, mm/min.
     pub feed_programmed: f64,
     /// Actual path speed in X Y Z, mm/min.
     pub feed_actual: f64,
-    /// Tool axis, a unit vector in machine coordinates (the page draws it at the tool). Always
-    /// +Z today: no built-in machine has rotary axes that tilt the tool yet; a 5-axis machine's
-    /// kinematics fills it in.
+    /// Tool axis, a unit vector in machine coordinates (from the rotary axes on a 5-axis machine;
+    /// +Z otherwise).
     pub tool_axis: [f64; 3],
-    /// Spindles.
+    /// Spindles as the executing block commands them.
     pub spindles: [SpindleState; 4],
+    /// Speed each spindle turns at now (the commanded one, under G96 at this position, times the
+    /// spindle override), rev/min.
+    pub spindle_actual_rpm: [f64; 4],
     /// Tool in the spindle.
     pub tool: u32,
     /// Active tool edge (D).
     pub edge: u8,
-    /// Active G codes by group.
+    /// Active G codes by group (the executing block's).
     pub g_codes: Vec<ActiveCode>,
-    /// Active M functions by group.
+    /// Active M functions by group (the executing block's).
     pub m_codes: Vec<ActiveCode>,
     /// Machine time since cycle start (holds and stops included), s.
     pub elapsed_s: f64,
     /// Planned cycle time of the whole program, s.
     pub estimated_s: f64,
-    /// Operator message (MSG), empty when none.
+    /// Operator message (MSG) of the executed blocks, empty when none or acknowledged.
     pub message: String,
     /// M00/M01 prompt waiting for acknowledge.
     pub prompt: Option<String>,
+    /// A refusal the operator must read (e.g. a load while a program is paused); stays until
+    /// acknowledged.
+    pub notice: Option<String>,
     /// Errors that stopped or refused the run.
     pub alarms: Vec<Alarm>,
-    /// Feed override, %.
+    /// Feed override in force, % (0…200).
     pub feed_override: u32,
-    /// Rapid override, %.
+    /// Rapid override in force, % (0…100).
     pub rapid_override: u32,
+    /// Spindle override in force, % (50…120).
+    pub spindle_override: u32,
+    /// Machine time since which the overrides shown act on the motion (the first setpoint that
+    /// ran with them), s.
+    pub overrides_since_s: f64,
     /// Single block switch.
     pub single_block: bool,
     /// Optional stop (M01) switch.
     pub optional_stop: bool,
     /// Feed hold pressed.
     pub held: bool,
+    /// Per axis of `axes`: referenced (homed) since the panel started.
+    pub homed: Vec<bool>,
     /// Line of the running block search, if any.
     pub search_line: Option<u32>,
-    /// Machine state of the accepted commands (see [`MachineState`]).
+    /// Machine state of the executing block (see [`MachineState`]).
     pub state: MachineState,
     /// The machine state when the run's marked line (the search line, or `mark_line`) first
     /// reached the machine.
@@ -170,10 +233,12 @@ pub struct Status {
 
 impl Status {
     fn new(axes: Vec<char>) -> Self {
+        let homed = vec![false; axes.len()];
         Status {
             seq: 0,
             run_state: RunState::Idle,
             program: String::new(),
+            dialect: Dialect::Rs274ngc.id().into(),
             line: 0,
             axes,
             machine_position: [0.0; 9],
@@ -182,6 +247,7 @@ impl Status {
             feed_actual: 0.0,
             tool_axis: [0.0, 0.0, 1.0],
             spindles: MachineState::default().spindles,
+            spindle_actual_rpm: [0.0; 4],
             tool: 0,
             edge: 0,
             g_codes: Vec::new(),
@@ -190,18 +256,35 @@ impl Status {
             estimated_s: 0.0,
             message: String::new(),
             prompt: None,
+            notice: None,
             alarms: Vec::new(),
             feed_override: 100,
             rapid_override: 100,
+            spindle_override: 100,
+            overrides_since_s: 0.0,
             single_block: false,
             optional_stop: true,
             held: false,
+            homed,
             search_line: None,
             state: MachineState::default(),
             marked_state: None,
             final_position: None,
             cycle_time_s: None,
         }
+    }
+
+    /// Shows a block's state: line, DRO, codes (not the message: see `paced.rs`).
+    pub fn show_block(&mut self, snap: &Snapshot) {
+        self.line = snap.line;
+        self.state = snap.state.clone();
+        self.work_position = self.state.work_of(&self.machine_position);
+        self.feed_programmed = snap.state.feed;
+        self.spindles = snap.state.spindles;
+        self.tool = snap.state.tool;
+        self.edge = snap.edge;
+        self.g_codes = snap.g_codes.clone();
+        self.m_codes = snap.m_codes.clone();
     }
 }
 
@@ -210,16 +293,82 @@ impl Status {
 pub struct Controls {
     /// Feed hold (read by the interpolator at every servo instant).
     pub hold: Arc<HoldSwitch>,
-    /// Stop / reset requested.
-    pub stop: AtomicBool,
+    /// Stop / reset requested (also read by the interpreter's source: `jobs::CancelReader`).
+    pub stop: Cancel,
     /// Single block.
     pub single_block: AtomicBool,
     /// M01 stops.
     pub optional_stop: AtomicBool,
-    /// Feed override, % (0…200).
-    pub feed_override: AtomicU32,
-    /// Rapid override, % (1…100).
-    pub rapid_override: AtomicU32,
+    /// Feed, rapid and spindle override: the motion stage's knobs, read by the interpolator at
+    /// every servo instant of a program or MDI block (jogs and reference returns ignore them).
+    pub overrides: Arc<OverrideSwitch>,
+    /// A continuous jog moves until this instant (ms since the thread started; extended by the
+    /// page while the key is held, so a lost page stops the jog).
+    pub jog_until_ms: AtomicU64,
+    /// When the thread started (the origin of `jog_until_ms`).
+    pub epoch: Instant,
+}
+
+impl Controls {
+    /// Milliseconds since `epoch`.
+    pub fn now_ms(&self) -> u64 {
+        self.epoch.elapsed().as_millis() as u64
+    }
+}
+
+/// A manual action (`manual.rs`).
+#[derive(Debug, Clone)]
+pub enum Manual {
+    /// Jog one axis (index in `Pose` order) by `increment` (None = continuous, to the travel
+    /// limit, while `Controls::jog_until_ms` is ahead) at `speed` unit/min.
+    Jog {
+        /// Axis, `Pose` index.
+        axis: usize,
+        /// +1 or −1.
+        direction: f64,
+        /// Step, unit; None = continuous.
+        increment: Option<f64>,
+        /// unit/min.
+        speed: f64,
+    },
+    /// Reference return of one axis or (None) all: the tool axis first, then the others.
+    Home {
+        /// Axis, `Pose` index; None = all.
+        axis: Option<usize>,
+    },
+    /// Set the active work offset so that the axis reads `value` here.
+    TouchOff {
+        /// Axis, `Pose` index.
+        axis: usize,
+        /// Work coordinate wanted, unit.
+        value: f64,
+    },
+    /// Execute one MDI block.
+    Mdi {
+        /// The block.
+        text: String,
+        /// In this dialect.
+        dialect: Dialect,
+    },
+}
+
+/// What a manual action answers.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ManualReply {
+    /// Accepted (and, for MDI, executed): the diagnostics (warnings) and a note.
+    Done {
+        /// What happened.
+        note: String,
+        /// Warnings (MDI).
+        diagnostics: Vec<Alarm>,
+    },
+    /// Refused: why, and the diagnostics of an MDI block.
+    Refused {
+        /// Why.
+        error: String,
+        /// Errors (MDI).
+        diagnostics: Vec<Alarm>,
+    },
 }
 
 /// What wakes the machine thread.
@@ -231,6 +380,8 @@ pub enum Event {
     CycleStart,
     /// Acknowledge a prompt or a message.
     Acknowledge,
+    /// A manual action, sent at the instant given; the answer goes to the sender.
+    Manual(Manual, Instant, tokio::sync::oneshot::Sender<ManualReply>),
 }
 
 /// A program to run.
@@ -251,6 +402,17 @@ pub struct Job {
     pub estimated_s: f64,
 }
 
+/// The machine between actions (module doc).
+#[derive(Debug, Clone)]
+pub struct MachineContext {
+    /// Where the machine stands, machine coordinates.
+    pub position: [f64; 9],
+    /// Stored control data: offsets, tools, parameters.
+    pub control: ControlData,
+    /// Referenced axes, `Pose` order.
+    pub homed: [bool; 9],
+}
+
 /// State shared between the HTTP side and the machine thread.
 #[derive(Debug)]
 pub struct Shared {
@@ -258,6 +420,7 @@ pub struct Shared {
     pub controls: Controls,
     status: Mutex<Status>,
     events: Mutex<Sender<Event>>,
+    context: Mutex<MachineContext>,
 }
 
 impl Shared {
@@ -266,13 +429,26 @@ impl Shared {
         self.status.lock().unwrap_or_else(|e| e.into_inner())
     }
 
+    /// The machine between actions (position, stored data).
+    pub fn context(&self) -> MachineContext {
+        self.context
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .clone()
+    }
+
+    pub(crate) fn set_context(&self, ctx: &MachineContext) {
+        *self.context.lock().unwrap_or_else(|e| e.into_inner()) = ctx.clone();
+    }
+
     /// Wakes the machine thread.
     pub fn send(&self, event: Event) {
         let tx = self.events.lock().unwrap_or_else(|e| e.into_inner());
         let _ = tx.send(event);
     }
 
-    fn publish(&self, f: impl FnOnce(&mut Status)) {
+    /// Changes the status and counts the change.
+    pub fn publish(&self, f: impl FnOnce(&mut Status)) {
         let mut s = self.status();
         f(&mut s);
         s.seq += 1;
@@ -292,16 +468,19 @@ pub struct MachineConfig {
     pub servo_period_s: f64,
 }
 
-/// Interpreter options for `machine` (as `stanok run` builds them).
+/// Interpreter options for `machine` (as `stanok run` builds them), starting at `at` with its
+/// stored data.
 pub fn interp_options(
     machine: &MachineData,
     dialect: Dialect,
     subroutine_path: &[PathBuf],
+    at: &MachineContext,
 ) -> InterpOptions {
     let mut opts = InterpOptions::new(dialect);
     opts.axes = machine.axis_mask();
     opts.arc_tolerance_mm = machine.arc_tolerance;
-    opts.control = machine.control.clone();
+    opts.control = at.control.clone();
+    opts.initial_position = Pose::from_array(at.position);
     opts.diameter_axes = machine.diameter_axes();
     opts.rs274_machine_units = machine.linuxcnc_units;
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
@@ -350,356 +529,139 @@ pub fn mazatrol_params(machine: &MachineData) -> stanok_interp::MazatrolParams {
     }
 }
 
-/// Starts the machine thread.
+/// Starts the machine thread, standing at the machine's origin (not referenced).
 pub fn spawn(config: MachineConfig) -> Arc<Shared> {
     let (tx, rx) = std::sync::mpsc::channel();
     let axes = config.machine.axes.iter().map(|a| a.name).collect();
+    let context = MachineContext {
+        position: [0.0; 9],
+        control: config.machine.control.clone(),
+        homed: [false; 9],
+    };
     let shared = Arc::new(Shared {
         controls: Controls {
             hold: Arc::new(HoldSwitch::default()),
-            stop: AtomicBool::new(false),
+            stop: Cancel::new(),
             single_block: AtomicBool::new(false),
             optional_stop: AtomicBool::new(true),
-            feed_override: AtomicU32::new(100),
-            rapid_override: AtomicU32::new(100),
+            overrides: Arc::new(OverrideSwitch::default()),
+            jog_until_ms: AtomicU64::new(0),
+            epoch: Instant::now(),
         },
         status: Mutex::new(Status::new(axes)),
         events: Mutex::new(tx),
+        context: Mutex::new(context.clone()),
     });
     let thread_shared = shared.clone();
     std::thread::Builder::new()
         .name("stanok-machine".into())
-        .spawn(move || machine_loop(&config, &thread_shared, &rx))
+        .spawn(move || machine_loop(&config, &thread_shared, &rx, context))
         .expect("spawn the machine thread");
     shared
 }
 
-fn machine_loop(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>) {
+fn machine_loop(
+    config: &MachineConfig,
+    shared: &Arc<Shared>,
+    rx: &Receiver<Event>,
+    mut here: MachineContext,
+) {
+    let mut mdi = crate::manual::MdiSession::default();
     while let Ok(event) = rx.recv() {
         match event {
             // The stop switch was cleared by the cycle start that sent this (`http::cycle_start`),
             // so a stop pressed before the thread picks the job up still counts.
-            Event::Start(job) => run_job(config, shared, rx, &job),
-            Event::Acknowledge => shared.publish(|s| s.message.clear()),
+            Event::Start(job) => {
+                crate::run::run_program(config, shared, rx, &mut here, &job);
+                // A program leaves its own modal state: MDI starts afresh from the stored data.
+                mdi = Default::default();
+            }
+            Event::Acknowledge => shared.publish(|s| {
+                s.message.clear();
+                s.notice = None;
+            }),
             Event::CycleStart => {}
+            Event::Manual(action, sent, reply) => {
+                let answer = if sent.elapsed() > Duration::from_secs(2) {
+                    ManualReply::Refused {
+                        error: "the machine was busy: the request came too late".into(),
+                        diagnostics: Vec::new(),
+                    }
+                } else {
+                    crate::manual::execute(config, shared, rx, &mut here, &mut mdi, action)
+                };
+                let _ = reply.send(answer);
+            }
         }
-    }
-}
-
-/// Sleeps setpoint by setpoint to the wall clock (module doc).
-struct Pacer {
-    scale: f64,
-    origin: Instant,
-    origin_t: f64,
-}
-
-impl Pacer {
-    fn pace(&mut self, t: f64) {
-        if self.scale <= 0.0 || !t.is_finite() {
-            return;
-        }
-        let due =
-            self.origin + Duration::from_secs_f64(((t - self.origin_t) / self.scale).max(0.0));
-        let now = Instant::now();
-        if now > due + Duration::from_millis(50) {
-            self.origin = now;
-            self.origin_t = t;
-        } else if due > now + Duration::from_micros(500) {
-            std::thread::sleep(due - now);
-        }
+        shared.set_context(&here);
     }
 }
 
 /// Why a wait ended.
-enum Woken {
+pub(crate) enum Woken {
     Go,
     Stop,
 }
 
-/// Waits for cycle start or acknowledge (or stop).
-fn wait_for_operator(shared: &Shared, rx: &Receiver<Event>) -> Woken {
+/// Waits for cycle start or acknowledge (or stop). Manual actions meanwhile are refused.
+pub(crate) fn wait_for_operator(shared: &Shared, rx: &Receiver<Event>) -> Woken {
     loop {
-        if shared.controls.stop.load(Ordering::Relaxed) {
+        if shared.controls.stop.is_raised() {
             return Woken::Stop;
         }
         match rx.recv_timeout(Duration::from_millis(20)) {
             Ok(Event::CycleStart) | Ok(Event::Acknowledge) => return Woken::Go,
             Ok(Event::Start(_)) => {}
+            Ok(Event::Manual(_, _, reply)) => {
+                let _ = reply.send(ManualReply::Refused {
+                    error: "a program is in progress: stop it first".into(),
+                    diagnostics: Vec::new(),
+                });
+            }
             Err(RecvTimeoutError::Timeout) => {}
             Err(RecvTimeoutError::Disconnected) => return Woken::Stop,
         }
     }
 }
 
-/// One run of one program (module doc).
-fn run_job(config: &MachineConfig, shared: &Arc<Shared>, rx: &Receiver<Event>, job: &Job) {
-    let controls = &shared.controls;
-    let mut state = MachineState::default();
-    shared.publish(|s| {
-        s.run_state = RunState::Running;
-        s.program = job.name.clone();
-        s.alarms.clear();
-        s.message.clear();
-        s.prompt = None;
-        s.search_line = job.search_line;
-        s.marked_state = None;
-        s.final_position = None;
-        s.cycle_time_s = None;
-        s.elapsed_s = 0.0;
-        s.estimated_s = job.estimated_s;
-        s.state = state.clone();
-    });
-    let opts = interp_options(&config.machine, job.dialect, &config.subroutine_path);
-    let mut interp = Interpreter::from_text(&job.text, opts);
-    let sim_options = SimOptions {
-        servo_period_s: config.servo_period_s,
-        lookahead: SERVE_LOOKAHEAD,
-        ..SimOptions::default()
-    };
-    let mut sim = SimMachine::with_options(config.machine.clone(), sim_options);
-    sim.set_hold_switch(controls.hold.clone());
-    let abandoned = Rc::new(Cell::new(false));
-    sim.set_setpoint_sink(setpoint_sink(
-        shared.clone(),
-        config.time_scale,
-        abandoned.clone(),
-        config.machine.five_axis(),
-    ));
-    let mut search = job.search_line.map(BlockSearch::new);
-    let mark_line = job.search_line.or(job.mark_line);
-    let (mut feed_pct, mut rapid_pct) = (100, 100);
-    let mut block_line = 0u32;
-    let mut block_moved = false;
-    let mut failure: Option<Diagnostic> = None;
-    'run: while let Some(item) = interp.next() {
-        if controls.stop.load(Ordering::Relaxed) || abandoned.get() {
-            break;
-        }
-        let cmd = match item {
-            Ok(cmd) => cmd,
-            Err(d) => {
-                failure = Some(d);
-                break;
-            }
-        };
-        let (f, r) = (
-            controls.feed_override.load(Ordering::Relaxed),
-            controls.rapid_override.load(Ordering::Relaxed),
-        );
-        if (f, r) != (feed_pct, rapid_pct) {
-            (feed_pct, rapid_pct) = (f, r);
-            sim.set_feed_override((f as f64 / 100.0).max(0.001));
-            sim.set_rapid_override((r as f64 / 100.0).max(0.001));
-        }
-        let (approach, cmds) = match &mut search {
-            Some(s) => s.filter(cmd),
-            None => (None, vec![cmd]),
-        };
-        if let Some(approach) = approach {
-            if let Err(d) = execute(
-                &mut sim,
-                &mut state,
-                &approach,
-                &interp,
-                job.dialect,
-                shared,
-            ) {
-                failure = Some(d);
-                break 'run;
-            }
-        }
-        for cmd in cmds {
-            // Single block: the machine stops at the end of every block that moved.
-            if cmd.span.line != block_line {
-                if block_moved && controls.single_block.load(Ordering::Relaxed) {
-                    settle(&mut sim, &state, shared);
-                    shared.publish(|s| s.run_state = RunState::BlockEnd);
-                    if let Woken::Stop = wait_for_operator(shared, rx) {
-                        break 'run;
-                    }
-                    shared.publish(|s| s.run_state = RunState::Running);
-                }
-                block_line = cmd.span.line;
-                block_moved = false;
-                if Some(cmd.span.line) == mark_line {
-                    let at = state.clone();
-                    shared.publish(|s| {
-                        if s.marked_state.is_none() {
-                            s.marked_state = Some(at);
-                        }
-                    });
-                }
-            }
-            if let Err(d) = execute(&mut sim, &mut state, &cmd, &interp, job.dialect, shared) {
-                failure = Some(d);
-                break 'run;
-            }
-            block_moved |= cmd.value.motion().is_some();
-            if let Canon::ProgramStop { optional } = cmd.value {
-                if !optional || controls.optional_stop.load(Ordering::Relaxed) {
-                    settle(&mut sim, &state, shared);
-                    let text = if optional {
-                        "M01 optional stop: acknowledge to continue"
-                    } else {
-                        "M00 program stop: acknowledge to continue"
-                    };
-                    shared.publish(|s| {
-                        s.run_state = RunState::Prompt;
-                        s.line = cmd.span.line;
-                        s.prompt = Some(format!("line {}: {text}", cmd.span.line));
-                    });
-                    let woken = wait_for_operator(shared, rx);
-                    shared.publish(|s| {
-                        s.prompt = None;
-                        s.run_state = RunState::Running;
-                    });
-                    if let Woken::Stop = woken {
-                        break 'run;
-                    }
-                }
-            }
+/// True if `x` has no NaN (the status goes out as JSON, where NaN is null).
+pub(crate) fn finite9(x: &[f64; 9]) -> bool {
+    x.iter().all(|v| v.is_finite())
+}
+
+/// Clears the Status fields a load or reset returns to the program's start.
+pub(crate) fn reset_to_start(s: &mut Status, start: Option<&Snapshot>) {
+    s.line = 0;
+    s.message.clear();
+    s.prompt = None;
+    s.search_line = None;
+    s.marked_state = None;
+    s.final_position = None;
+    s.cycle_time_s = None;
+    s.elapsed_s = 0.0;
+    s.feed_actual = 0.0;
+    s.spindle_actual_rpm = [0.0; 4];
+    s.held = false;
+    match start {
+        Some(snap) => s.show_block(snap),
+        None => {
+            s.state = MachineState {
+                position: s.machine_position,
+                ..MachineState::default()
+            };
+            s.feed_programmed = 0.0;
+            s.spindles = MachineState::default().spindles;
+            s.g_codes.clear();
+            s.m_codes.clear();
         }
     }
-    finish(shared, &mut sim, &abandoned, failure, search.as_ref());
+    s.line = 0;
+    s.work_position = s.state.work_of(&s.machine_position);
 }
 
-/// Runs the planned motion to its end and shows the machine at rest there: the interpolator
-/// reaches a stop point exactly at the next servo instant, which belongs to the next piece, so the
-/// last setpoint sampled is one period short of it.
-fn settle(sim: &mut SimMachine, state: &MachineState, shared: &Shared) {
-    sim.drain_motion();
-    if shared.controls.stop.load(Ordering::Relaxed) {
-        return;
-    }
-    let at = state.position;
-    shared.publish(|s| {
-        s.machine_position = at;
-        s.work_position = s.state.work_of(&at);
-        s.feed_actual = 0.0;
-    });
-}
-
-/// Applies one command to the machine and to the published state.
-fn execute<R: std::io::BufRead + std::io::Seek>(
-    sim: &mut SimMachine,
-    state: &mut MachineState,
-    cmd: &Spanned<Canon>,
-    interp: &Interpreter<R>,
-    dialect: Dialect,
-    shared: &Shared,
-) -> Result<(), Diagnostic> {
-    sim.apply(cmd)?;
-    state.apply(&cmd.value);
-    let modal = interp.state();
-    let axioma = interp.axioma_modes();
-    let length_comp = axioma.map_or(LengthComp::Off, |m| m.length_comp);
-    let (g, m) = (
-        g_vector(modal, length_comp, dialect),
-        m_vector(interp, state, dialect),
-    );
-    let edge = axioma.map_or(0, |m| m.edge);
-    shared.publish(|s| {
-        if let Canon::Message { text } = &cmd.value {
-            s.message = text.trim().to_string();
-        }
-        s.state = state.clone();
-        s.feed_programmed = state.feed;
-        s.spindles = state.spindles;
-        s.tool = state.tool;
-        s.edge = edge;
-        s.g_codes = g;
-        s.m_codes = m;
-    });
-    Ok(())
-}
-
-/// The end of a run: the rest of the motion, the final state, the run state.
-fn finish(
-    shared: &Shared,
-    sim: &mut SimMachine,
-    abandoned: &Rc<Cell<bool>>,
-    failure: Option<Diagnostic>,
-    search: Option<&BlockSearch>,
-) {
-    if shared.controls.stop.load(Ordering::Relaxed) && !abandoned.get() {
-        // Stopped while waiting (prompt, block end): nothing is moving; drop the plan.
-        abandoned.set(true);
-    }
-    shared.controls.hold.set(false);
-    // The rest of the motion runs here (paced), so a stop may still come during it.
-    let report = sim.finish();
-    let stopped = shared.controls.stop.load(Ordering::Relaxed);
-    let not_reached = search.filter(|s| !s.reached()).map(|_| ());
-    shared.publish(|s| {
-        s.held = false;
-        s.feed_actual = 0.0;
-        if let Some(d) = &failure {
-            s.alarms.push(Alarm::of(d));
-        }
-        if not_reached.is_some() {
-            s.alarms.push(Alarm {
-                line: s.search_line.unwrap_or(0),
-                column: 1,
-                severity: "error".into(),
-                code: "serve::search-not-reached".into(),
-                message: "block search: the program never reaches this line".into(),
-            });
-        }
-        s.run_state = if failure.is_some() || not_reached.is_some() {
-            RunState::Alarm
-        } else if stopped {
-            RunState::Stopped
-        } else {
-            s.final_position = Some(report.final_position.to_array());
-            s.cycle_time_s = Some(report.cycle_time_s);
-            RunState::Finished
-        };
-    });
-}
-
-/// The setpoint sink: pace, publish, and carry out a stop (module doc).
-fn setpoint_sink(
-    shared: Arc<Shared>,
-    time_scale: f64,
-    abandoned: Rc<Cell<bool>>,
-    kinematics: Option<stanok_kin::FiveAxis>,
-) -> Box<dyn FnMut(&Setpoint)> {
-    let mut pacer = Pacer {
-        scale: time_scale,
-        origin: Instant::now(),
-        origin_t: 0.0,
-    };
-    Box::new(move |sp: &Setpoint| {
-        if abandoned.get() {
-            return;
-        }
-        let controls = &shared.controls;
-        let v = &sp.velocity;
-        let speed = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        let at_rest = v.iter().all(|x| *x == 0.0);
-        if controls.stop.load(Ordering::Relaxed) {
-            controls.hold.set(true);
-            if at_rest {
-                // Stopped on the path: from here on the plan runs unobserved and unpaced.
-                abandoned.set(true);
-                controls.hold.set(false);
-            }
-        }
-        // The tool axis from the rotary axes' positions (a 3-axis machine: +Z, as at start).
-        let tool_axis = kinematics.as_ref().map_or([0.0, 0.0, 1.0], |k| {
-            k.tool_vector_at(&stanok_canon::Pose::from_array(sp.position))
-        });
-        shared.publish(|s| {
-            s.machine_position = sp.position;
-            s.tool_axis = tool_axis;
-            s.work_position = s.state.work_of(&sp.position);
-            s.line = sp.line;
-            s.elapsed_s = sp.t;
-            s.feed_actual = speed * 60.0;
-            s.held = controls.hold.is_held();
-        });
-        if !abandoned.get() {
-            pacer.pace(sp.t);
-        }
-    })
+/// The override knobs in %, for the status.
+pub(crate) fn switches(c: &Controls) -> (u32, u32, u32) {
+    let o = c.overrides.get();
+    let pct = |f: f64| (f * 100.0).round() as u32;
+    (pct(o.feed), pct(o.rapid), pct(o.spindle))
 }

@@ -40,6 +40,11 @@ impl BlockSearch {
         }
     }
 
+    /// The line searched for.
+    pub fn line(&self) -> u32 {
+        self.line
+    }
+
     /// True once line N came.
     pub fn reached(&self) -> bool {
         self.reached

@@ -15,8 +15,9 @@
 //! state a full run ends in (`tests/block_search.rs`).
 //!
 //! The modal vectors the operator reads (G groups, M groups, tool edge) come from the interpreter's
-//! state ([`g_vector`], [`m_vector`]); the interpreter runs up to a look-ahead window ahead of the
-//! machine, so they show the block being prepared, as the "G-vector" of a control's NC kernel does.
+//! state ([`g_vector_of`], [`m_vector`]), read when the interpreter hands over a command; they
+//! travel with that command to the machine (`executing.rs`), so the page shows them when the
+//! command's motion executes, not when the interpreter prepares it.
 
 use serde::Serialize;
 use stanok_canon::{Canon, FeedMode, LengthUnits, PathMode, Plane, SpindleDirection};
@@ -101,7 +102,20 @@ impl MachineState {
     /// Takes in one command the machine accepted.
     pub fn apply(&mut self, cmd: &Canon) {
         match cmd {
-            Canon::Init { position, .. } => self.position = position.to_array(),
+            Canon::Init {
+                position,
+                g5x_index,
+                g5x_offset,
+                g92_offset,
+                xy_rotation,
+                ..
+            } => {
+                self.position = position.to_array();
+                self.g5x_index = *g5x_index;
+                self.g5x_offset = g5x_offset.to_array();
+                self.g92_offset = g92_offset.to_array();
+                self.xy_rotation_deg = *xy_rotation;
+            }
             Canon::StraightProbe {
                 motion, contact, ..
             } => self.position = motion.stopped_at(*contact).end.to_array(),
@@ -301,6 +315,44 @@ pub fn g_vector(s: &ModalState, length_comp: LengthComp, dialect: Dialect) -> Ve
             "retract",
             if s.retract_to_initial { "G98" } else { "G99" },
         ));
+    }
+    v
+}
+
+/// The active G codes of whatever dialect the interpreter runs: the lab controls keep their own
+/// modal state ([`Interpreter::lab_state`]).
+pub fn g_vector_of<R: std::io::BufRead + std::io::Seek>(
+    interp: &Interpreter<R>,
+    dialect: Dialect,
+) -> Vec<ActiveCode> {
+    let Some(lab) = interp.lab_state() else {
+        let length_comp = interp
+            .axioma_modes()
+            .map_or(LengthComp::Off, |m| m.length_comp);
+        return g_vector(interp.state(), length_comp, dialect);
+    };
+    let mut v = vec![
+        code("motion", format!("G{}", lab.motion)),
+        code(
+            "plane",
+            match lab.plane {
+                Plane::XY => "G17",
+                Plane::ZX => "G18",
+                Plane::YZ => "G19",
+            },
+        ),
+        code("distance", if lab.incremental { "G91" } else { "G90" }),
+        code(
+            "feed",
+            match lab.feed_mode {
+                FeedMode::InverseTime => "G93",
+                FeedMode::UnitsPerMinute => "G94",
+                FeedMode::UnitsPerRevolution => "G95",
+            },
+        ),
+    ];
+    if dialect == Dialect::Gost20999 {
+        v.push(code("work offset", format!("G{}", 53 + lab.work_system)));
     }
     v
 }

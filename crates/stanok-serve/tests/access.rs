@@ -1,4 +1,5 @@
-//! The access rules of the panel: bind and token, the upload limit, the program directory.
+//! The access rules of the panel: bind and token, Host and Origin, the upload limit (also a
+//! declared one), the program directory.
 
 mod common;
 use common::*;
@@ -6,6 +7,7 @@ use serde_json::{json, Value};
 use stanok_serve::{check_bind, App};
 use std::io::{BufRead, BufReader, Write};
 use std::net::{SocketAddr, TcpStream};
+use std::time::{Duration, Instant};
 
 const TOKEN: &str = "0123456789abcdef-token";
 
@@ -159,4 +161,140 @@ fn the_program_directory_is_the_only_place_read_or_written() {
     let (_, list) = server.call("GET", "/api/programs", Value::Null);
     assert_eq!(list["programs"], json!(["ok.ngc"]));
     let _ = std::fs::remove_file(&outside);
+}
+
+/// Issue 17 item 9: DNS rebinding. A request whose Host is not the panel's address is refused
+/// (pages, API, WebSocket), and nothing it asked for happens; names given with `--allowed-host`
+/// are accepted.
+#[test]
+fn a_foreign_host_is_refused_and_an_allowed_name_accepted() {
+    let mut o = options(temp_programs("host"));
+    o.allowed_hosts = vec!["cnc.shop.lan".into()];
+    let server = Server::start(o);
+    let port = server.addr.port();
+    let own = server.addr.to_string();
+    for host in [
+        "evil.example".to_string(),
+        format!("evil.example:{port}"),
+        format!("127.0.0.1:{}", port.wrapping_add(1)),
+        String::new(),
+    ] {
+        for (method, path) in [
+            ("GET", "/"),
+            ("GET", "/api/state"),
+            ("POST", "/api/cycle-start"),
+        ] {
+            let (code, body) = server.raw_with(method, path, b"", None, &host, "");
+            assert_eq!(code, 403, "{method} {path} Host {host:?}: {body}");
+        }
+        assert_eq!(ws_status_with(&server, &host, ""), 403, "Host {host:?}");
+    }
+    let (code, body) = server.raw_with(
+        "POST",
+        "/api/load",
+        json!({"name": "x.ngc", "text": "G0 X1\nM2\n"})
+            .to_string()
+            .as_bytes(),
+        None,
+        "evil.example",
+        "",
+    );
+    assert_eq!(code, 403, "{body}");
+    assert_eq!(
+        server.call("GET", "/api/loaded", Value::Null).1["name"],
+        Value::Null
+    );
+    for host in [
+        own.clone(),
+        format!("localhost:{port}"),
+        format!("cnc.shop.lan:{port}"),
+    ] {
+        assert_eq!(
+            server.raw_with("GET", "/api/state", b"", None, &host, "").0,
+            200,
+            "{host}"
+        );
+    }
+}
+
+/// A WebSocket handshake's status with this Host and extra headers.
+fn ws_status_with(server: &Server, host: &str, extra: &str) -> u16 {
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    write!(
+        s,
+        "GET /ws HTTP/1.1\r\nHost: {host}\r\n{extra}Upgrade: websocket\r\nConnection: Upgrade\r\n\
+         Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"
+    )
+    .unwrap();
+    let mut line = String::new();
+    BufReader::new(s).read_line(&mut line).unwrap();
+    line.split(' ').nth(1).unwrap_or("0").parse().unwrap_or(0)
+}
+
+/// Issue 17 item 9: another site's page may not drive the machine or read its state through the
+/// operator's browser: WebSockets and state-changing requests with a foreign Origin are refused;
+/// the panel's own Origin (and no Origin: not a browser) passes.
+#[test]
+fn state_changing_requests_and_websockets_need_the_panels_own_origin() {
+    let server = Server::start(options(temp_programs("origin")));
+    let own = server.addr.to_string();
+    let evil = "Origin: http://evil.example\r\n";
+    for path in [
+        "/api/cycle-start",
+        "/api/feed-hold",
+        "/api/stop",
+        "/api/acknowledge",
+    ] {
+        let (code, _) = server.raw_with("POST", path, b"", None, &own, evil);
+        assert_eq!(code, 403, "{path}");
+    }
+    let (code, _) = server.raw_with("PUT", "/api/programs/x.nc", b"G0 X1\n", None, &own, evil);
+    assert_eq!(code, 403);
+    assert!(!server.programs.join("x.nc").exists());
+    assert_eq!(
+        server.state()["held"],
+        false,
+        "the refused feed hold did nothing"
+    );
+    assert_eq!(ws_status_with(&server, &own, evil), 403);
+    assert_eq!(ws_status_with(&server, &own, "Origin: null\r\n"), 403);
+    // A GET from another origin is no harm (the browser does not let it read the answer).
+    assert_eq!(
+        server
+            .raw_with("GET", "/api/state", b"", None, &own, evil)
+            .0,
+        200
+    );
+    let mine = format!("Origin: http://{own}\r\n");
+    assert_eq!(
+        server
+            .raw_with("POST", "/api/feed-hold", b"", None, &own, &mine)
+            .0,
+        200
+    );
+    assert_eq!(ws_status_with(&server, &own, &mine), 101);
+    assert_eq!(ws_status_with(&server, &own, ""), 101);
+}
+
+/// Issue 17 item 9: a declared Content-Length over the limit is answered 413 at once, without
+/// waiting for a body that never comes.
+#[test]
+fn a_lying_content_length_is_answered_413_at_once() {
+    let server = Server::start(options(temp_programs("lying")));
+    let mut s = TcpStream::connect(server.addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(5))).unwrap();
+    let t0 = Instant::now();
+    write!(
+        s,
+        "POST /api/load HTTP/1.1\r\nHost: {}\r\nContent-Type: application/json\r\n\
+         Content-Length: 99999999999\r\n\r\n{{\"name\":",
+        server.addr
+    )
+    .unwrap();
+    let mut line = String::new();
+    BufReader::new(&s).read_line(&mut line).unwrap();
+    let took = t0.elapsed();
+    assert!(line.starts_with("HTTP/1.1 413"), "{line}");
+    assert!(took < Duration::from_millis(500), "answered after {took:?}");
+    assert_eq!(server.state()["run_state"], "idle");
 }

@@ -11,7 +11,7 @@ use serde_json::{json, Value};
 use stanok_canon::Canon;
 use stanok_interp::Interpreter;
 use stanok_machine::MachineData;
-use stanok_serve::machine::interp_options;
+use stanok_serve::machine::{interp_options, MachineContext};
 use stanok_serve::state::MachineState;
 use stanok_syntax::Dialect;
 use std::time::Duration;
@@ -19,7 +19,12 @@ use std::time::Duration;
 /// Source lines of the program's motion commands, in execution order (None if it has an error).
 fn motion_lines(text: &str, dialect: Dialect) -> Option<Vec<u32>> {
     let machine = MachineData::builtin("mill").unwrap();
-    let mut interp = Interpreter::from_text(text, interp_options(&machine, dialect, &[]));
+    let at = MachineContext {
+        position: [0.0; 9],
+        control: machine.control.clone(),
+        homed: [false; 9],
+    };
+    let mut interp = Interpreter::from_text(text, interp_options(&machine, dialect, &[], &at));
     let mut lines = Vec::new();
     for item in interp.by_ref() {
         let cmd = item.ok()?;
@@ -65,6 +70,7 @@ fn machine_state(v: &Value) -> MachineState {
 }
 
 fn run(server: &Server, start: Value) -> Value {
+    server.home();
     let (code, body) = server.call("POST", "/api/cycle-start", start);
     assert_eq!(code, 200, "{body}");
     server.wait_for(&["finished", "alarm", "stopped"], Duration::from_secs(300))
@@ -72,6 +78,7 @@ fn run(server: &Server, start: Value) -> Value {
 
 /// Runs to the end, acknowledging every M00/M01 prompt.
 fn run_through(server: &Server, start: Value) -> Value {
+    server.home();
     let (code, body) = server.call("POST", "/api/cycle-start", start);
     assert_eq!(code, 200, "{body}");
     let t0 = std::time::Instant::now();
@@ -107,6 +114,8 @@ fn block_search_ends_in_the_full_runs_state_for_every_corpus_program_that_moves(
             skipped += 1;
             continue;
         }
+        // Every run starts at the origin (the machine stays where a run leaves it).
+        server.home();
         let (code, loaded) = server.call("POST", "/api/load", json!({"name": name, "text": text}));
         assert_eq!(code, 200, "{name}: {loaded}");
         let line = lines[lines.len() / 2];

@@ -1,6 +1,7 @@
 //! The run controls over the JSON API: real-time pacing (with clients that never read their
 //! WebSocket), feed hold and resume, stop, single block, M00/M01 with the optional-stop switch,
-//! operator messages, feed override.
+//! operator messages, feed override (before a run, and on the block being executed: 10 % within
+//! 50 ms of machine time, 0 % standing on the path, 100 % resuming).
 
 mod common;
 use common::*;
@@ -41,8 +42,9 @@ fn runs_in_real_time_and_at_the_time_scale_whatever_the_clients_do() {
             let mut s = TcpStream::connect(server.addr).unwrap();
             write!(
                 s,
-                "GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
-                 Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n"
+                "GET /ws HTTP/1.1\r\nHost: {}\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n\
+                 Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n",
+                server.addr
             )
             .unwrap();
             s
@@ -235,6 +237,7 @@ fn feed_override_scales_the_feed_moves() {
         .unwrap();
     let (code, _) = server.call("POST", "/api/override", json!({"feed": 50}));
     assert_eq!(code, 200);
+    server.home();
     start(&server);
     let s = server.wait_for(&["finished"], LONG);
     let half = s["cycle_time_s"].as_f64().unwrap();
@@ -249,7 +252,15 @@ fn feed_override_scales_the_feed_moves() {
         400
     );
     assert_eq!(
-        server.call("POST", "/api/override", json!({"rapid": 0})).0,
+        server
+            .call("POST", "/api/override", json!({"rapid": 101}))
+            .0,
+        400
+    );
+    assert_eq!(
+        server
+            .call("POST", "/api/override", json!({"spindle": 40}))
+            .0,
         400
     );
 }
@@ -286,4 +297,91 @@ fn a_five_axis_program_runs_and_the_tool_axis_follows_the_rotary_axes() {
         (b - 0.8f64.acos().to_degrees()).abs() < 1e-6 && (c - 90.0).abs() < 1e-6,
         "{s}"
     );
+}
+
+/// Issue 19: the feed override acts at the interpolator. On a G1 of 60 mm at 1200 mm/min, 10 %
+/// set while it moves gives 120 mm/min within 50 ms of machine time (from the setpoint that first
+/// ran with it, `overrides_since_s`), 0 % brings the machine to rest on the path, 100 % resumes
+/// it to the end; the cycle time grows by the slow and the standing time.
+#[test]
+fn feed_override_acts_on_the_block_being_executed_and_zero_stands_on_the_path() {
+    let server = paced(2.0);
+    load(&server, "long.ngc", "G21 G90\nG1 X60 F1200\nM2\n");
+    start(&server);
+    let sample = |s: &Value| {
+        (
+            s["elapsed_s"].as_f64().unwrap(),
+            s["feed_actual"].as_f64().unwrap(),
+            s["feed_override"].as_u64().unwrap(),
+            s["overrides_since_s"].as_f64().unwrap(),
+            xyz(s),
+        )
+    };
+    let t0 = Instant::now();
+    while server.state()["elapsed_s"].as_f64().unwrap() < 1.0 {
+        assert!(t0.elapsed() < LONG);
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    assert_eq!(
+        server.state()["line"],
+        2,
+        "the G1 is the block being executed"
+    );
+    // Samples from the change until `span` s of machine time after it took effect.
+    let watch = |pct: u64, span: f64| {
+        let mut samples = Vec::new();
+        let t = Instant::now();
+        loop {
+            let s = sample(&server.state());
+            let done = s.2 == pct && s.0 >= s.3 + span;
+            samples.push(s);
+            if done {
+                break;
+            }
+            assert!(t.elapsed() < LONG, "{pct} %: {:?}", samples.last());
+            std::thread::sleep(Duration::from_millis(2));
+        }
+        let since = samples.iter().find(|s| s.2 == pct).unwrap().3;
+        (since, samples)
+    };
+    // 10 %.
+    server.call("POST", "/api/override", json!({"feed": 10}));
+    let (since, slow) = watch(10, 0.5);
+    let late: Vec<_> = slow
+        .iter()
+        .filter(|s| s.2 == 10 && s.0 >= since + 0.050)
+        .collect();
+    assert!(late.len() >= 3, "{} samples", late.len());
+    for s in &late {
+        assert!(
+            s.1 > 118.0 && s.1 < 121.0,
+            "{:.4} s after the change: {} mm/min",
+            s.0 - since,
+            s.1
+        );
+    }
+    // 0 %: at rest on the path (Y stays 0), standing.
+    server.call("POST", "/api/override", json!({"feed": 0}));
+    let (since, stood) = watch(0, 0.5);
+    let at_rest: Vec<_> = stood
+        .iter()
+        .filter(|s| s.2 == 0 && s.0 >= since + 0.050)
+        .collect();
+    assert!(at_rest.len() >= 3, "{} samples", at_rest.len());
+    let here = at_rest[0].4;
+    for s in &at_rest {
+        assert_eq!(s.1, 0.0, "moving at 0 %");
+        assert_eq!(s.4, here, "moved at 0 %");
+    }
+    assert!(
+        here[0] > 20.0 && here[0] < 60.0 && here[1] == 0.0,
+        "{here:?}"
+    );
+    assert_eq!(server.state()["run_state"], "running");
+    // 100 %: on to the end.
+    server.call("POST", "/api/override", json!({"feed": 100}));
+    let s = server.wait_for(&["finished"], LONG);
+    assert_eq!(xyz(&s), [60.0, 0.0, 0.0]);
+    // 3 s at 100 % plus the slow and the standing part.
+    assert!(s["cycle_time_s"].as_f64().unwrap() > 3.5, "{s}");
 }

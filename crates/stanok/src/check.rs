@@ -6,6 +6,12 @@
 //! When the dialect was guessed and many errors follow, the other dialects are tried quietly and a
 //! hint names one that reads the program with far fewer errors. Exit status: 2 if a program could
 //! not be read, else 1 if one has an error, else 0.
+//!
+//! Unless `--no-travel-check`, every move up to the first error is also checked against the
+//! machine's travel as a control does before the start (`stanok_machine::TravelCheck`, the same
+//! check the run and the panel's preview make): machine positions with the offsets and tool
+//! lengths in force, joints under tool-centre-point control; each violation is an error
+//! (`machine::travel-limit`) at its block.
 
 use crate::cli_args::{MachineArgs, ProgramArgs};
 use crate::dialect::{self, Choice};
@@ -22,13 +28,15 @@ use std::process::ExitCode;
 /// bounded look is enough).
 const TRIAL_BLOCKS: u64 = 200_000;
 
-/// Every diagnostic of one program, warnings and errors in line order, and how many are errors.
+/// Every diagnostic of one program, warnings and errors in line order, and how many are errors;
+/// with `travel`, also the moves beyond the machine's travel before the first error.
 fn diagnose(
     program: &Program,
     dialect: Dialect,
     machine: &MachineData,
     args: &ProgramArgs,
     max_blocks: Option<u64>,
+    travel: bool,
 ) -> Result<(Vec<Diagnostic>, usize), ExitCode> {
     let mut opts = program::options(dialect, machine, true, args);
     if let Some(n) = max_blocks {
@@ -42,23 +50,35 @@ fn diagnose(
     // `check` runs no machine, but a feed or dwell that makes one block run for more than an
     // hour is worth a word (`stanok_machine::time_bound`).
     let mut long_blocks = Vec::new();
+    let mut limits = travel.then(|| stanok_machine::TravelCheck::new(machine));
+    let mut failed = false;
     for item in interp.by_ref() {
-        if let Ok(cmd) = &item {
-            if long_blocks.len() < 100 {
-                long_blocks.extend(stanok_machine::time_bound::long_block(
-                    machine, &cmd.value, cmd.span,
-                ));
+        let d = match item {
+            // The moves a run would make: those before the first error.
+            Ok(cmd) if !failed => {
+                if long_blocks.len() < 100 {
+                    long_blocks.extend(stanok_machine::time_bound::long_block(
+                        machine, &cmd.value, cmd.span,
+                    ));
+                }
+                match limits.as_mut().map(|t| t.check(&cmd)) {
+                    Some(Err(d)) => d,
+                    _ => continue,
+                }
             }
-        }
-        if let Err(d) = item {
-            if seen.insert((
-                d.code.to_string(),
-                d.span.start,
-                d.span.end,
-                d.message.clone(),
-            )) {
-                errors.push(d);
+            Ok(_) => continue,
+            Err(d) => {
+                failed = true;
+                d
             }
+        };
+        if seen.insert((
+            d.code.to_string(),
+            d.span.start,
+            d.span.end,
+            d.message.clone(),
+        )) {
+            errors.push(d);
         }
     }
     let count = errors.len();
@@ -74,6 +94,7 @@ pub fn check(
     files: &[PathBuf],
     given: Option<Dialect>,
     json: bool,
+    travel: bool,
     machine_args: &MachineArgs,
     args: &ProgramArgs,
 ) -> Result<ExitCode, String> {
@@ -100,7 +121,7 @@ pub fn check(
                 } else {
                     program::say_dialect(&choice);
                 }
-                check_one(&program, &choice, json, &machine, args)?
+                check_one(&program, &choice, json, travel, &machine, args)?
             }
             Err(_) => 2,
         };
@@ -114,10 +135,12 @@ fn check_one(
     program: &Program,
     choice: &Choice,
     json: bool,
+    travel: bool,
     machine: &MachineData,
     args: &ProgramArgs,
 ) -> Result<u8, String> {
-    let Ok((mut all, errors)) = diagnose(program, choice.dialect, machine, args, None) else {
+    let Ok((mut all, errors)) = diagnose(program, choice.dialect, machine, args, None, travel)
+    else {
         return Ok(2);
     };
     for d in &mut all {
@@ -151,7 +174,7 @@ pub fn say_hint(
     args: &ProgramArgs,
 ) {
     let hint = dialect::hint_for(dialect, errors, |d| {
-        diagnose(program, d, machine, args, Some(TRIAL_BLOCKS))
+        diagnose(program, d, machine, args, Some(TRIAL_BLOCKS), false)
             .map(|(_, n)| n)
             .unwrap_or(usize::MAX)
     });
@@ -173,7 +196,7 @@ pub fn hint_after_run(
     machine: &MachineData,
     args: &ProgramArgs,
 ) {
-    if let Ok((_, errors)) = diagnose(program, dialect, machine, args, Some(TRIAL_BLOCKS)) {
+    if let Ok((_, errors)) = diagnose(program, dialect, machine, args, Some(TRIAL_BLOCKS), false) {
         say_hint(program, dialect, errors, machine, args);
     }
 }

@@ -205,6 +205,10 @@ pub enum Command {
         /// One JSON object per diagnostic and line on stdout (fields in docs/cli.md).
         #[arg(long)]
         json: bool,
+        /// Do not check the moves against the machine's travel limits (the program's positions
+        /// with the offsets and tool lengths in force; joints under tool-centre-point control).
+        #[arg(long)]
+        no_travel_check: bool,
         #[command(flatten)]
         machine: MachineArgs,
         #[command(flatten)]
@@ -319,6 +323,13 @@ pub enum Command {
         /// Machine time per wall-clock time: 1 = real time, 10 = ten times faster, 0 = unpaced.
         #[arg(long, default_value_t = 1.0)]
         time_scale: f64,
+        /// A host name the panel answers to besides its address (repeatable; e.g. the name a
+        /// reverse proxy or the shop's DNS gives it). Requests naming any other host are refused.
+        #[arg(long, value_name = "NAME")]
+        allowed_host: Vec<String>,
+        /// Seconds one check, load or preview may take before it is answered with a diagnostic.
+        #[arg(long, value_name = "S", default_value_t = 60.0)]
+        job_budget: f64,
         /// Where the simulated probe makes contact (as for `run`).
         #[arg(long, value_name = "AXIS<=VALUE", value_parser = crate::cli_args::parse_probe_surface)]
         probe_surface: Vec<stanok_canon::setup::ProbeSurface>,

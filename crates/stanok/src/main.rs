@@ -82,6 +82,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             files,
             dialect,
             json,
+            no_travel_check,
             machine,
             program,
             ..
@@ -89,6 +90,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             &files,
             dialect.dialect.map(Into::into),
             json,
+            !no_travel_check,
             &machine,
             &program,
         ),
@@ -151,10 +153,16 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             programs,
             upload_limit,
             time_scale,
+            allowed_host,
+            job_budget,
             probe_surface,
             machine,
             ..
         } => {
+            if !(job_budget > 0.0 && job_budget <= 86_400.0) {
+                eprintln!("error: --job-budget must be more than 0 and at most 86400 s");
+                return Ok(ExitCode::from(2));
+            }
             let machine = match program::load_machine(&machine, &probe_surface) {
                 Ok((m, _)) => m,
                 Err(code) => return Ok(code),
@@ -165,6 +173,8 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             options.upload_limit =
                 usize::try_from(upload_limit.saturating_mul(1024 * 1024)).unwrap_or(usize::MAX);
             options.time_scale = time_scale;
+            options.allowed_hosts = allowed_host;
+            options.job_budget = std::time::Duration::from_secs_f64(job_budget);
             stanok_serve::run(options)?;
             Ok(ExitCode::SUCCESS)
         }

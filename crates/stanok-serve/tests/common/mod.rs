@@ -60,14 +60,27 @@ impl Server {
 
     /// One request; `token` is sent as a bearer header when given. Returns (status, body).
     pub fn raw(&self, method: &str, path: &str, body: &[u8], token: Option<&str>) -> (u16, String) {
+        let host = self.addr.to_string();
+        self.raw_with(method, path, body, token, &host, "")
+    }
+
+    /// One request with this `Host` and extra header lines (each ending in `\r\n`).
+    pub fn raw_with(
+        &self,
+        method: &str,
+        path: &str,
+        body: &[u8],
+        token: Option<&str>,
+        host: &str,
+        extra: &str,
+    ) -> (u16, String) {
         let mut s = TcpStream::connect(self.addr).unwrap();
         s.set_read_timeout(Some(Duration::from_secs(60))).unwrap();
         let auth = token
             .map(|t| format!("Authorization: Bearer {t}\r\n"))
             .unwrap_or_default();
         let head = format!(
-            "{method} {path} HTTP/1.1\r\nHost: {}\r\n{auth}Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
-            self.addr,
+            "{method} {path} HTTP/1.1\r\nHost: {host}\r\n{auth}{extra}Content-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
             body.len()
         );
         s.write_all(head.as_bytes()).unwrap();
@@ -106,6 +119,19 @@ impl Server {
 
     pub fn state(&self) -> Value {
         self.call("GET", "/api/state", Value::Null).1
+    }
+
+    /// Reference return of every axis: the machine back at its origin (tests start runs there).
+    pub fn home(&self) {
+        let (code, body) = self.call("POST", "/api/home", Value::Null);
+        assert_eq!(code, 200, "{body}");
+        let s = self.wait_for(
+            &["idle", "finished", "stopped", "alarm"],
+            Duration::from_secs(60),
+        );
+        for i in 0..9 {
+            assert_eq!(s["machine_position"][i].as_f64().unwrap(), 0.0, "{s}");
+        }
     }
 
     /// Waits until the run state is one of `states`; returns the status.

@@ -62,6 +62,9 @@ impl Browser {
                 "--no-first-run",
                 "--no-default-browser-check",
                 "--hide-scrollbars",
+                // WebGL without a GPU: the panel's 3D view (three.js) renders in software.
+                "--enable-unsafe-swiftshader",
+                "--use-angle=swiftshader",
                 "--remote-debugging-port=0",
                 "--window-size=1280,800",
             ])
@@ -107,7 +110,49 @@ impl Browser {
             json!({"width": 1280, "height": 800, "deviceScaleFactor": 1, "mobile": false}),
         );
         b.call("Page.enable", json!({}));
+        // Uncaught errors of the page are collected, so a test can assert there were none.
+        b.call(
+            "Page.addScriptToEvaluateOnNewDocument",
+            json!({"source": "window.__errors = []; \
+                addEventListener('error', e => __errors.push(String(e.message))); \
+                addEventListener('unhandledrejection', e => __errors.push(String(e.reason)));"}),
+        );
         b
+    }
+
+    /// Uncaught errors of the page so far.
+    pub fn errors(&mut self) -> Vec<String> {
+        let v = self.eval("window.__errors || []");
+        v.as_array()
+            .map(|a| a.iter().map(|e| e.to_string()).collect())
+            .unwrap_or_default()
+    }
+
+    /// Presses (`down`) or releases a key, as a keyboard does (`key` as in KeyboardEvent.key).
+    pub fn key(&mut self, key: &str, down: bool) {
+        let code = match key {
+            "ArrowLeft" => 37,
+            "ArrowUp" => 38,
+            "ArrowRight" => 39,
+            "ArrowDown" => 40,
+            "PageUp" => 33,
+            "PageDown" => 34,
+            "Escape" => 27,
+            "F1" => 112,
+            "Home" => 36,
+            k if k.len() == 1 => k.chars().next().unwrap().to_ascii_uppercase() as i64,
+            _ => 0,
+        };
+        let text = if key.len() == 1 { key } else { "" };
+        self.call(
+            "Input.dispatchKeyEvent",
+            json!({
+                "type": if down { if text.is_empty() { "rawKeyDown" } else { "keyDown" } } else { "keyUp" },
+                "key": key,
+                "windowsVirtualKeyCode": code,
+                "text": if down { text } else { "" },
+            }),
+        );
     }
 
     fn send(&mut self, method: &str, params: Value) -> Value {

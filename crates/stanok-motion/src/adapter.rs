@@ -67,6 +67,8 @@ pub struct CanonAdapter {
     surface_speed: [Option<SurfaceSpeedLaw>; 4],
     /// The last `SetFeedRate` (mm/rev while the feed mode is per revolution).
     programmed_feed: f64,
+    /// Serial number of the command being adapted (stamped on its segments).
+    command: u64,
 }
 
 /// Length the feed applies to (spec axioma-2 §3.2) and the 9-D length, of a straight move.
@@ -100,7 +102,14 @@ impl CanonAdapter {
             orientation: OrientationInterpolation::Axes,
             surface_speed: [None; 4],
             programmed_feed: 0.0,
+            command: 0,
         }
+    }
+
+    /// The serial number stamped on the segments adapted from now on (see
+    /// [`PathSegment::command`]).
+    pub fn set_command(&mut self, serial: u64) {
+        self.command = serial;
     }
 
     /// The kinematics of tool-centre-point control, while it is on.
@@ -198,6 +207,7 @@ impl CanonAdapter {
             path_mode: self.path_mode,
             profile: self.config.forced_profile.unwrap_or(self.profile),
             line,
+            command: self.command,
             spindles: self.spindles(),
         }
     }

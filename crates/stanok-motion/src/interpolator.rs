@@ -50,6 +50,9 @@ pub struct Setpoint {
     pub soft: bool,
     /// Source line of the piece.
     pub line: u32,
+    /// Serial number of the Canon command of the piece ([`crate::MotionStage::commands`]): the
+    /// setpoints of command n run under every state change of the commands before n.
+    pub command: u64,
     /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
     /// evaluated at `position`).
     pub spindle_rpm: [f64; 4],
@@ -119,6 +122,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         jerk: [0.0; 9],
         soft: pc.soft,
         line: pc.line,
+        command: pc.command,
         spindle_rpm: [0.0; 4],
     };
     let pt = pt.unwrap_or_else(|| {
@@ -146,6 +150,7 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    command: u64,
     spindles: Spindles,
     hold: FeedHold,
     switch: Option<Arc<HoldSwitch>>,
@@ -160,6 +165,7 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            command: 0,
             spindles: Spindles::default(),
             hold: FeedHold::default(),
             switch: None,
@@ -265,6 +271,7 @@ impl Interpolator {
         }
         self.end = piece.piece.end;
         self.line = piece.piece.line;
+        self.command = piece.piece.command;
         self.spindles = piece.piece.spindles;
     }
 
@@ -280,6 +287,7 @@ impl Interpolator {
             jerk: [0.0; 9],
             soft: false,
             line: self.line,
+            command: self.command,
             spindle_rpm: self.spindles.rpm_at(&self.end),
         });
         self.tick += 1;

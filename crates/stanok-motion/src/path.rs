@@ -80,6 +80,7 @@ struct Chord {
     accel_cap: f64,
     soft: bool,
     line: u32,
+    command: u64,
     spindles: Spindles,
     chord_tolerance: f64,
     end_rule: EndRule,
@@ -98,6 +99,8 @@ pub struct PathBuilder {
     position: Point9,
     /// The spindle speed of the last segment received (dwells keep it).
     spindles: Spindles,
+    /// The command serial of the last segment received (dwells keep it).
+    command: u64,
     scratch: Vec<Point9>,
 }
 
@@ -123,6 +126,7 @@ impl PathBuilder {
             stop_next: true,
             position: [0.0; 9],
             spindles: Spindles::default(),
+            command: 0,
             scratch: Vec::new(),
         }
     }
@@ -143,7 +147,13 @@ impl PathBuilder {
             PlannerInput::Stop { dwell_s, line } => {
                 self.flush(out);
                 if dwell_s > 0.0 {
-                    out(dwell_piece(self.position, dwell_s, line, self.spindles));
+                    out(dwell_piece(
+                        self.position,
+                        dwell_s,
+                        line,
+                        self.command,
+                        self.spindles,
+                    ));
                 }
                 self.stop_next = true;
             }
@@ -273,6 +283,7 @@ impl PathBuilder {
         let dir = delta.map(|d| d / length);
         self.position = *b;
         self.spindles = seg.spindles;
+        self.command = seg.command;
         let mut next = Chord {
             start: *a,
             end: *b,
@@ -283,6 +294,7 @@ impl PathBuilder {
             accel_cap: seg.acceleration_cap,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
+            command: seg.command,
             spindles: seg.spindles,
             chord_tolerance,
             end_rule,
@@ -390,6 +402,7 @@ impl PathBuilder {
             soft: false,
             entry_stop: false,
             line: next.line,
+            command: next.command,
             spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
@@ -455,6 +468,7 @@ impl PathBuilder {
             soft: true,
             entry_stop: false,
             line: next.line,
+            command: next.command,
             spindles: prev.spindles,
             deviation: half * unit.from_chords + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
@@ -486,6 +500,7 @@ impl PathBuilder {
             soft: c.soft,
             entry_stop: c.entry_stop && c.start_trim == 0.0,
             line: c.line,
+            command: c.command,
             spindles: c.spindles,
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
@@ -503,7 +518,7 @@ fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
     }
 }
 
-fn dwell_piece(at: Point9, seconds: f64, line: u32, spindles: Spindles) -> Piece {
+fn dwell_piece(at: Point9, seconds: f64, line: u32, command: u64, spindles: Spindles) -> Piece {
     Piece {
         end: at,
         shape: Shape::Dwell { at, seconds },
@@ -514,6 +529,7 @@ fn dwell_piece(at: Point9, seconds: f64, line: u32, spindles: Spindles) -> Piece
         soft: false,
         entry_stop: true,
         line,
+        command,
         spindles,
         deviation: 0.0,
         tolerance: 0.0,

@@ -122,6 +122,8 @@ pub struct Piece {
     pub entry_stop: bool,
     /// Source line.
     pub line: u32,
+    /// Serial number of the Canon command ([`crate::segment::PathSegment::command`]).
+    pub command: u64,
     /// The spindles' speeds on this piece (evaluated per setpoint under G96).
     pub spindles: Spindles,
     /// Upper bound of the distance of any point of the piece from the programmed path, unit.

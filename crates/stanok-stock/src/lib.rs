@@ -2,7 +2,10 @@
 #![deny(missing_docs)]
 
 pub mod dexel;
+pub mod lathe;
+pub mod mesh;
 pub mod mill;
+pub mod spec;
 pub mod sweep;
 pub mod tool;
 mod vec3;

@@ -131,6 +131,9 @@ pub struct RunReport {
     /// Per spindle that turned: the range of its commanded speed over the setpoints (under G96 the
     /// speed the law gives at each position).
     pub spindles: Vec<crate::sim_motion::SpindleRange>,
+    /// The stock-removal simulation's results, when the run had a stock.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stock: Option<stanok_stock::report::StockReport>,
 }
 
 /// Executes Canon commands on a simulated machine (see the module doc).
@@ -216,6 +219,7 @@ impl SimMachine {
             violations: Vec::new(),
             violation_count: 0,
             spindles: Vec::new(),
+            stock: None,
         };
         let motion = MotionRun::new(&machine, &options);
         SimMachine {
@@ -231,6 +235,17 @@ impl SimMachine {
     /// Every setpoint also goes to `sink` (a trace writer, a progress display).
     pub fn set_setpoint_sink(&mut self, sink: SetpointSink) {
         self.motion.set_observer(sink);
+    }
+
+    /// Simulates the stock the program cuts (`stanok-stock`): from now on every accepted command
+    /// and every setpoint also go to it, and the report gets its results.
+    pub fn set_stock(&mut self, stock: stanok_stock::sim::StockSim) {
+        self.motion.set_stock(stock);
+    }
+
+    /// The stock simulation, if there is one (its mesh, its collisions so far).
+    pub fn stock(&self) -> Option<&stanok_stock::sim::StockSim> {
+        self.motion.stock()
     }
 
     /// Runs everything the planner holds to its end, so that the machine stands at the last

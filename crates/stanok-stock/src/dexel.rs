@@ -166,10 +166,7 @@ impl DexelGrid {
         let n = [count(0), count(1)];
         DexelGrid {
             origin: lo,
-            cell: [
-                (hi[0] - lo[0]) / n[0] as f64,
-                (hi[1] - lo[1]) / n[1] as f64,
-            ],
+            cell: [(hi[0] - lo[0]) / n[0] as f64, (hi[1] - lo[1]) / n[1] as f64],
             n,
             lines: vec![Dexel::Empty; n[0] * n[1]],
         }

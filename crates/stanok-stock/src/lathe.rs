@@ -269,7 +269,10 @@ mod tests {
         let (a, b) = capsule_chord([0.0, 0.0], [0.0, 10.0], 1.0, 0.5).unwrap();
         assert!((a + 0.75f64.sqrt()).abs() < 1e-12 && (b - 10.0 - 0.75f64.sqrt()).abs() < 1e-12);
         // Along z: the band is |x| ≤ 1.
-        assert_eq!(capsule_chord([0.0, 0.0], [10.0, 0.0], 1.0, 5.0), Some((-1.0, 1.0)));
+        assert_eq!(
+            capsule_chord([0.0, 0.0], [10.0, 0.0], 1.0, 5.0),
+            Some((-1.0, 1.0))
+        );
         assert_eq!(capsule_chord([0.0, 0.0], [10.0, 0.0], 1.0, 11.5), None);
     }
 
@@ -289,8 +292,16 @@ mod tests {
         let annulus = pi * (625.0 - 400.0) * 30.0;
         // The fillet's cross-section r²·(1 − π/4) revolved at its centroid, r ≈ 20 + 0.22·0.4.
         let want = annulus - 2.0 * pi * 20.09 * 0.16 * (1.0 - pi / 4.0);
-        assert!((hits.removed - annulus).abs() / annulus < 0.005, "{} vs {annulus}", hits.removed);
-        assert!((hits.removed - want).abs() / want < 0.001, "{} vs {want}", hits.removed);
+        assert!(
+            (hits.removed - annulus).abs() / annulus < 0.005,
+            "{} vs {annulus}",
+            hits.removed
+        );
+        assert!(
+            (hits.removed - want).abs() / want < 0.001,
+            "{} vs {want}",
+            hits.removed
+        );
         assert!((v0 - m.volume() - hits.removed).abs() < 1e-6 * v0);
         assert!((m.outer_radius_at(-15.0).unwrap() - 20.0).abs() < 1e-4);
         assert!((m.outer_radius_at(-40.0).unwrap() - 25.0).abs() < 1e-4);

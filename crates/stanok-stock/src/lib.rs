@@ -5,6 +5,8 @@ pub mod dexel;
 pub mod lathe;
 pub mod mesh;
 pub mod mill;
+pub mod report;
+pub mod sim;
 pub mod spec;
 pub mod sweep;
 pub mod tool;

@@ -312,8 +312,16 @@ pub fn grid_from_triangles(tris: &[[[f64; 3]; 3]], resolution: f64) -> DexelGrid
         if area.abs() < 1e-18 {
             continue;
         }
-        let ir = grid.index_range(0, a[0].min(b[0]).min(c[0]) - nudge[0], a[0].max(b[0]).max(c[0]));
-        let jr = grid.index_range(1, a[1].min(b[1]).min(c[1]) - nudge[1], a[1].max(b[1]).max(c[1]));
+        let ir = grid.index_range(
+            0,
+            a[0].min(b[0]).min(c[0]) - nudge[0],
+            a[0].max(b[0]).max(c[0]),
+        );
+        let jr = grid.index_range(
+            1,
+            a[1].min(b[1]).min(c[1]) - nudge[1],
+            a[1].max(b[1]).max(c[1]),
+        );
         for j in jr {
             for i in ir.clone() {
                 let p = grid.centre(i, j);

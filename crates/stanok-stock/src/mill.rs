@@ -60,7 +60,7 @@ pub struct MillModel {
 }
 
 /// The lowest point of a primitive with the tool tip at `p` and unit axis `a`.
-fn prim_lowest(p: &Prim, tip: V3, a: V3) -> f64 {
+pub fn prim_lowest(p: &Prim, tip: V3, a: V3) -> f64 {
     let tilt = (1.0 - a[2] * a[2]).max(0.0).sqrt();
     match *p {
         Prim::Frustum { h0, h1, r0, r1 } => {
@@ -352,7 +352,11 @@ mod tests {
         };
         let hits = m.apply(&tool(CutterShape::Flat, 5.0), &sw);
         let want = (600.0 + std::f64::consts::PI * 25.0) * 5.0;
-        assert!((hits.removed - want).abs() / want < 0.005, "{} vs {want}", hits.removed);
+        assert!(
+            (hits.removed - want).abs() / want < 0.005,
+            "{} vs {want}",
+            hits.removed
+        );
         assert!((before - m.volume() - hits.removed).abs() < 1e-3);
         assert!((hits.depth - 5.0).abs() < 1e-6);
         assert!((hits.lowest_removed + 5.0).abs() < 1e-6);

@@ -59,7 +59,9 @@ impl StockFrame {
         match text.trim().to_ascii_lowercase().as_str() {
             "work" => Ok(StockFrame::Work),
             "machine" => Ok(StockFrame::Machine),
-            other => Err(format!("the stock frame is work or machine, not \"{other}\"")),
+            other => Err(format!(
+                "the stock frame is work or machine, not \"{other}\""
+            )),
         }
     }
 }
@@ -76,7 +78,11 @@ fn words(group: &str, allowed: &str) -> Result<Vec<(char, f64)>, String> {
         if !allowed.contains(letter) {
             return Err(format!(
                 "\"{w}\": the words here are {}",
-                allowed.chars().map(String::from).collect::<Vec<_>>().join(", ")
+                allowed
+                    .chars()
+                    .map(String::from)
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ));
         }
         let v: f64 = chars

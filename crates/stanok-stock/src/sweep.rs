@@ -66,7 +66,12 @@ pub enum Prim {
 impl Prim {
     /// A cylinder of radius `r` between two heights.
     pub fn cylinder(h0: f64, h1: f64, r: f64) -> Prim {
-        Prim::Frustum { h0, h1, r0: r, r1: r }
+        Prim::Frustum {
+            h0,
+            h1,
+            r0: r,
+            r1: r,
+        }
     }
 
     /// Largest distance of a point of the primitive from the axis, mm.
@@ -384,7 +389,8 @@ fn cone_extreme(x: &Across, ta: f64, tb: f64, rk: f64, slope: f64, sign: f64) ->
     if x.ee >= 1e-18 && slope > 0.0 {
         let g = x.dz / slope;
         if x.ee > g * g {
-            let u = -sign * g.signum() * g.abs() * x.rho_min2.sqrt() / (x.ee * (x.ee - g * g)).sqrt();
+            let u =
+                -sign * g.signum() * g.abs() * x.rho_min2.sqrt() / (x.ee * (x.ee - g * g)).sqrt();
             let t = x.t_star + u;
             if t >= ta && t <= tb {
                 best = better(best, f(t));
@@ -508,7 +514,10 @@ mod tests {
             axis: [0.0, 0.0, 1.0],
         };
         // Vertical line inside the slot: the whole height.
-        assert_eq!(chord(&p, &sw, [5.0, 1.0, 0.0], [0.0, 0.0, 1.0]), Some((-5.0, 15.0)));
+        assert_eq!(
+            chord(&p, &sw, [5.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+            Some((-5.0, 15.0))
+        );
         assert_eq!(chord_vertical(&p, &sw, 5.0, 1.0), Some((-5.0, 15.0)));
         // A line along X at z = 0, y = 2: from −√5 to 10 + √5.
         let (a, b) = chord(&p, &sw, [0.0, 2.0, 0.0], [1.0, 0.0, 0.0]).unwrap();
@@ -529,7 +538,10 @@ mod tests {
         // vertical chord is ±r/cos(α), tan α = 1/2.
         let half = 2.0 * (1.0f64 + 0.25).sqrt();
         let (a, b) = chord_vertical(&p, &sw, 5.0, 0.0).unwrap();
-        assert!((a - (-0.5 - half)).abs() < 1e-9 && (b - (-0.5 + half)).abs() < 1e-9, "{a} {b}");
+        assert!(
+            (a - (-0.5 - half)).abs() < 1e-9 && (b - (-0.5 + half)).abs() < 1e-9,
+            "{a} {b}"
+        );
         let (a2, b2) = chord(&p, &sw, [5.0, 0.0, 0.0], [0.0, 0.0, 1.0]).unwrap();
         assert!((a2 - a).abs() < 1e-9 && (b2 - b).abs() < 1e-9);
     }

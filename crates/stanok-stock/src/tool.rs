@@ -199,7 +199,11 @@ pub fn resolve(
             }
         }
         CutterShape::Bull => {
-            let rc = body.corner_radius.unwrap_or(r / 4.0).clamp(0.0, r).min(flute);
+            let rc = body
+                .corner_radius
+                .unwrap_or(r / 4.0)
+                .clamp(0.0, r)
+                .min(flute);
             let tol = tolerance.max(1e-4);
             let n = if rc > tol {
                 let step = 2.0 * (1.0 - tol / rc).clamp(-1.0, 1.0).acos();
@@ -302,7 +306,12 @@ mod tests {
 
     #[test]
     fn a_tbl_tool_gets_its_defaults_from_the_diameter() {
-        let (shape, note) = resolve(1, &table(ToolBody::default(), 5.0, ToolKind::Milling), false, 0.01);
+        let (shape, note) = resolve(
+            1,
+            &table(ToolBody::default(), 5.0, ToolKind::Milling),
+            false,
+            0.01,
+        );
         assert!(note.is_none());
         let ToolShape::Mill(m) = shape else { panic!() };
         assert_eq!(m.cutter, vec![Prim::cylinder(0.0, 30.0, 5.0)]);
@@ -332,7 +341,9 @@ mod tests {
         let ToolShape::Mill(m) = shape else { panic!() };
         // Every frustum's mid-point lies within 0.01 of the torus (r − 3)² + (h − 2)² = 4.
         for p in &m.cutter[..m.cutter.len() - 1] {
-            let Prim::Frustum { h0, h1, r0, r1 } = *p else { panic!() };
+            let Prim::Frustum { h0, h1, r0, r1 } = *p else {
+                panic!()
+            };
             let (h, r) = ((h0 + h1) / 2.0, (r0 + r1) / 2.0);
             let gap = 2.0 - ((r - 3.0).powi(2) + (h - 2.0).powi(2)).sqrt();
             assert!((0.0..=0.0100001).contains(&gap), "{gap}");
@@ -344,7 +355,9 @@ mod tests {
     fn an_unknown_lathe_tool_is_an_orientation_2_insert() {
         let (shape, note) = resolve(3, &ToolTable::default(), true, 0.01);
         assert!(note.is_some());
-        let ToolShape::Insert(i) = shape else { panic!() };
+        let ToolShape::Insert(i) = shape else {
+            panic!()
+        };
         assert_eq!(i.centre_offset, [0.4, 0.4]);
         assert!((i.edges[0].to_degrees() - 5.0).abs() < 1e-9);
         assert!((i.edges[1].to_degrees() - 85.0).abs() < 1e-9);

@@ -24,15 +24,6 @@ pub fn dot(a: V3, b: V3) -> f64 {
 }
 
 #[inline]
-pub fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-#[inline]
 pub fn norm(a: V3) -> f64 {
     dot(a, a).sqrt()
 }

@@ -4,7 +4,9 @@
 pub mod dexel;
 pub mod lathe;
 pub mod mesh;
+mod mesh_merge;
 pub mod mill;
+pub mod render;
 pub mod report;
 pub mod sim;
 pub mod spec;

@@ -12,13 +12,14 @@
 //! The edges are found without visiting empty space: along Z at each interval's ends, across
 //! lines where the two lines' sample runs differ (symmetric difference of runs). The result is
 //! closed and consistently oriented; its volume is the dexels' within about half a cell of
-//! surface area (`tests`).
+//! surface area (`tests`). Flat runs of quads are merged into big polygons (`mesh_merge.rs`).
 //!
 //! STL: binary out ([`Mesh::write_stl`], `stl_io`); in ([`grid_from_stl`]) each vertical line is
 //! cast through the mesh and the sorted crossings paired into intervals (a closed mesh; the lines
 //! sit a hair off the cell centres so that no line passes exactly through an edge).
 
 use crate::dexel::{Dexel, DexelGrid, Span};
+use crate::mesh_merge::{triangulate, Quad};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -192,18 +193,20 @@ impl Mesh {
                 (sum[2] / n) as f32,
             ]);
         }
-        // Pass 2: the quads.
-        let mut triangles = Vec::new();
-        for_each_edge(grid, &lat, &mut |quad, _, flip| {
-            let v = quad.map(|c| index[&key(c)]);
-            if flip {
-                triangles.push([v[0], v[1], v[2]]);
-                triangles.push([v[0], v[2], v[3]]);
+        // Pass 2: the quads, wound outwards; flat runs merged (`mesh_merge.rs`).
+        let mut quads = Vec::new();
+        for_each_edge(grid, &lat, &mut |cells, _, flip| {
+            let cells = if flip {
+                cells
             } else {
-                triangles.push([v[0], v[2], v[1]]);
-                triangles.push([v[0], v[3], v[2]]);
-            }
+                [cells[0], cells[3], cells[2], cells[1]]
+            };
+            quads.push(Quad {
+                cells,
+                v: cells.map(|c| index[&key(c)]),
+            });
         });
+        let triangles = triangulate(&quads, &mut vertices, &|c| index.get(&key(c)).copied());
         Mesh {
             vertices,
             triangles,
@@ -361,6 +364,13 @@ mod tests {
         assert!(v < 240.0 && (v - 240.0).abs() / 240.0 < 0.03, "{v}");
         let (lo, hi) = mesh.bounds().unwrap();
         assert_eq!((lo, hi), ([0.0, 0.0, -3.0], [10.0, 8.0, 0.0]));
+        // Flat faces merged: the quads of a face's interior become one fan (2 per surface cell
+        // would be 2 144 here; what is left is mostly the ring of cells along each edge).
+        assert!(mesh.triangles.len() < 1000, "{}", mesh.triangles.len());
+        let fine =
+            Mesh::from_grid(&MillModel::new_box([0.0, 0.0, -3.0], [10.0, 8.0, 0.0], 0.1).grid);
+        assert!(fine.triangles.len() < 5000, "{}", fine.triangles.len());
+        assert!((fine.volume() - 240.0).abs() / 240.0 < 0.01);
         // Closed: every edge is shared by exactly two triangles, in opposite directions.
         let mut edges: HashMap<(u32, u32), i32> = HashMap::new();
         for t in &mesh.triangles {

@@ -393,45 +393,34 @@ impl StockSim {
 
     /// Feeds one servo setpoint (module doc).
     pub fn setpoint(&mut self, sp: &Setpoint) {
-        // 1. State changes up to this setpoint's command.
+        // 1. State changes up to this setpoint's command: the open chain is swept under the
+        // state it was built in, then the new state holds.
         let mut restart = false;
-        let mut changed = false;
+        let mut next = self.state;
         while let Some(&(key, e)) = self.events.front() {
             if key > 2 * sp.command {
                 break;
             }
             self.events.pop_front();
-            let s = &mut self.state;
             match e {
-                Event::Tool(t) => {
-                    restart |= s.tool != t;
-                    s.tool = t;
-                }
-                Event::Offset(o) => {
-                    restart |= s.offset != o;
-                    s.offset = o;
-                }
-                Event::Tcp(t) => {
-                    restart |= s.tcp != t;
-                    s.tcp = t;
-                }
-                Event::Spindle(on) => {
-                    changed |= s.spindle != on;
-                    s.spindle = on;
-                }
-                Event::Rapid(r) => {
-                    changed |= s.rapid != r;
-                    s.rapid = r;
-                }
+                Event::Tool(t) => next.tool = t,
+                Event::Offset(o) => next.offset = o,
+                Event::Tcp(t) => next.tcp = t,
+                Event::Spindle(on) => next.spindle = on,
+                Event::Rapid(r) => next.rapid = r,
                 Event::Restart => restart = true,
             }
         }
         if self.model.is_none() {
+            self.state = next;
             return;
         }
-        if restart || changed {
+        let s = self.state;
+        restart |= next.tool != s.tool || next.offset != s.offset || next.tcp != s.tcp;
+        if restart || next != s {
             self.flush();
         }
+        self.state = next;
         if restart || self.tool_now.is_none() {
             let t = self.tool_shape(self.state.tool);
             self.tool_now = Some(t);
@@ -627,6 +616,12 @@ impl StockSim {
         let number = self.state.tool;
         if volume > 1e-9 {
             let dt = (c.t1 - c.t0).max(0.0);
+            // A rapid or a stopped spindle matters when it removes more than a sliver: at least a
+            // disk of the tool's radius one cell thick (a G64 blend into a retract grazes less).
+            let sliver = match &tool {
+                ToolShape::Mill(m) => std::f64::consts::PI * m.radius * m.radius,
+                ToolShape::Insert(i) => 2.0 * std::f64::consts::PI * i.nose_radius * i.length,
+            } * self.resolution;
             for tally in [
                 self.per_tool.entry(number).or_default(),
                 self.per_line.entry(c.line).or_default(),
@@ -634,10 +629,10 @@ impl StockSim {
                 tally.volume += volume;
                 tally.time += dt;
             }
-            if self.state.rapid {
+            if self.state.rapid && volume > sliver {
                 found.push((CollisionKind::RapidInMaterial, depth));
             }
-            if !self.state.spindle {
+            if !self.state.spindle && volume > sliver {
                 found.push((CollisionKind::SpindleStopped, depth));
             }
         }
@@ -720,6 +715,11 @@ impl StockSim {
             Model::Lathe(l) => l.to_grid(self.resolution * stride.max(1) as f64),
         };
         Some(Mesh::from_grid(&grid))
+    }
+
+    /// Stock-frame coordinates of a machine point.
+    pub fn to_stock(&self, p: [f64; 3]) -> [f64; 3] {
+        self.placement.to_stock(p)
     }
 
     /// Machine coordinates of a stock-frame point.

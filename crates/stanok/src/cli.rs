@@ -281,6 +281,8 @@ pub enum Command {
         var: VarArgs,
         #[command(flatten)]
         motion: MotionArgs,
+        #[command(flatten)]
+        stock: crate::stock::StockArgs,
     },
     /// Print the canonical command stream.
     Canon {
@@ -302,11 +304,13 @@ pub enum Command {
         file: PathBuf,
         #[arg(long, value_enum)]
         dialect: Option<DialectArg>,
-        /// Output SVG file.
+        /// Output SVG file (with --stock: a PNG of the stock after the run).
         #[arg(short = 'o', long = "output")]
         output: PathBuf,
         #[command(flatten)]
         machine: MachineArgs,
+        #[command(flatten)]
+        stock: crate::stock::StockArgs,
     },
     /// Convert a program to another dialect: written from its canonical commands (cycles,
     /// subprograms and compensation expanded; positions absolute in the start frame).

@@ -17,6 +17,7 @@ mod machine_show;
 mod perm;
 mod progress;
 mod report;
+mod stock;
 mod tool_axis;
 mod trace;
 
@@ -61,6 +62,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             json,
             var,
             motion,
+            stock,
         } => run_program(
             &file,
             dialect.map(Into::into),
@@ -68,6 +70,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             json,
             &var,
             &motion,
+            &stock,
         ),
         Command::Canon {
             file,
@@ -81,7 +84,11 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             dialect,
             output,
             machine,
-        } => plot(&file, dialect.map(Into::into), &output, &machine),
+            stock,
+        } => match stock.stock.is_some() || stock.stock_out.is_some() {
+            true => plot_stock(&file, dialect.map(Into::into), &output, &machine, &stock),
+            false => plot(&file, dialect.map(Into::into), &output, &machine),
+        },
         Command::Serve {
             bind,
             token,
@@ -375,6 +382,7 @@ fn run_program(
     json: bool,
     var: &VarArgs,
     motion: &MotionArgs,
+    stock_args: &stock::StockArgs,
 ) -> Result<ExitCode, String> {
     let options = match sim_options(motion) {
         Ok(o) => o,
@@ -396,7 +404,17 @@ fn run_program(
         Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
         None => None,
     };
+    let stock_sim = match stock::build(stock_args, &machine, dialect) {
+        Ok(s) => s,
+        Err(why) => {
+            eprintln!("error: {why}");
+            return Ok(ExitCode::from(2));
+        }
+    };
     let mut sim = SimMachine::with_options(machine, options);
+    if let Some(s) = stock_sim {
+        sim.set_stock(s);
+    }
     let progress = progress::Progress::new(file);
     sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
     let mut failure: Option<Diagnostic> = None;
@@ -418,6 +436,7 @@ fn run_program(
         t.close()?;
     }
     rep.blocks = interp.stats().blocks_executed;
+    stock::write_outputs(stock_args, &sim)?;
     if json {
         let mut out = report::json(file, dialect, &rep, failure.as_ref(), &warnings);
         out.push('\n');
@@ -584,6 +603,47 @@ fn programmed_contour(
         return Vec::new();
     }
     reference
+}
+
+/// `plot --stock`: runs the program on the simulated machine with the stock and draws what is
+/// left (PNG), collisions marked.
+fn plot_stock(
+    file: &Path,
+    dialect: Option<Dialect>,
+    output: &Path,
+    args: &MachineArgs,
+    stock_args: &stock::StockArgs,
+) -> Result<ExitCode, String> {
+    let machine = match load_machine(args) {
+        Ok((m, _)) => m,
+        Err(code) => return Ok(code),
+    };
+    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
+    let Some(stock_sim) = stock::build(stock_args, &machine, dialect)? else {
+        return Err("plot --stock-out needs --stock".into());
+    };
+    let mut sim = SimMachine::with_options(machine, SimOptions::default());
+    sim.set_stock(stock_sim);
+    let mut failure = None;
+    for item in interp.by_ref() {
+        if let Err(d) = item.and_then(|cmd| sim.apply(&cmd)) {
+            failure = Some(d);
+            break;
+        }
+    }
+    sim.finish();
+    if let Some(e) = sim.stock().and_then(|s| s.error()) {
+        return Err(e.to_string());
+    }
+    stock::write_png(&sim, output)?;
+    stock::write_outputs(stock_args, &sim)?;
+    if let Some(d) = failure {
+        diagnostics::render(file, &d);
+        eprintln!("drew the stock up to the error: {}", output.display());
+        return Ok(ExitCode::from(1));
+    }
+    eprintln!("wrote {}", output.display());
+    Ok(ExitCode::SUCCESS)
 }
 
 fn plot(

@@ -138,6 +138,9 @@ pub fn text(file: &Path, dialect: Dialect, r: &RunReport, failure: Option<&Diagn
         "Final       X{:.3} Y{:.3} Z{:.3} A{:.3} B{:.3} C{:.3}",
         p.x, p.y, p.z, p.a, p.b, p.c
     );
+    if let Some(st) = &r.stock {
+        s.push_str(&crate::stock::text(st));
+    }
     s
 }
 

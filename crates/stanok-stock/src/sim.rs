@@ -178,7 +178,8 @@ pub struct StockSim {
     per_line: BTreeMap<u32, Tally>,
     collisions: Vec<Collision>,
     collision_count: u64,
-    open: HashMap<CollisionKind, (u32, usize)>,
+    /// Per kind: the line, index and last sweep of the record still open.
+    open: HashMap<CollisionKind, (u32, usize, u64)>,
     notes: Vec<String>,
     initial_volume: f64,
     sweeps: u64,
@@ -521,17 +522,22 @@ impl StockSim {
         }
     }
 
+    /// Books a collision of this sweep: it extends the record of the same kind if that one is
+    /// still open (the same block, or the contact went on from the previous sweep without a
+    /// break), else opens a new one.
     fn record(&mut self, kind: CollisionKind, c: &Chain, depth: f64, tool: u32) {
-        if let Some(&(line, idx)) = self.open.get(&kind) {
-            if line == c.line {
+        if let Some(&(line, idx, last)) = self.open.get(&kind) {
+            if line == c.line || last + 1 == self.sweeps {
                 let rec = &mut self.collisions[idx];
                 rec.depth_mm = rec.depth_mm.max(depth);
+                self.open.insert(kind, (line, idx, self.sweeps));
                 return;
             }
         }
         self.collision_count += 1;
         if self.collisions.len() < MAX_COLLISIONS {
-            self.open.insert(kind, (c.line, self.collisions.len()));
+            self.open
+                .insert(kind, (c.line, self.collisions.len(), self.sweeps));
             self.collisions.push(Collision {
                 kind,
                 line: c.line,
@@ -710,11 +716,10 @@ impl StockSim {
     /// The stock's surface now, in the stock frame (for STL, pictures and the panel). `stride`
     /// > 1 samples every stride-th line for a lighter mesh.
     pub fn mesh(&self, stride: usize) -> Option<Mesh> {
-        let grid = match self.model.as_ref()? {
-            Model::Mill(m) => coarse(&m.grid, stride),
-            Model::Lathe(l) => l.to_grid(self.resolution * stride.max(1) as f64),
-        };
-        Some(Mesh::from_grid(&grid))
+        match self.model.as_ref()? {
+            Model::Mill(m) => Some(Mesh::from_grid(&coarse(&m.grid, stride))),
+            Model::Lathe(l) => Some(l.mesh((256 / stride.max(1)).max(16))),
+        }
     }
 
     /// Stock-frame coordinates of a machine point.

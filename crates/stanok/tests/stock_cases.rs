@@ -7,7 +7,41 @@ mod common;
 use common::*;
 use std::f64::consts::PI;
 
-const BOX: &str = "box:X0,Y0,Z-30:X100,Y80,Z0";
+/// The stock of a case: a box around its features (small, so the debug build runs fast).
+struct Stock {
+    lo: [f64; 3],
+    hi: [f64; 3],
+}
+
+impl Stock {
+    fn spec(&self) -> String {
+        format!(
+            "box:X{},Y{},Z{}:X{},Y{},Z{}",
+            self.lo[0], self.lo[1], self.lo[2], self.hi[0], self.hi[1], self.hi[2]
+        )
+    }
+    /// The stock less a cut (the cut's signed distance).
+    fn minus(&self, p: [f64; 3], cut: f64) -> f64 {
+        sd_box(p, self.lo, self.hi).max(-cut)
+    }
+}
+
+const SLOT: Stock = Stock {
+    lo: [10.0, 30.0, -10.0],
+    hi: [90.0, 50.0, 0.0],
+};
+const POCKET: Stock = Stock {
+    lo: [25.0, 15.0, -10.0],
+    hi: [75.0, 65.0, 0.0],
+};
+const HOLE: Stock = Stock {
+    lo: [40.0, 30.0, -25.0],
+    hi: [60.0, 50.0, 0.0],
+};
+const GROOVE: Stock = Stock {
+    lo: [10.0, 32.0, -10.0],
+    hi: [90.0, 48.0, 0.0],
+};
 
 /// Tools for the cases: T1 flat Ø10, T2 drill Ø10 118°, T3 ball Ø6, flutes 40 mm.
 const TOOLS: &str = r#"
@@ -34,11 +68,12 @@ radius = 3.0
 "#;
 
 /// Runs `program` with the stock; returns the stock object and the STL's vertices.
-fn run(tag: &str, program: &str, extra: &[&str]) -> (serde_json::Value, Vec<[f64; 3]>) {
+fn run(tag: &str, program: &str, stock: &Stock) -> (serde_json::Value, Vec<[f64; 3]>) {
     let prog = temp_in(tag, "prog.ngc", program);
     let tools = temp_in(tag, "tools.toml", TOOLS);
     let stl = temp_in(tag, "part.stl", "");
-    let mut args = vec![
+    let spec = stock.spec();
+    let args = [
         "run",
         &prog,
         "--json",
@@ -46,11 +81,9 @@ fn run(tag: &str, program: &str, extra: &[&str]) -> (serde_json::Value, Vec<[f64
         &tools,
         "--stock-out",
         &stl,
+        "--stock",
+        &spec,
     ];
-    args.extend_from_slice(extra);
-    if !extra.contains(&"--stock") {
-        args.extend_from_slice(&["--stock", BOX]);
-    }
     let (code, out, err) = stanok(&args);
     assert_eq!(code, 0, "{err}\n{out}");
     let j = json(&out);
@@ -97,17 +130,12 @@ fn sd_box(p: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> f64 {
     }
 }
 
-/// The box stock less a cut (the cut's signed distance).
-fn minus(p: [f64; 3], cut: f64) -> f64 {
-    sd_box(p, [0.0, 0.0, -30.0], [100.0, 80.0, 0.0]).max(-cut)
-}
-
 const HEAD: &str = "G21 G90 G17 G54 G61\nT1 M6\nS10000 M3\n";
 
 #[test]
 fn a_straight_slot_with_a_flat_end_mill() {
     let prog = format!("{HEAD}G0 X20 Y40 Z5\nG1 Z-5 F500\nG1 X80 F1000\nG0 Z5\nM5\nM30\n");
-    let (stock, v) = run("slot", &prog, &[]);
+    let (stock, v) = run("slot", &prog, &SLOT);
     let want = (60.0 * 10.0 + PI * 25.0) * 5.0;
     let got = removed(&stock);
     assert!((got - want).abs() / want < 0.005, "{got} vs {want}");
@@ -117,7 +145,7 @@ fn a_straight_slot_with_a_flat_end_mill() {
         &v,
         |p| {
             let dx = (p[0] - p[0].clamp(20.0, 80.0)).hypot(p[1] - 40.0) - 5.0;
-            minus(p, dx.max(-5.0 - p[2]))
+            SLOT.minus(p, dx.max(-5.0 - p[2]))
         },
         0.1,
     );
@@ -130,7 +158,7 @@ fn a_circular_pocket() {
         "{HEAD}G0 X50 Y40 Z5\nG1 Z-5 F500\nG1 X55 F1000\nG2 X55 Y40 I-5 J0\nG1 X60\n\
          G2 X60 Y40 I-10 J0\nG1 X65\nG2 X65 Y40 I-15 J0\nG0 Z5\nM5\nM30\n"
     );
-    let (stock, v) = run("pocket", &prog, &[]);
+    let (stock, v) = run("pocket", &prog, &POCKET);
     let want = PI * 400.0 * 5.0;
     let got = removed(&stock);
     assert!((got - want).abs() / want < 0.005, "{got} vs {want}");
@@ -138,7 +166,7 @@ fn a_circular_pocket() {
         &v,
         |p| {
             let r = (p[0] - 50.0).hypot(p[1] - 40.0) - 20.0;
-            minus(p, r.max(-5.0 - p[2]))
+            POCKET.minus(p, r.max(-5.0 - p[2]))
         },
         0.1,
     );
@@ -148,7 +176,7 @@ fn a_circular_pocket() {
 fn a_drilled_hole() {
     let prog =
         "G21 G90 G17 G54 G61\nT2 M6\nS3000 M3\nG0 X50 Y40 Z5\nG1 Z-20 F200\nG0 Z5\nM5\nM30\n";
-    let (stock, v) = run("drill", prog, &[]);
+    let (stock, v) = run("drill", prog, &HOLE);
     let hp = 5.0 / 59f64.to_radians().tan();
     let want = PI * 25.0 * (20.0 - hp) + PI * 25.0 * hp / 3.0;
     let got = removed(&stock);
@@ -159,8 +187,8 @@ fn a_drilled_hole() {
             let r = (p[0] - 50.0).hypot(p[1] - 40.0);
             // Cylinder r ≤ 5 above the cone, cone tip at −20 (distance to the slanted side).
             let side = r - 5.0;
-            let cone = ((-20.0 - p[2]) * hp / 5.0 + r) * (5.0 / (25.0 + hp * hp).sqrt());
-            minus(p, side.max(cone))
+            let cone = (r - (p[2] + 20.0) * 5.0 / hp) * hp / (25.0 + hp * hp).sqrt();
+            HOLE.minus(p, side.max(cone))
         },
         0.1,
     );
@@ -169,7 +197,7 @@ fn a_drilled_hole() {
 #[test]
 fn a_ball_end_groove() {
     let prog = "G21 G90 G17 G54 G61\nT3 M6\nS10000 M3\nG0 X20 Y40 Z5\nG1 Z-2 F300\nG1 X80 F1000\nG0 Z5\nM5\nM30\n";
-    let (stock, v) = run("ball", prog, &[]);
+    let (stock, v) = run("ball", prog, &GROOVE);
     // Centre 1 above the top: the segment below the chord at distance 1, and one cap of height 2.
     let segment = 9.0 * (1.0f64 / 3.0).acos() - 8f64.sqrt();
     let want = segment * 60.0 + PI * 4.0 * (9.0 - 2.0) / 3.0;
@@ -180,7 +208,7 @@ fn a_ball_end_groove() {
         |p| {
             let q = [p[0].clamp(20.0, 80.0), 40.0, 1.0];
             let d = ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
-            minus(p, d - 3.0)
+            GROOVE.minus(p, d - 3.0)
         },
         0.1,
     );
@@ -254,41 +282,53 @@ fn the_2p32_stepped_shaft() {
     assert_eq!(stock["model"], "revolved");
     let mut f = std::fs::File::open(&stl).unwrap();
     let mesh = stl_io::read_stl(&mut f).unwrap();
-    // (z band in part coordinates, turned radius)
-    let bands = [
-        ((-19.8, -0.7), 12.0),
-        ((-39.8, -20.8), 17.0),
-        ((-69.0, -40.6), 17.2),
-    ];
-    for ((z0, z1), want) in bands {
-        let radii: Vec<f64> = mesh
-            .vertices
+    // The outer radius at a height: the farthest vertex of the faces that span it.
+    let radius_at = |z: f64| {
+        mesh.faces
             .iter()
-            .filter(|p| {
-                let z = p[2] as f64 + 210.5;
-                z > z0 && z < z1
+            .filter(|f| {
+                let zs = f.vertices.map(|i| mesh.vertices[i][2] as f64 + 210.5);
+                zs.iter().copied().fold(f64::INFINITY, f64::min) < z
+                    && zs.iter().copied().fold(f64::NEG_INFINITY, f64::max) > z
             })
-            .map(|p| (p[0] as f64 + 170.0).hypot(p[1] as f64))
-            .collect();
-        let max = radii.iter().copied().fold(0.0, f64::max);
+            .flat_map(|f| f.vertices)
+            .map(|i| (mesh.vertices[i][0] as f64 + 170.0).hypot(mesh.vertices[i][1] as f64))
+            .fold(0.0, f64::max)
+    };
+    for (z, want) in [
+        (-1.0, 12.0),
+        (-10.0, 12.0),
+        (-19.0, 12.0),
+        (-21.5, 17.0),
+        (-30.0, 17.0),
+        (-39.0, 17.0),
+        (-41.5, 17.2),
+        (-60.0, 17.2),
+    ] {
+        let r = radius_at(z);
         assert!(
-            (max - want).abs() <= 0.1,
-            "z {z0}…{z1}: outer radius {max}, want {want}"
+            (r - want).abs() <= 0.1,
+            "z {z}: outer radius {r}, want {want}"
         );
     }
     // The end face: z −0.1 from r 4.1 out, the centre boss at 0.
-    let top = |r0: f64, r1: f64| {
-        mesh.vertices
+    // The highest face over a radius (faces spanning it).
+    let top_at = |r: f64| {
+        mesh.faces
             .iter()
-            .filter(|p| {
-                let r = (p[0] as f64 + 170.0).hypot(p[1] as f64);
-                r > r0 && r < r1
+            .filter(|f| {
+                let rs = f.vertices.map(|i| {
+                    (mesh.vertices[i][0] as f64 + 170.0).hypot(mesh.vertices[i][1] as f64)
+                });
+                rs.iter().copied().fold(f64::INFINITY, f64::min) < r
+                    && rs.iter().copied().fold(f64::NEG_INFINITY, f64::max) > r
             })
-            .map(|p| p[2] as f64 + 210.5)
+            .flat_map(|f| f.vertices)
+            .map(|i| mesh.vertices[i][2] as f64 + 210.5)
             .fold(f64::NEG_INFINITY, f64::max)
     };
-    assert!((top(5.0, 11.0) + 0.1).abs() <= 0.1, "{}", top(5.0, 11.0));
-    assert!(top(0.0, 3.5).abs() <= 0.1, "{}", top(0.0, 3.5));
+    assert!((top_at(8.0) + 0.1).abs() <= 0.01, "{}", top_at(8.0));
+    assert!(top_at(2.0).abs() <= 0.01, "{}", top_at(2.0));
     // No tool is in the table: the default insert, with a note.
     let notes = stock["notes"].to_string();
     assert!(notes.contains("T0"), "{notes}");

@@ -32,7 +32,7 @@ reach = 40.0
 radius = 3.0
 "#;
 
-const STOCK: &str = "box:X0,Y0,Z-30:X100,Y80,Z0";
+const STOCK: &str = "box:X0,Y20,Z-30:X80,Y60,Z0";
 
 /// Runs a program (lines joined with newlines) on the mill, or on `machine`; the collisions.
 fn collisions(tag: &str, lines: &[&str], machine: Option<&str>) -> Vec<serde_json::Value> {
@@ -135,7 +135,8 @@ fn deeper_than_the_flutes() {
             "1",
             &["G0 X-10 Y40 Z5", "G0 Z-15", "G1 X50 F500", "G0 Z5", "M30"],
         ),
-        &[("flute_length", 6, 5.0)],
+        // … and the retract then cuts the wall left above the flutes at rapid.
+        &[("flute_length", 6, 5.0), ("rapid_in_material", 7, 5.0)],
         None,
     );
 }
@@ -153,7 +154,11 @@ fn a_shank_wider_than_the_cutter() {
             "5",
             &["G0 X-10 Y40 Z5", "G0 Z-8", "G1 X50 F500", "G0 Z5", "M30"],
         ),
-        &[("flute_length", 6, 5.0), ("shank", 6, 5.0)],
+        &[
+            ("flute_length", 6, 5.0),
+            ("shank", 6, 5.0),
+            ("rapid_in_material", 7, 5.0),
+        ],
         None,
     );
 }

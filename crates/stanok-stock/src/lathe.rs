@@ -71,8 +71,8 @@ fn hull(mut pts: Vec<P2>) -> Vec<P2> {
     h
 }
 
-/// The x interval of the line z = `zr` within `r` of the segment a–b.
-fn capsule_chord(a: P2, b: P2, r: f64, zr: f64) -> Option<(f64, f64)> {
+/// The x interval of the line z = `zr` within `r` of the segment a–b (points as (z, x)).
+pub(crate) fn capsule_chord(a: P2, b: P2, r: f64, zr: f64) -> Option<(f64, f64)> {
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
     for c in [a, b] {
@@ -219,7 +219,8 @@ impl LatheModel {
         let n = segments.max(8);
         let mut mesh = crate::mesh::Mesh::default();
         // Bands: (z0, z1, intervals).
-        let mut bands: Vec<(f64, f64, Vec<(f64, f64)>)> = Vec::new();
+        type Band = (f64, f64, Vec<(f64, f64)>);
+        let mut bands: Vec<Band> = Vec::new();
         for (k, row) in self.rows.iter().enumerate() {
             let iv: Vec<(f64, f64)> = row
                 .spans()

@@ -176,8 +176,8 @@ impl Mesh {
         for_each_edge(grid, &lat, &mut |quad, p, _| {
             for c in quad {
                 let e = cells.entry(key(c)).or_insert(([0.0; 3], 0));
-                for k in 0..3 {
-                    e.0[k] += p[k];
+                for (s, v) in e.0.iter_mut().zip(p) {
+                    *s += v;
                 }
                 e.1 += 1;
             }

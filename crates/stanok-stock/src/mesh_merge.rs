@@ -89,7 +89,9 @@ pub(crate) fn triangulate(
         })
     };
     // Mergeable quads by plane, then by their (u, w) corner cell.
-    let mut planes: HashMap<(usize, i64, bool), HashMap<(i64, i64), usize>> = HashMap::new();
+    // (axis, level, facing) → (u, w) corner cell → quad.
+    type Plane = HashMap<(i64, i64), usize>;
+    let mut planes: HashMap<(usize, i64, bool), Plane> = HashMap::new();
     let mut triangles = Vec::with_capacity(quads.len());
     for (n, q) in quads.iter().enumerate() {
         if flat(q) {

@@ -10,12 +10,19 @@
 //!
 //! ## One sweep ([`MillModel::apply`])
 //! 1. The cutter's footprint: the XY box of its primitives at both ends of the sweep.
-//! 2. Culling: the grid is tiled ([`TILE`]² lines); each tile keeps an upper bound of its highest
-//!    material point (recomputed after a cut touched it). A tile whose bound is below the swept
-//!    cutter's lowest point, and a line whose top is, is skipped.
+//! 2. Culling: with a vertical axis, each row of lines is clipped to the chord of the capsule of
+//!    the tool's widest radius around the tip's path (a diagonal move touches a band, not its
+//!    box); a line whose top is below the swept cutter's lowest point is skipped. The grid is tiled
+//!    ([`TILE`]² lines); each tile keeps an upper bound of its highest material point (recomputed
+//!    after a cut touched it), which culls the bodies' checks of step 4. A footprint of at least
+//!    [`PARALLEL_LINES`] lines is cut by two threads (`rayon::join`), each on its own half of the
+//!    tile rows, so they never share a line or a tile flag.
 //! 3. Each remaining line: the union of its chords with the cutter's primitives (the vertical
 //!    fast path when the axis is +Z), removed; the removed length is volume × cell area, the
 //!    longest removed length the depth of cut, the lowest removed point the engagement of the tip.
+//!    The primitives are visited from the lowest up; with a vertical axis, once one starts above
+//!    the line's top, the line is cut from the lowest chord up to its top (everything above the
+//!    lower primitives' chords is inside the swept body).
 //! 4. Checks: the bodies above the flutes (flute extension, shank, holder) are intersected with what
 //!    is left; the longest overlap on a line is the collision depth. A body whose lowest point is
 //!    above the stock's initial top is skipped without looking at a line.
@@ -43,6 +50,144 @@ pub struct SweepHits {
     pub shank: f64,
     /// Longest overlap of the holder with material.
     pub holder: f64,
+}
+
+impl SweepHits {
+    /// Both together (volumes add, depths take the larger, lowest the lower).
+    fn merge(&self, o: &SweepHits) -> SweepHits {
+        SweepHits {
+            removed: self.removed + o.removed,
+            depth: self.depth.max(o.depth),
+            lowest_removed: self.lowest_removed.min(o.lowest_removed),
+            flute: self.flute.max(o.flute),
+            shank: self.shank.max(o.shank),
+            holder: self.holder.max(o.holder),
+        }
+    }
+}
+
+/// Footprints of at least this many lines are cut by two threads (rows split in half).
+pub const PARALLEL_LINES: usize = 1500;
+
+/// Where the lines are.
+#[derive(Debug, Clone, Copy)]
+struct GridGeometry {
+    origin: [f64; 2],
+    cell: [f64; 2],
+    n0: usize,
+    tiles0: usize,
+}
+
+/// Whole tile rows of the grid, from line row `j0`: what one thread may change.
+struct Band<'a> {
+    lines: &'a mut [Dexel],
+    dirty: &'a mut [bool],
+    j0: usize,
+}
+
+impl<'a> Band<'a> {
+    /// The rows before `mid` (a multiple of [`TILE`]) and from it.
+    fn split(self, mid: usize, n0: usize, tiles0: usize) -> (Band<'a>, Band<'a>) {
+        let (la, lb) = self.lines.split_at_mut((mid - self.j0) * n0);
+        let (da, db) = self.dirty.split_at_mut((mid - self.j0) / TILE * tiles0);
+        (
+            Band {
+                lines: la,
+                dirty: da,
+                j0: self.j0,
+            },
+            Band {
+                lines: lb,
+                dirty: db,
+                j0: mid,
+            },
+        )
+    }
+}
+
+/// The cutter's part of a sweep (module doc, steps 1–3).
+struct CutterPass<'a> {
+    prims: &'a [Prim],
+    /// Lowest point of each primitive over the sweep (the stack is sorted by it).
+    lows: &'a [f64],
+    sw: &'a Sweep,
+    vertical: bool,
+    z_low: f64,
+    radius: f64,
+    ir: std::ops::Range<usize>,
+    grid: GridGeometry,
+}
+
+impl CutterPass<'_> {
+    /// Cuts the lines of rows `rows` (inside `band`).
+    fn run(&self, band: Band<'_>, rows: std::ops::Range<usize>) -> SweepHits {
+        let mut hits = SweepHits {
+            lowest_removed: f64::INFINITY,
+            ..Default::default()
+        };
+        let g = self.grid;
+        let area = g.cell[0] * g.cell[1];
+        let (p0, d) = (self.sw.p0, self.sw.d);
+        for j in rows {
+            let y = g.origin[1] + (j as f64 + 0.5) * g.cell[1];
+            // A vertical tool covers the disk of its widest radius around the tip's path.
+            let ir = if self.vertical {
+                let Some((xa, xb)) = crate::lathe::capsule_chord(
+                    [p0[1], p0[0]],
+                    [p0[1] + d[1], p0[0] + d[0]],
+                    self.radius,
+                    y,
+                ) else {
+                    continue;
+                };
+                let a = ((xa - g.origin[0]) / g.cell[0] - 0.5)
+                    .ceil()
+                    .max(self.ir.start as f64);
+                let b =
+                    (((xb - g.origin[0]) / g.cell[0] - 0.5).floor() + 1.0).min(self.ir.end as f64);
+                if a >= b || a.is_nan() || b.is_nan() {
+                    continue;
+                }
+                a as usize..b as usize
+            } else {
+                self.ir.clone()
+            };
+            let row = (j - band.j0) * g.n0;
+            for i in ir {
+                let line = &mut band.lines[row + i];
+                let top = match line.top() {
+                    Some(top) if (top as f64) >= self.z_low => top as f64,
+                    _ => continue,
+                };
+                let c = [g.origin[0] + (i as f64 + 0.5) * g.cell[0], y];
+                // The primitives that reach below the top; with a vertical axis, one that does
+                // not means everything above the lower ones is air: cut to the top.
+                let mut range: Option<(f64, f64)> = None;
+                let mut open_top = false;
+                for (p, &low) in self.prims.iter().zip(self.lows) {
+                    if low > top {
+                        open_top = self.vertical;
+                        break;
+                    }
+                    if let Some((a, b)) = MillModel::chord_at(p, self.sw, self.vertical, c) {
+                        range = Some(range.map_or((a, b), |(x, y)| (x.min(a), y.max(b))));
+                    }
+                }
+                let Some((a, mut b)) = range else { continue };
+                if open_top {
+                    b = f64::INFINITY;
+                }
+                let (removed, lowest) = line.cut(a, b);
+                if removed > 0.0 {
+                    hits.removed += removed * area;
+                    hits.depth = hits.depth.max(removed);
+                    hits.lowest_removed = hits.lowest_removed.min(lowest);
+                    band.dirty[(j - band.j0) / TILE * g.tiles0 + i / TILE] = true;
+                }
+            }
+        }
+        hits
+    }
 }
 
 /// The stock of a mill (module doc).
@@ -235,44 +380,59 @@ impl MillModel {
             lowest_removed: f64::INFINITY,
             ..Default::default()
         };
-        let area = self.grid.cell_area();
         // 1–3: the cutter.
-        let mut lo = [f64::INFINITY; 2];
-        let mut hi = [f64::NEG_INFINITY; 2];
-        let mut z_low = f64::INFINITY;
-        for p in &tool.cutter {
-            let (a, b) = prim_box(p, sw);
-            for k in 0..2 {
-                lo[k] = lo[k].min(a[k]);
-                hi[k] = hi[k].max(b[k]);
-            }
-            z_low = z_low.min(prim_lowest(p, sw.p0, sw.axis).min(prim_lowest(p, p1, sw.axis)));
-        }
+        let lows: Vec<f64> = tool
+            .cutter
+            .iter()
+            .map(|p| prim_lowest(p, sw.p0, sw.axis).min(prim_lowest(p, p1, sw.axis)))
+            .collect();
+        let z_low = lows.iter().copied().fold(f64::INFINITY, f64::min);
         if z_low <= self.initial_top {
-            let cutter = &tool.cutter;
-            self.for_lines(lo, hi, z_low, |grid, idx, c| {
-                let line = &mut grid.lines[idx];
-                match line.top() {
-                    Some(top) if (top as f64) >= z_low => {}
-                    _ => return false,
+            let mut lo = [f64::INFINITY; 2];
+            let mut hi = [f64::NEG_INFINITY; 2];
+            for p in &tool.cutter {
+                let (a, b) = prim_box(p, sw);
+                for k in 0..2 {
+                    lo[k] = lo[k].min(a[k]);
+                    hi[k] = hi[k].max(b[k]);
                 }
-                let mut range: Option<(f64, f64)> = None;
-                for p in cutter {
-                    if let Some((a, b)) = Self::chord_at(p, sw, vertical, c) {
-                        range = Some(range.map_or((a, b), |(x, y)| (x.min(a), y.max(b))));
-                    }
-                }
-                let Some((a, b)) = range else { return false };
-                let (removed, lowest) = line.cut(a, b);
-                if removed > 0.0 {
-                    hits.removed += removed * area;
-                    hits.depth = hits.depth.max(removed);
-                    hits.lowest_removed = hits.lowest_removed.min(lowest);
-                    true
+            }
+            let jr = self.grid.index_range(1, lo[1], hi[1]);
+            let ir = self.grid.index_range(0, lo[0], hi[0]);
+            if !(jr.is_empty() || ir.is_empty()) {
+                let cut = CutterPass {
+                    prims: &tool.cutter,
+                    lows: &lows,
+                    sw,
+                    vertical,
+                    z_low,
+                    radius: tool.cutter.iter().map(Prim::max_radius).fold(0.0, f64::max),
+                    ir,
+                    grid: GridGeometry {
+                        origin: self.grid.origin,
+                        cell: self.grid.cell,
+                        n0: self.grid.n[0],
+                        tiles0: self.tiles[0],
+                    },
+                };
+                // Two halves of the rows on two threads when the footprint is large enough.
+                let rows = jr.len() * cut.ir.len();
+                let band = Band {
+                    lines: &mut self.grid.lines,
+                    dirty: &mut self.tile_dirty,
+                    j0: 0,
+                };
+                let part = if rows >= PARALLEL_LINES && jr.len() >= 2 * TILE {
+                    let mid = (jr.start + jr.len() / 2) / TILE * TILE;
+                    let (a, b) = band.split(mid, cut.grid.n0, cut.grid.tiles0);
+                    let (x, y) =
+                        rayon::join(|| cut.run(a, jr.start..mid), || cut.run(b, mid..jr.end));
+                    x.merge(&y)
                 } else {
-                    false
-                }
-            });
+                    cut.run(band, jr)
+                };
+                hits = hits.merge(&part);
+            }
         }
         // 4: the bodies above the flutes.
         let bodies: [(&mut f64, &[Prim]); 3] = [

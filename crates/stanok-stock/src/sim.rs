@@ -13,11 +13,16 @@
 //!    point control, else the G43 offset): the tip is where the program's offsets put it, as
 //!    LinuxCNC's preview draws it; on a Cartesian machine, position − offset along +Z. Then into
 //!    the stock frame (the work frame in force at the first motion, or the machine frame).
-//! 2. **Chains.** Consecutive poses of one block and one state are merged into one straight sweep
-//!    while the path stays within [`StockSim::tolerance`] (a tenth of the resolution) of the chord —
+//! 2. **Chains.** Consecutive poses of one state are merged into one straight sweep while the path
+//!    stays within [`StockSim::tolerance`] (a tenth of the resolution) of the chord —
 //!    `dev ← dev + |end − start|·sin(turn of the chord)` bounds every skipped point's distance —
 //!    and the axis turns less than the angle at which the flute end moves half a resolution; a
-//!    single step that turns more is cut into sub-steps. A long rapid stays one exact sweep (the
+//!    single step that turns more is cut into sub-steps. A chain of one block grows as long as it
+//!    stays straight; a chain may take in further blocks only while it is at most
+//!    [`MULTI_BLOCK_RUN`] cells long (the 0.1 mm blocks of a CAM finishing path would otherwise
+//!    cost one sweep each, mostly overhead): its removal is shared among its blocks by their time,
+//!    a collision goes to its first block (at most a millimetre from the block that caused it at
+//!    the default resolution). A long rapid stays one exact sweep (the
 //!    swept volume of `sweep.rs`), however far it goes in one servo period.
 //! 3. **Sweep.** The model cuts the swept cutter, checks the bodies above it, and the result is
 //!    booked: volume and time in material per tool and per block, collisions per kind and block
@@ -50,6 +55,10 @@ use std::collections::{BTreeMap, HashMap, VecDeque};
 pub const MAX_COLLISIONS: usize = 1000;
 /// Default cell size, mm.
 pub const DEFAULT_RESOLUTION: f64 = 0.1;
+/// A straight run may merge several blocks while it is at most this many cells long (the short
+/// blocks of a CAM surface path); its removal is shared among them by time, its collisions go to
+/// its first block.
+pub const MULTI_BLOCK_RUN: f64 = 10.0;
 /// Most lines of a milling model: the default resolution is coarsened to stay within it.
 pub const MAX_LINES: f64 = 4.0e6;
 
@@ -85,13 +94,13 @@ impl Placement {
         let (s, c) = deg.to_radians().sin_cos();
         [c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]]
     }
-    fn to_stock(&self, p: V3) -> V3 {
+    fn to_stock(self, p: V3) -> V3 {
         sub(Self::rot(sub(p, self.origin), -self.rotation), self.shift)
     }
     fn dir_to_stock(&self, v: V3) -> V3 {
         Self::rot(v, -self.rotation)
     }
-    fn to_machine(&self, q: V3) -> V3 {
+    fn to_machine(self, q: V3) -> V3 {
         add(Self::rot(add(q, self.shift), self.rotation), self.origin)
     }
 }
@@ -178,6 +187,8 @@ pub struct StockSim {
     per_line: BTreeMap<u32, Tally>,
     collisions: Vec<Collision>,
     collision_count: u64,
+    /// The blocks of the open chain: (line, time it starts), in order.
+    chain_lines: Vec<(u32, f64)>,
     /// Per kind: the line, index and last sweep of the record still open.
     open: HashMap<CollisionKind, (u32, usize, u64)>,
     notes: Vec<String>,
@@ -226,6 +237,7 @@ impl StockSim {
             tools: HashMap::new(),
             tool_now: None,
             chain: None,
+            chain_lines: Vec::new(),
             last: None,
             per_tool: BTreeMap::new(),
             per_line: BTreeMap::new(),
@@ -477,10 +489,14 @@ impl StockSim {
     fn extend(&mut self, from: (ToolPose, f64), q: ToolPose, t: f64, line: u32) {
         let tol = self.tolerance();
         let max_turn = self.max_turn();
+        let multi = MULTI_BLOCK_RUN * self.resolution;
         if let Some(c) = &mut self.chain {
-            let same_block = c.line == line;
+            // A run of one block grows as long as it is straight; a run of several blocks (the
+            // short blocks of a CAM surface path) stays within MULTI_BLOCK_RUN cells.
+            let joins = (self.chain_lines.len() == 1 && c.line == line)
+                || norm(sub(q.tip, c.start.tip)) <= multi;
             let turned = dot(c.start.axis, q.axis).clamp(-1.0, 1.0).acos() <= max_turn;
-            if same_block && turned {
+            if joins && turned {
                 let old = sub(c.end.tip, c.start.tip);
                 let new = sub(q.tip, c.start.tip);
                 let (lo, ln) = (norm(old), norm(new));
@@ -494,6 +510,9 @@ impl StockSim {
                     c.end = q;
                     c.t1 = t;
                     c.dev = dev;
+                    if self.chain_lines.last().is_some_and(|l| l.0 != line) {
+                        self.chain_lines.push((line, from.1));
+                    }
                     return;
                 }
             }
@@ -505,6 +524,8 @@ impl StockSim {
             }
             None => from,
         };
+        self.chain_lines.clear();
+        self.chain_lines.push((line, start.1));
         self.chain = Some(Chain {
             start: start.0,
             end: q,
@@ -622,19 +643,29 @@ impl StockSim {
         let number = self.state.tool;
         if volume > 1e-9 {
             let dt = (c.t1 - c.t0).max(0.0);
+            // The blocks of the run share its removal by time.
+            let n = self.chain_lines.len();
+            for k in 0..n {
+                let (line, from) = self.chain_lines[k];
+                let to = self.chain_lines.get(k + 1).map_or(c.t1, |l| l.1);
+                let share = if n == 1 || dt <= 0.0 {
+                    1.0
+                } else {
+                    ((to - from) / dt).clamp(0.0, 1.0)
+                };
+                let tally = self.per_line.entry(line).or_default();
+                tally.volume += volume * share;
+                tally.time += dt * share;
+            }
             // A rapid or a stopped spindle matters when it removes more than a sliver: at least a
             // disk of the tool's radius one cell thick (a G64 blend into a retract grazes less).
             let sliver = match &tool {
                 ToolShape::Mill(m) => std::f64::consts::PI * m.radius * m.radius,
                 ToolShape::Insert(i) => 2.0 * std::f64::consts::PI * i.nose_radius * i.length,
             } * self.resolution;
-            for tally in [
-                self.per_tool.entry(number).or_default(),
-                self.per_line.entry(c.line).or_default(),
-            ] {
-                tally.volume += volume;
-                tally.time += dt;
-            }
+            let tally = self.per_tool.entry(number).or_default();
+            tally.volume += volume;
+            tally.time += dt;
             if self.state.rapid && volume > sliver {
                 found.push((CollisionKind::RapidInMaterial, depth));
             }

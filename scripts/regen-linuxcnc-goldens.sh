@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates crates/stanok-interp/tests/rs274/expected/*.canon.txt with LinuxCNC's standalone
+# Regenerates crates/stanok-rs274/tests/rs274/expected/*.canon.txt with LinuxCNC's standalone
 # interpreter, the oracle for RS274/NGC semantics. CI does not run this (it needs LinuxCNC); the
 # outputs are committed.
 #
@@ -11,10 +11,12 @@
 # ../shared/corpus/rs274ngc/expected.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
-dir="$here/crates/stanok-interp/tests/rs274"
+dir="$here/crates/stanok-rs274/tests/rs274"
 tbl="$here/../shared/corpus/rs274ngc/tool.tbl"
 command -v rs274 >/dev/null || { echo "rs274 not found: install linuxcnc-uspace" >&2; exit 1; }
 tmp="$(mktemp -d)"
+# rs274 maps its tool table from $HOME/.tool.mmap: a home of its own keeps other runs out.
+export HOME="$tmp"
 trap 'rm -rf "$tmp"' EXIT
 for prog in "$dir"/*.ngc; do
   name="$(basename "$prog" .ngc)"
@@ -25,7 +27,7 @@ for prog in "$dir"/*.ngc; do
 done
 
 # Subroutine files on the search path: rs274 reads SUBROUTINE_PATH from an ini file (-i).
-sub="$here/crates/stanok-interp/tests/rs274-subfiles"
+sub="$here/crates/stanok-rs274/tests/rs274-subfiles"
 printf "[RS274NGC]\nSUBROUTINE_PATH = %s\n" "$sub" > "$tmp/sub.ini"
 (cd "$tmp" && rs274 -i "$tmp/sub.ini" -t "$tbl" -g "$sub/main.ngc" canon.txt 2> err.txt < /dev/null) || true
 cat "$tmp/canon.txt" "$tmp/err.txt" > "$sub/expected.canon.txt"

@@ -634,6 +634,9 @@ pub enum Canon {
     ChangeTool {
         /// Tool number.
         tool: u32,
+        /// LinuxCNC's tool-table slot of that tool, which rs274 prints (n ≥ 1 = the n-th tool
+        /// of the table, 0 = no tool); other dialects give the tool number.
+        slot: u32,
     },
     /// A tool change in another spindle than the main one (AxiOMA `T2=… M06`).
     ChangeSpindleTool {

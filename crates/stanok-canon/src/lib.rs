@@ -19,6 +19,7 @@
 mod canon;
 mod diag;
 pub mod linuxcnc;
+pub mod linuxcnc_trace;
 pub mod setup;
 mod span;
 

@@ -170,6 +170,7 @@ impl LinuxCncPrinter {
                 constant_surface_speed,
                 max_rpm,
             } => {
+                self.css = *constant_surface_speed;
                 let mode = if *constant_surface_speed {
                     *max_rpm
                 } else {
@@ -207,13 +208,20 @@ impl LinuxCncPrinter {
                 naive_cam_tolerance,
             } => {
                 let k = self.units.mm_per_unit();
-                // rs274 prints the tolerance, and then the naive-CAM one, only for G64.
+                // rs274 prints the tolerance, and then the naive-CAM one, for G64 (and the naive-CAM one
+                // whenever the command carries it).
                 match mode {
-                    PathMode::ExactStop => {
-                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)".into())
-                    }
-                    PathMode::ExactPath => {
-                        self.line(n, "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)".into())
+                    PathMode::ExactStop | PathMode::ExactPath => {
+                        let name = if *mode == PathMode::ExactStop {
+                            "CANON_EXACT_STOP"
+                        } else {
+                            "CANON_EXACT_PATH"
+                        };
+                        self.line(n, format!("SET_MOTION_CONTROL_MODE({name})"));
+                        // After a canned cycle rs274 restores the naive-CAM tolerance too.
+                        if let Some(q) = naive_cam_tolerance {
+                            self.line(n, format!("SET_NAIVECAM_TOLERANCE({:.4})", q / k));
+                        }
                     }
                     PathMode::Continuous { tolerance } => {
                         self.line(
@@ -366,7 +374,7 @@ impl LinuxCncPrinter {
                 self.line(n, format!("SET_ORIENTATION_INTERPOLATION({name})"))
             }
             Canon::StartToolChange => self.line(n, "START_CHANGE()".into()),
-            Canon::ChangeTool { tool } => self.line(n, format!("CHANGE_TOOL({tool})")),
+            Canon::ChangeTool { slot, .. } => self.line(n, format!("CHANGE_TOOL({slot})")),
             Canon::UseToolLengthOffset { offset } => {
                 self.tlo = *offset;
                 let v = self.scale_linear(offset.to_array());

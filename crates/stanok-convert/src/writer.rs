@@ -563,7 +563,7 @@ impl Converter {
             Canon::Mist { on } => self.coolant(src, Some(*on), None),
             Canon::Flood { on } => self.coolant(src, None, Some(*on)),
             Canon::SelectTool { tool } => self.line(src, &format!("T{tool}")),
-            Canon::ChangeTool { tool } => {
+            Canon::ChangeTool { tool, .. } => {
                 let m = if rs { "M6" } else { "M06" };
                 self.line(src, &format!("T{tool} {m}"))
             }

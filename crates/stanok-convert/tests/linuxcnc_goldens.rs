@@ -7,6 +7,7 @@
 //! same canonical calls as Stanok, which are the source's motions.
 
 use stanok_canon::linuxcnc::LinuxCncPrinter;
+use stanok_canon::setup::{Tool, ToolEdge, ToolTable};
 use stanok_convert::{convert, ConvertOptions, Target};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
@@ -90,6 +91,24 @@ fn same_line(a: &str, b: &str) -> bool {
             })
 }
 
+/// The tool table `rs274` uses when given none (`-t` absent), as the goldens were made: tools 1, 2
+/// and 3 in slots 1, 2 and 3, all of zero size (it prints `CHANGE_TOOL(slot)`; T4 is "not found").
+fn rs274_default_tools() -> ToolTable {
+    let mut table = ToolTable::default();
+    for number in 1..=3 {
+        table.tools.insert(
+            number,
+            Tool {
+                number,
+                pocket: number,
+                edges: vec![ToolEdge::default()],
+                ..Tool::default()
+            },
+        );
+    }
+    table
+}
+
 #[test]
 fn linuxcnc_reads_the_converted_programs_as_stanok_does() {
     let mut failures = Vec::new();
@@ -109,7 +128,8 @@ fn linuxcnc_reads_the_converted_programs_as_stanok_does() {
         );
         let mut printer = LinuxCncPrinter::new();
         let mut ours = String::new();
-        let opts = InterpOptions::new(Dialect::Rs274ngc);
+        let mut opts = InterpOptions::new(Dialect::Rs274ngc);
+        opts.control.tools = rs274_default_tools();
         for item in Interpreter::new(Cursor::new(converted.clone().into_bytes()), opts) {
             match item {
                 Ok(cmd) => ours.push_str(printer.print(&cmd)),

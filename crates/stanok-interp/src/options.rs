@@ -1,9 +1,13 @@
-//! The settings of one interpreter run: the dialect, the machine's axes, tolerances and tables
-//! the front ends need, search paths, limits.
+//! The settings of one interpreter run: the options every front end shares
+//! (`stanok_interp_core::CoreOptions`) and each front end's own, in one struct for the callers.
+//! `Interpreter::new` hands each front end its part.
 
-use crate::{AxiomaMachineParams, LabMachineParams};
+use stanok_axioma::AxiomaMachineParams;
 use stanok_canon::setup::ControlData;
 use stanok_canon::{LengthUnits, Pose};
+use stanok_interp_core::CoreOptions;
+use stanok_labs::{LabMachineParams, LabOptions};
+use stanok_rs274::Rs274Options;
 use stanok_syntax::Dialect;
 
 /// Settings of one interpreter run.
@@ -17,7 +21,8 @@ pub struct InterpOptions {
     pub initial_position: Pose,
     /// Units at power-on (RS274/NGC: the machine's units; AxiOMA: G71).
     pub initial_units: LengthUnits,
-    /// AxiOMA arc tolerance for errors 621/622/623 and the centre correction, mm (machine data).
+    /// AxiOMA arc tolerance for errors 621/622/623 and the centre correction, mm (machine data);
+    /// the arc tolerance of the other controls but RS274/NGC.
     pub arc_tolerance_mm: f64,
     /// RS274/NGC arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
     pub rs274_arc_tolerance_mm: Option<f64>,
@@ -77,32 +82,76 @@ pub struct InterpOptions {
 impl InterpOptions {
     /// Defaults for a dialect: all nine axes, start at the origin, mm.
     pub fn new(dialect: Dialect) -> Self {
+        let core = CoreOptions::new(dialect);
+        let rs274 = Rs274Options::default();
         InterpOptions {
             dialect,
-            axes: [true; 9],
-            initial_position: Pose::ZERO,
-            initial_units: LengthUnits::Millimetres,
-            arc_tolerance_mm: 0.01,
-            rs274_arc_tolerance_mm: None,
-            max_call_depth: 64,
-            max_loop_iterations: 1_000_000,
-            max_blocks: 200_000_000,
-            continue_after_error: false,
-            block_delete: false,
-            subroutine_path: Vec::new(),
-            user_m_codes: false,
-            max_errors: 100,
-            control: ControlData::default(),
-            diameter_axes: [true, false, false, false, false, false, false, false, false],
-            coupled_coordinates: None,
-            rs274_machine_units: LengthUnits::Millimetres,
-            g92_persistence: true,
+            axes: core.axes,
+            initial_position: core.initial_position,
+            initial_units: core.initial_units,
+            arc_tolerance_mm: core.arc_tolerance_mm,
+            rs274_arc_tolerance_mm: rs274.arc_tolerance_mm,
+            max_call_depth: core.max_call_depth,
+            max_loop_iterations: core.max_loop_iterations,
+            max_blocks: core.max_blocks,
+            continue_after_error: core.continue_after_error,
+            block_delete: core.block_delete,
+            subroutine_path: core.subroutine_path,
+            user_m_codes: rs274.user_m_codes,
+            max_errors: core.max_errors,
+            control: core.control,
+            diameter_axes: core.diameter_axes,
+            coupled_coordinates: core.coupled_coordinates,
+            rs274_machine_units: rs274.machine_units,
+            g92_persistence: rs274.g92_persistence,
             axioma: AxiomaMachineParams::default(),
-            optional_stop: true,
+            optional_stop: core.optional_stop,
             labs: LabMachineParams::default(),
             strip_fixture_comments: false,
-            five_axis: None,
+            five_axis: core.five_axis,
             ttpc_workpiece_frame: false,
+        }
+    }
+
+    /// The options every front end shares.
+    pub fn core(&self) -> CoreOptions {
+        CoreOptions {
+            dialect: self.dialect,
+            axes: self.axes,
+            initial_position: self.initial_position,
+            initial_units: self.initial_units,
+            arc_tolerance_mm: self.arc_tolerance_mm,
+            max_call_depth: self.max_call_depth,
+            max_loop_iterations: self.max_loop_iterations,
+            max_blocks: self.max_blocks,
+            continue_after_error: self.continue_after_error,
+            subroutine_path: self.subroutine_path.clone(),
+            block_delete: self.block_delete,
+            max_errors: self.max_errors,
+            control: self.control.clone(),
+            diameter_axes: self.diameter_axes,
+            coupled_coordinates: self.coupled_coordinates,
+            optional_stop: self.optional_stop,
+            five_axis: self.five_axis.clone(),
+        }
+    }
+
+    /// RS274/NGC's own options.
+    pub fn rs274(&self) -> Rs274Options {
+        Rs274Options {
+            arc_tolerance_mm: self.rs274_arc_tolerance_mm,
+            user_m_codes: self.user_m_codes,
+            machine_units: self.rs274_machine_units,
+            g92_persistence: self.g92_persistence,
+        }
+    }
+
+    /// The lab controls' options.
+    pub fn lab(&self) -> LabOptions {
+        LabOptions {
+            core: self.core(),
+            labs: self.labs.clone(),
+            strip_fixture_comments: self.strip_fixture_comments,
         }
     }
 }

@@ -599,11 +599,28 @@ impl MachineData {
                 "beavermill",
             )
             .ok(),
+            "linuxcnc" => Self::linuxcnc(),
             _ => BUILTIN_FIVE_AXIS
                 .iter()
                 .find(|(n, _)| *n == name)
                 .and_then(|(n, text)| Self::from_toml_str(text, n).ok()),
         }
+    }
+
+    /// The built-in `linuxcnc` machine: LinuxCNC's standalone `rs274` as a machine (X Y Z A B C,
+    /// inch LinuxCNC units, the tool table of LinuxCNC's sim configurations), so that `stanok canon
+    /// --machine linuxcnc` prints what `rs274 -g` prints (`machines/linuxcnc.toml`).
+    pub fn linuxcnc() -> Option<MachineData> {
+        let mut m =
+            Self::from_toml_str(include_str!("../../../machines/linuxcnc.toml"), "linuxcnc")
+                .ok()?;
+        m.control.tools = crate::linuxcnc::parse_tool_table(
+            include_str!("../../../machines/linuxcnc-sim.tbl"),
+            "linuxcnc-sim.tbl",
+            m.linuxcnc_units,
+        )
+        .ok()?;
+        Some(m)
     }
 
     /// The machine's kinematics, built: None for a Cartesian machine.

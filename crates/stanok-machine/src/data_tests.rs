@@ -154,3 +154,19 @@ fn m_function_profile_key_and_the_beavermill_machine() {
     assert_eq!(names, "XYZAC");
     assert_eq!(MachineData::builtin("mill").unwrap().m_functions, "generic");
 }
+
+/// The built-in `linuxcnc` machine: rs274's six axes, inch LinuxCNC units, and the sim
+/// configurations' tool table (T1 Z0.511 in, D0.125 in; five tools).
+#[test]
+fn the_builtin_linuxcnc_machine() {
+    let m = MachineData::builtin("linuxcnc").expect("built in");
+    let names: String = m.axes.iter().map(|a| a.name).collect();
+    assert_eq!(names, "XYZABC");
+    assert_eq!(m.linuxcnc_units, stanok_canon::LengthUnits::Inches);
+    let tools = &m.control.tools.tools;
+    assert_eq!(tools.len(), 5);
+    let t1 = &tools[&1];
+    assert!((t1.edges[0].offset.z - 0.511 * 25.4).abs() < 1e-9);
+    assert!((t1.edges[0].radius - 0.125 * 25.4 / 2.0).abs() < 1e-9);
+    assert!(tools.contains_key(&99999));
+}

@@ -37,4 +37,5 @@ pub use data::{
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};
+pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;

@@ -260,14 +260,29 @@ impl SimMachine {
         self.motion.set_hold_switch(switch);
     }
 
-    /// Feed override (fraction, 0.001…2) for the commands applied from now on.
+    /// Feed override (fraction, 0…2) from the next servo instant on: on the motion being executed
+    /// and on everything planned ([`stanok_motion::overrides`]).
     pub fn set_feed_override(&mut self, fraction: f64) {
         self.motion.set_feed_override(fraction);
     }
 
-    /// Rapid override (fraction, 0.001…1) for the commands applied from now on.
+    /// Rapid override (fraction, 0…1) from the next servo instant on.
     pub fn set_rapid_override(&mut self, fraction: f64) {
         self.motion.set_rapid_override(fraction);
+    }
+
+    /// Spindle override (fraction, 0.5…1.2) from the next servo instant on.
+    pub fn set_spindle_override(&mut self, fraction: f64) {
+        self.motion.set_spindle_override(fraction);
+    }
+
+    /// Connects the operator's override knobs ([`stanok_motion::overrides::OverrideSwitch`]),
+    /// read at every servo instant: a thread-safe handle the panel sets at any time.
+    pub fn set_override_switch(
+        &mut self,
+        switch: std::sync::Arc<stanok_motion::overrides::OverrideSwitch>,
+    ) {
+        self.motion.set_override_switch(switch);
     }
 
     /// The program is over (or stopped at an error): runs the motion still in the planner's
@@ -359,7 +374,7 @@ impl SimMachine {
             Canon::StopSpindle { spindle } => self.log(line, format!("M5 spindle {spindle} stop")),
             Canon::Mist { on } => self.log(line, if *on { "M7 mist on" } else { "M9 mist off" }),
             Canon::Flood { on } => self.log(line, if *on { "M8 flood on" } else { "M9 flood off" }),
-            Canon::ChangeTool { tool } => {
+            Canon::ChangeTool { tool, .. } => {
                 if !self.report.tools_used.contains(tool) {
                     self.report.tools_used.push(*tool);
                 }

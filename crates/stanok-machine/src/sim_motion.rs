@@ -25,7 +25,7 @@ use stanok_stock::sim::StockSim;
 pub type SetpointSink = Box<dyn FnMut(&Setpoint)>;
 
 /// How the simulated machine runs the motion.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SimOptions {
     /// Servo period, s (default 1 ms).
     pub servo_period_s: f64,
@@ -41,6 +41,9 @@ pub struct SimOptions {
     /// Every move with this acceleration profile, whatever the program selects (None = as
     /// programmed); see `MotionConfig::forced_profile`.
     pub profile: Option<stanok_canon::AccelerationProfile>,
+    /// Override changes at machine times (`stanok run --override-at`), acting on the motion being
+    /// executed and everything planned ([`stanok_motion::overrides`]).
+    pub override_changes: Vec<stanok_motion::overrides::OverrideChange>,
 }
 
 impl Default for SimOptions {
@@ -52,6 +55,7 @@ impl Default for SimOptions {
             lookahead: stanok_motion::limits::DEFAULT_LOOKAHEAD,
             feed_hold: None,
             profile: None,
+            override_changes: Vec::new(),
         }
     }
 }
@@ -164,6 +168,7 @@ impl MotionRun {
         if let Some((at, standstill)) = options.feed_hold {
             stage.feed_hold(at, standstill);
         }
+        stage.schedule_overrides(&options.override_changes);
         MotionRun {
             stage,
             checks: SetpointChecks {
@@ -226,6 +231,17 @@ impl MotionRun {
 
     pub(crate) fn set_rapid_override(&mut self, fraction: f64) {
         self.stage.set_rapid_override(fraction);
+    }
+
+    pub(crate) fn set_spindle_override(&mut self, fraction: f64) {
+        self.stage.set_spindle_override(fraction);
+    }
+
+    pub(crate) fn set_override_switch(
+        &mut self,
+        switch: std::sync::Arc<stanok_motion::overrides::OverrideSwitch>,
+    ) {
+        self.stage.set_override_switch(switch);
     }
 
     /// Runs what is left; idempotent.

@@ -225,7 +225,7 @@ fn logs_m_functions_tools_and_messages_with_lines() {
             },
         ),
         at(2, Canon::SelectTool { tool: 3 }),
-        at(2, Canon::ChangeTool { tool: 3 }),
+        at(2, Canon::ChangeTool { tool: 3, slot: 3 }),
         at(
             3,
             Canon::SetSpindleSpeed {
@@ -241,8 +241,8 @@ fn logs_m_functions_tools_and_messages_with_lines() {
             },
         ),
         at(4, Canon::Flood { on: true }),
-        at(5, Canon::ChangeTool { tool: 7 }),
-        at(6, Canon::ChangeTool { tool: 3 }),
+        at(5, Canon::ChangeTool { tool: 7, slot: 7 }),
+        at(6, Canon::ChangeTool { tool: 3, slot: 3 }),
         at(
             7,
             Canon::AuxiliaryFunction {

@@ -37,6 +37,8 @@ fn zigzag(n: usize, profile: AccelerationProfile) -> Vec<PlannerInput> {
         q[1] += len * heading.sin();
         out.push(PlannerInput::Segment(PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start: p,
             end: q,
             geometry: SegmentGeometry::Line,

@@ -53,6 +53,8 @@ fn main() {
     for (k, w) in points.windows(2).enumerate() {
         let seg = PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start: w[0],
             end: w[1],
             geometry: SegmentGeometry::Line,

@@ -16,10 +16,13 @@
 //! ## Speeds
 //! Canon feeds are mm/min along the feed length (the interpreter already turned G93 inverse time
 //! and G95 per-revolution feeds into mm/min). Here: mm/min → mm/s, clamp to the machine's maximum
-//! feed, times the feed override (0.1 %…200 %), times (9-D length / feed length) — see
-//! [`crate::segment`]. A feed that is zero, negative or not a number (the interpreter never emits
-//! one; a spindle-synchronised move with the spindle at rest could) runs at the maximum feed, so
-//! that nothing waits for ever. Rapids use the rapid rate times the rapid override (0.1 %…100 %).
+//! feed, times (9-D length / feed length) — see [`crate::segment`]. A feed that is zero, negative
+//! or not a number (the interpreter never emits one; a spindle-synchronised move with the spindle
+//! at rest could) runs at the maximum feed, so that nothing waits for ever. Rapids use the rapid
+//! rate. No override is applied here: every segment says which override scales it
+//! ([`SpeedClass`]: feed, rapid, spindle for synchronised moves, none where the program disabled
+//! it), and the planner and the interpolator apply the factors in force at each servo instant
+//! ([`crate::overrides`]).
 //!
 //! ## Stops (spec axioma-2 §3.4, rs274 §4.30)
 //! Exact stops are forced by M0/M1, tool changes, the tool-change start, program end, pallet
@@ -35,7 +38,7 @@
 
 use crate::limits::MotionConfig;
 use crate::segment::{
-    PathSegment, PlannerInput, Point9, SegmentGeometry, SpindleSpeed, Spindles,
+    PathSegment, PlannerInput, Point9, SegmentGeometry, SpeedClass, SpindleSpeed, Spindles,
     SPLINE_CHORD_TOLERANCE,
 };
 use stanok_canon::{
@@ -44,9 +47,6 @@ use stanok_canon::{
 };
 use stanok_geom::{Helix, Nurbs};
 use stanok_kin::FiveAxis;
-
-/// The slowest override the planner accepts (a 0 % override is a feed hold, not a speed).
-const MIN_OVERRIDE: f64 = 1e-3;
 
 /// Modal motion state between Canon commands (see the module doc).
 #[derive(Debug, Clone)]
@@ -147,6 +147,7 @@ impl CanonAdapter {
                     if straight > 0.0 && omega > 0.0 {
                         // path_speed = F·(straight/straight) now; want length / (Ω / F).
                         seg.path_speed *= length / omega;
+                        seg.velocity_cap *= length / omega;
                     }
                 }
                 seg.geometry = g;
@@ -156,20 +157,9 @@ impl CanonAdapter {
         PlannerInput::Segment(seg)
     }
 
-    /// Changes the feed override (fraction, 0…2) for the segments adapted from now on.
-    pub fn set_feed_override(&mut self, fraction: f64) {
-        self.config.feed_override = fraction;
-        self.config = self.config.clone().sanitised();
-    }
-
-    /// Changes the rapid override (fraction, 0…1) for the segments adapted from now on.
-    pub fn set_rapid_override(&mut self, fraction: f64) {
-        self.config.rapid_override = fraction;
-        self.config = self.config.clone().sanitised();
-    }
-
-    /// Path speed (unit/s along the 9-D path) of a feed move programmed at `feed_per_min`.
-    fn feed_speed(&self, feed_per_min: f64, ratio: f64) -> f64 {
+    /// Path speed (unit/s along the 9-D path) of a feed move programmed at `feed_per_min`, before
+    /// any override, and the override that will scale it.
+    fn feed_speed(&self, feed_per_min: f64, ratio: f64) -> (f64, SpeedClass) {
         let mut f = match self.spindle_pitch {
             Some(pitch) => pitch * self.spindle_rpm[0] / 60.0,
             None => feed_per_min / 60.0,
@@ -178,14 +168,18 @@ impl CanonAdapter {
             f = self.config.max_feed;
         }
         f = f.min(self.config.max_feed);
-        if self.override_enabled && self.spindle_pitch.is_none() {
-            f *= self.config.feed_override.max(MIN_OVERRIDE);
-        }
-        f * ratio
+        let class = if self.spindle_pitch.is_some() {
+            SpeedClass::Spindle
+        } else if self.override_enabled {
+            SpeedClass::Feed
+        } else {
+            SpeedClass::Fixed
+        };
+        (f * ratio, class)
     }
 
-    fn rapid_speed(&self, ratio: f64) -> f64 {
-        self.config.rapid_rate * self.config.rapid_override.max(MIN_OVERRIDE) * ratio
+    fn rapid_speed(&self, ratio: f64) -> (f64, SpeedClass) {
+        (self.config.rapid_rate * ratio, SpeedClass::Rapid)
     }
 
     fn segment(
@@ -193,12 +187,14 @@ impl CanonAdapter {
         start: Pose,
         end: Pose,
         geometry: SegmentGeometry,
-        speed: f64,
+        (speed, speed_class): (f64, SpeedClass),
         rapid: bool,
         line: u32,
     ) -> PathSegment {
         PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class,
             start: start.to_array(),
             end: end.to_array(),
             geometry,
@@ -232,7 +228,8 @@ impl CanonAdapter {
         };
         for piece in crate::css::split(seg, &law) {
             let mut s = piece.segment;
-            s.path_speed = self.feed_speed(self.programmed_feed * piece.min_rpm, ratio);
+            (s.path_speed, s.speed_class) =
+                self.feed_speed(self.programmed_feed * piece.min_rpm, ratio);
             out(PlannerInput::Segment(s));
         }
     }
@@ -503,11 +500,32 @@ mod tests {
         assert_eq!(got[0], Some(20.0));
         assert!((got[1].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
         assert!((got[2].unwrap() - 5000.0 / 60.0).abs() < 1e-12);
-        // 150 % override.
-        a.set_feed_override(1.5);
-        assert_eq!(speeds(&collect(&mut a, &[feed(1200.0)])), vec![Some(30.0)]);
-        // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, no override; stops
-        // before and after.
+        // The override is not applied here: the class says which one scales the speed.
+        let classes = |inputs: &[PlannerInput]| -> Vec<SpeedClass> {
+            inputs
+                .iter()
+                .filter_map(|i| match i {
+                    PlannerInput::Segment(s) => Some(s.speed_class),
+                    PlannerInput::Stop { .. } => None,
+                })
+                .collect()
+        };
+        assert_eq!(
+            classes(&collect(&mut a, &[feed(1200.0)])),
+            [SpeedClass::Feed]
+        );
+        let off = Canon::SetFeedOverrideEnabled { enabled: false };
+        assert_eq!(
+            classes(&collect(&mut a, &[off, feed(1200.0)])),
+            [SpeedClass::Fixed]
+        );
+        a.adapt(
+            &Canon::SetFeedOverrideEnabled { enabled: true },
+            1,
+            &mut |_| {},
+        );
+        // G33-style sync: pitch 1.5 mm × 600 rpm = 900 mm/min = 15 mm/s, scaled by the spindle
+        // override; stops before and after.
         let got = speeds(&collect(
             &mut a,
             &[
@@ -552,7 +570,7 @@ mod tests {
                 },
                 Canon::Dwell { seconds: 2.0 },
                 Canon::ProgramStop { optional: true },
-                Canon::ChangeTool { tool: 3 },
+                Canon::ChangeTool { tool: 3, slot: 3 },
                 Canon::ProgramEnd,
             ],
         );

@@ -238,6 +238,8 @@ mod tests {
     fn seg(start: Point9, end: Point9, geometry: SegmentGeometry) -> PathSegment {
         PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start,
             end,
             geometry,

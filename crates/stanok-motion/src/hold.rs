@@ -89,6 +89,24 @@ pub enum Phase {
         /// How long.
         seconds: f64,
     },
+    /// Standing at `s0` because the override in force gives the piece a speed of 0 (see
+    /// [`crate::overrides`]), until it rises.
+    Stall {
+        /// Where.
+        s0: f64,
+    },
+    /// SOFT: the acceleration `a0` > 0 brought to zero at jerk −`j`, before an override change
+    /// applies (see [`crate::overrides`]).
+    Reset {
+        /// Where it starts.
+        s0: f64,
+        /// Speed there.
+        v0: f64,
+        /// Acceleration there, > 0.
+        a0: f64,
+        /// Jerk, > 0.
+        j: f64,
+    },
 }
 
 impl Phase {
@@ -105,6 +123,8 @@ impl Phase {
                 }
             }
             Phase::Stand { seconds, .. } => seconds,
+            Phase::Stall { .. } => OPEN_STANDSTILL,
+            Phase::Reset { a0, j, .. } => a0 / j,
         };
         if d.is_finite() && d >= 0.0 {
             d
@@ -130,10 +150,41 @@ impl Phase {
                     j: 0.0,
                 }
             }
-            Phase::Stand { s0, .. } => Kinematics {
+            Phase::Stand { s0, .. } | Phase::Stall { s0 } => Kinematics {
                 s: s0,
                 ..Default::default()
             },
+            Phase::Reset { s0, v0, a0, j } => {
+                let t = t.clamp(0.0, a0 / j);
+                Kinematics {
+                    s: s0 + v0 * t + 0.5 * a0 * t * t - j * t * t * t / 6.0,
+                    v: v0 + a0 * t - 0.5 * j * t * t,
+                    a: a0 - j * t,
+                    j: -j,
+                }
+            }
+        }
+    }
+
+    /// True if the phase is smooth enough for SOFT's jerk check (the planned profile, an
+    /// override's profile, the acceleration reset); false for a hold's trapezoidal braking and
+    /// its catch-up.
+    pub fn is_smooth(&self) -> bool {
+        matches!(
+            self,
+            Phase::Run { planned: true, .. } | Phase::Reset { .. } | Phase::Stall { .. }
+        )
+    }
+
+    /// True if the phase is a profile that comes to rest before the piece ends (a zero override):
+    /// a stall follows it, at the returned arc length.
+    pub fn stalls_at(&self, piece: &PlannedPiece) -> Option<f64> {
+        match *self {
+            Phase::Run { profile, s0, .. } => {
+                let reached = s0 + profile.reached();
+                (reached < piece.piece.length * (1.0 - 1e-12) - 1e-12).then_some(reached)
+            }
+            _ => None,
         }
     }
 
@@ -153,9 +204,15 @@ impl Phase {
                     (v0 * v0 - 2.0 * a * (length - s0).max(0.0)).max(0.0).sqrt()
                 }
             }
-            Phase::Stand { .. } => 0.0,
+            Phase::Stand { .. } | Phase::Stall { .. } => 0.0,
+            Phase::Reset { .. } => self.at(self.duration()).v,
         }
-        .min(piece.piece.v_max.max(0.0))
+        .max(0.0)
+        .min(if piece.piece.length > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        })
     }
 
     /// True if the piece ends with this phase.
@@ -165,7 +222,7 @@ impl Phase {
             Phase::Brake { s0, v0, a, length } => {
                 !brake_stops_within(*v0, *a, length - s0) || piece.piece.length <= 0.0
             }
-            Phase::Stand { .. } => false,
+            Phase::Stand { .. } | Phase::Stall { .. } | Phase::Reset { .. } => false,
         }
     }
 }
@@ -248,6 +305,19 @@ impl FeedHold {
                 standstill: OPEN_STANDSTILL,
             };
         }
+    }
+
+    /// The planner re-planned from the machine's actual state (an override change): nothing is
+    /// left to catch up with.
+    pub fn replanned(&mut self) {
+        if let State::CatchingUp { .. } = self.state {
+            self.state = State::Idle;
+        }
+    }
+
+    /// True while a hold brakes or stands (an override change then waits for the resume).
+    pub fn is_holding(&self) -> bool {
+        matches!(self.state, State::Braking { .. })
     }
 
     /// The operator released hold before it took effect: the open request is withdrawn.

@@ -26,8 +26,9 @@
 //!   exact `end`.
 
 use crate::hold::{FeedHold, HoldSwitch, Phase, OPEN_STANDSTILL};
-use crate::piece::Shape;
-use crate::planner::PlannedPiece;
+use crate::overrides::{OverrideChange, OverrideInput, OverrideSwitch};
+use crate::piece::{Overrides, Shape};
+use crate::planner::{PlannedPiece, Planner};
 use crate::profile_scurve::SCurve;
 use crate::profile_trapezoid::{Kinematics, Trapezoid};
 use crate::segment::{Point9, Spindles};
@@ -93,6 +94,24 @@ impl Profile {
         }
     }
 
+    /// Arc length at the end of the profile (less than the piece's length when it stalls).
+    pub fn reached(&self) -> f64 {
+        match self {
+            Profile::Trapezoid(p) => p.reached(),
+            Profile::SCurve(p) => p.reached(),
+            Profile::Dwell(_) => 0.0,
+        }
+    }
+
+    /// The profile of the rest of a piece, `rest` long, from `v0` to `v1` at its limits.
+    pub fn rest_of(pc: &crate::piece::Piece, rest: f64, v0: f64, v1: f64) -> Profile {
+        if pc.soft {
+            Profile::SCurve(SCurve::new(rest, v0, v1, pc.v_max, pc.a_max, pc.j_max))
+        } else {
+            Profile::Trapezoid(Trapezoid::new(rest, v0, v1, pc.v_max, pc.a_max))
+        }
+    }
+
     /// State at `t` from the piece start.
     #[inline]
     pub fn at(&self, t: f64) -> Kinematics {
@@ -154,6 +173,10 @@ pub struct Interpolator {
     spindles: Spindles,
     hold: FeedHold,
     switch: Option<Arc<HoldSwitch>>,
+    overrides: OverrideInput,
+    /// A zero override stalled the machine and nothing can raise it again: the rest of the run
+    /// is not executed (the machine stands where it stopped).
+    stalled_for_good: bool,
 }
 
 impl Interpolator {
@@ -169,6 +192,8 @@ impl Interpolator {
             spindles: Spindles::default(),
             hold: FeedHold::default(),
             switch: None,
+            overrides: OverrideInput::default(),
+            stalled_for_good: false,
         }
     }
 
@@ -209,15 +234,139 @@ impl Interpolator {
         self.switch = Some(switch);
     }
 
-    /// Samples one piece: every grid instant in its time interval goes to `out`.
-    pub fn push(&mut self, piece: &PlannedPiece, out: &mut impl FnMut(&Setpoint)) {
-        let mut phase = self.hold.first_phase(piece);
+    /// Connects the operator's override knobs, read at every servo instant (see
+    /// [`crate::overrides`]).
+    pub fn set_override_switch(&mut self, switch: Arc<OverrideSwitch>) {
+        self.overrides.set_switch(switch);
+    }
+
+    /// Timed override changes (machine time; see [`crate::overrides`]).
+    pub fn schedule_overrides(&mut self, changes: &[OverrideChange]) {
+        self.overrides.schedule(changes);
+    }
+
+    /// The override factors wanted from the next servo instant on.
+    pub fn set_overrides(&mut self, overrides: Overrides) {
+        self.overrides.set(overrides);
+    }
+
+    /// True if a zero override stopped the machine for good (nothing could raise it): the rest of
+    /// the run did not execute.
+    pub fn stalled_for_good(&self) -> bool {
+        self.stalled_for_good
+    }
+
+    /// An override change at state `k` of `phase` (module doc of [`crate::overrides`]): the phase
+    /// to switch to, or None (the current phase goes on; the change waits or only re-planned the
+    /// pieces ahead).
+    fn override_change(
+        &mut self,
+        wanted: Overrides,
+        piece: &mut PlannedPiece,
+        phase: &Phase,
+        k: Kinematics,
+        planner: &mut Planner,
+    ) -> Option<Phase> {
+        let pc = &piece.piece;
+        match *phase {
+            Phase::Run { profile, .. } => {
+                if let Profile::Dwell(_) = profile {
+                    planner.replan_overrides(wanted, pc, 0.0);
+                    return None;
+                }
+                if pc.soft && k.a < 0.0 {
+                    // A SOFT deceleration ramp ends at zero acceleration: the change waits.
+                    return None;
+                }
+                if pc.soft && k.a > 0.0 {
+                    let j = pc.j_max;
+                    let reset = Phase::Reset {
+                        s0: k.s,
+                        v0: k.v,
+                        a0: k.a,
+                        j,
+                    };
+                    // Only if the reset ends on this piece; otherwise the piece ends first, at
+                    // zero acceleration, and the next one takes the change.
+                    if j > 0.0 && reset.at(reset.duration()).s < pc.length {
+                        return Some(reset);
+                    }
+                    return None;
+                }
+                Some(self.rerun(wanted, piece, k.s, k.v, planner))
+            }
+            Phase::Stall { s0 } => Some(self.rerun(wanted, piece, s0, 0.0, planner)),
+            Phase::Brake { .. } | Phase::Stand { .. } => {
+                // A hold is under way: the pieces ahead get the new speeds; the hold's resume
+                // catches up with the new plan.
+                let cap = pc.programmed_speed(&wanted);
+                piece.piece.set_limits(cap, 0.0, planner.axes());
+                let mut rest = piece.piece;
+                rest.length = (rest.length - k.s).max(0.0);
+                piece.v_exit = planner.replan_overrides(wanted, &rest, 0.0);
+                None
+            }
+            Phase::Reset { .. } => None,
+        }
+    }
+
+    /// The rest of `piece` from arc length `s` at speed `v` (zero acceleration) under the
+    /// override factors `wanted`: new limits, the window re-planned, the new profile.
+    fn rerun(
+        &mut self,
+        wanted: Overrides,
+        piece: &mut PlannedPiece,
+        s: f64,
+        v: f64,
+        planner: &mut Planner,
+    ) -> Phase {
+        let cap = piece.piece.programmed_speed(&wanted);
+        piece.piece.set_limits(cap, v, planner.axes());
+        let rest = (piece.piece.length - s).max(0.0);
+        let mut rest_piece = piece.piece;
+        rest_piece.length = rest;
+        let e = planner.replan_overrides(wanted, &rest_piece, v);
+        piece.v_exit = e;
+        self.hold.replanned();
+        Phase::Run {
+            profile: Profile::rest_of(&piece.piece, rest, v, e),
+            s0: s,
+            planned: true,
+            v_exit: e,
+        }
+    }
+
+    /// Samples one piece: every grid instant in its time interval goes to `out`. Override
+    /// changes re-plan what `planner` still holds.
+    pub fn push(
+        &mut self,
+        mut piece: PlannedPiece,
+        planner: &mut Planner,
+        out: &mut impl FnMut(&Setpoint),
+    ) {
+        if self.stalled_for_good {
+            return;
+        }
+        let mut phase = self.hold.first_phase(&piece);
         let mut phase_start = self.piece_start;
         loop {
             let duration = phase.duration();
             let mut phase_end = phase_start + duration;
-            let last = phase.is_last(piece);
-            if last && phase.exit_speed(piece) == 0.0 {
+            let stall = phase.stalls_at(&piece);
+
+            let last = phase.is_last(&piece) && stall.is_none();
+            if let (Phase::Stall { .. }, false) =
+                (phase, self.overrides.can_change(planner.overrides()))
+            {
+                // Nothing can raise the override again: the machine stands here for good.
+                self.stalled_for_good = true;
+                self.end = piece.piece.shape.at(phase.at(0.0).s).position;
+                self.line = piece.piece.line;
+                self.spindles = piece.piece.spindles;
+                self.piece_start = self.tick as f64 * self.period;
+                return;
+            }
+            if last && phase.exit_speed(&piece) == 0.0 {
                 // A stop: the machine stands at the exact end until the next servo instant, so
                 // that the trace holds the stop point itself (and the next piece starts on the
                 // grid).
@@ -233,23 +382,34 @@ impl Interpolator {
                     break;
                 }
                 let k = phase.at(t - phase_start);
+                if let Some(wanted) = self.overrides.poll(t, planner.overrides()) {
+                    if let Some(next) = self.override_change(wanted, &mut piece, &phase, k, planner)
+                    {
+                        switched = Some((next, t));
+                        break;
+                    }
+                }
                 if let Some(switch) = &self.switch {
                     if switch.is_held() {
                         self.hold.press(t);
                     } else if matches!(phase, Phase::Stand { seconds, .. } if seconds >= OPEN_STANDSTILL)
                     {
-                        switched = Some((self.hold.next_phase(&phase, t, piece), t));
+                        switched = Some((self.hold.next_phase(&phase, t, &piece), t));
                         break;
                     } else {
                         self.hold.withdraw();
                     }
                 }
-                if let Some(next) = self.hold.trigger(t, &phase, k, piece) {
+                if let Some(next) = self.hold.trigger(t, &phase, k, &piece) {
                     switched = Some((next, t));
                     break;
                 }
-                let mut sp = sample(piece, k, t);
-                sp.soft &= phase.is_planned();
+                let mut sp = sample(&piece, k, t);
+                sp.soft &= phase.is_smooth();
+                let spindle = planner.overrides().spindle;
+                if spindle != 1.0 {
+                    sp.spindle_rpm = sp.spindle_rpm.map(|n| n * spindle);
+                }
                 out(&sp);
                 self.tick += 1;
             }
@@ -259,12 +419,24 @@ impl Interpolator {
                     phase_start = t;
                 }
                 None if last => {
-                    self.hold.carry(&phase, piece);
+                    self.hold.carry(&phase, &piece);
                     self.piece_start = phase_end;
                     break;
                 }
                 None => {
-                    phase = self.hold.next_phase(&phase, phase_end, piece);
+                    phase = match (phase, stall) {
+                        (_, Some(s0)) => Phase::Stall { s0 },
+                        (Phase::Reset { .. }, _) => {
+                            // The acceleration is zero: the waiting override change applies.
+                            let k = phase.at(phase.duration());
+                            let wanted = self
+                                .overrides
+                                .poll(phase_end, planner.overrides())
+                                .unwrap_or(planner.overrides());
+                            self.rerun(wanted, &mut piece, k.s, k.v, planner)
+                        }
+                        _ => self.hold.next_phase(&phase, phase_end, &piece),
+                    };
                     phase_start = phase_end;
                 }
             }
@@ -279,6 +451,9 @@ impl Interpolator {
     /// end of the last piece. Returns the trace duration (that instant), s.
     pub fn finish(&mut self, out: &mut impl FnMut(&Setpoint)) -> f64 {
         let t = self.tick as f64 * self.period;
+        if self.stalled_for_good {
+            self.piece_start = t;
+        }
         out(&Setpoint {
             t,
             position: self.end,

@@ -11,7 +11,9 @@
 //!   speed/acceleration/jerk limits from the axis limits.
 //! * [`planner`]: grbl-style reverse/forward passes over a bounded window.
 //! * [`profile_trapezoid`] (BRISK), [`profile_scurve`] (SOFT): one piece's time law.
-//! * [`interpolator`]: the servo-period grid, with [`hold`] (feed hold and resume); [`stage::MotionStage`] wires everything.
+//! * [`interpolator`]: the servo-period grid, with [`hold`] (feed hold and resume) and
+//!   [`overrides`] (feed, rapid and spindle override at once, on everything planned);
+//!   [`stage::MotionStage`] wires everything.
 //! * [`nominal`]: length / feed, the lower bound the run report keeps beside the planned time.
 //!
 //! Guarantees (property-tested in `tests/` and over the corpus in the `stanok` crate): no setpoint
@@ -32,6 +34,7 @@ pub mod interpolator;
 pub mod limits;
 pub mod monitor;
 pub mod nominal;
+pub mod overrides;
 pub mod path;
 pub mod piece;
 pub mod planner;

@@ -57,10 +57,13 @@ pub struct MotionConfig {
     pub lookahead: usize,
     /// The path tolerance of G64 without P ("as fast as possible"), mm.
     pub default_tolerance: f64,
-    /// Feed override as a fraction, 0…2 (1 = 100 %). 0 holds feed moves.
+    /// Feed override at the start, as a fraction, 0…2 (1 = 100 %); 0 holds feed moves. It can
+    /// change at any servo instant ([`crate::overrides`]).
     pub feed_override: f64,
     /// Rapid override as a fraction, 0…1.
     pub rapid_override: f64,
+    /// Spindle override as a fraction, 0.5…1.2.
+    pub spindle_override: f64,
     /// The machine's 5-axis kinematics (without a tool), for tool-centre-point control; None on
     /// a Cartesian machine.
     pub kinematics: Option<stanok_kin::FiveAxis>,
@@ -71,6 +74,16 @@ pub struct MotionConfig {
 }
 
 impl MotionConfig {
+    /// The override factors at the start of a run.
+    pub fn overrides(&self) -> crate::piece::Overrides {
+        crate::piece::Overrides {
+            feed: self.feed_override,
+            rapid: self.rapid_override,
+            spindle: self.spindle_override,
+        }
+        .clamped()
+    }
+
     /// Servo period 1 ms, look-ahead 1024 pieces, G64 default tolerance 0.05 mm, overrides 100 %.
     pub fn new(axes: [AxisLimit; 9], rapid_rate_per_min: f64, max_feed_per_min: f64) -> Self {
         let sane = |x: f64| {
@@ -89,6 +102,7 @@ impl MotionConfig {
             default_tolerance: DEFAULT_TOLERANCE,
             feed_override: 1.0,
             rapid_override: 1.0,
+            spindle_override: 1.0,
             kinematics: None,
             forced_profile: None,
         }
@@ -109,6 +123,7 @@ impl MotionConfig {
         self.default_tolerance = clamp(self.default_tolerance, 1e-6, 10.0, DEFAULT_TOLERANCE);
         self.feed_override = clamp(self.feed_override, 0.0, 2.0, 1.0);
         self.rapid_override = clamp(self.rapid_override, 0.0, 1.0, 1.0);
+        self.spindle_override = clamp(self.spindle_override, 0.5, 1.2, 1.0);
         self
     }
 }

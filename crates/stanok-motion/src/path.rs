@@ -42,7 +42,7 @@
 
 use crate::clothoid::{unit_shape, Clothoid};
 use crate::limits::MotionConfig;
-use crate::piece::{arc_limits, clothoid_limits, line_limits, Piece, Shape};
+use crate::piece::{cap_acceleration, shape_limits, Overrides, Piece, ProgrammedSpeed, Shape};
 use crate::segment::{
     PathSegment, PlannerInput, Point9, SegmentGeometry, Spindles, SPLINE_CHORD_TOLERANCE,
 };
@@ -75,7 +75,9 @@ struct Chord {
     length: f64,
     /// Already cut from the start by the previous blend.
     start_trim: f64,
-    speed: f64,
+    speed: ProgrammedSpeed,
+    /// Highest path speed the segment's kinematics allow, unit/s; ∞ = none.
+    velocity_cap: f64,
     /// Highest path acceleration the segment allows (its kinematics), unit/s²; ∞ = none.
     accel_cap: f64,
     soft: bool,
@@ -93,6 +95,9 @@ struct Chord {
 #[derive(Debug, Clone)]
 pub struct PathBuilder {
     config: MotionConfig,
+    /// The overrides pieces are first limited with (the run's initial ones; the planner limits
+    /// them again when the factors in force differ).
+    overrides: Overrides,
     pending: Option<Chord>,
     stop_next: bool,
     /// End of the last chord received (exact programmed point).
@@ -121,6 +126,7 @@ impl PathBuilder {
     /// An empty builder; the first piece starts from rest.
     pub fn new(config: &MotionConfig) -> Self {
         PathBuilder {
+            overrides: config.overrides(),
             config: config.clone().sanitised(),
             pending: None,
             stop_next: true,
@@ -185,6 +191,15 @@ impl PathBuilder {
         if !(seg_speed.is_finite() && seg_speed > 0.0) {
             seg_speed = self.config.max_feed;
         }
+        let class = if seg.rapid {
+            crate::segment::SpeedClass::Rapid
+        } else {
+            seg.speed_class
+        };
+        let seg_speed = ProgrammedSpeed {
+            speed: seg_speed,
+            class,
+        };
         let tol = self.effective_tolerance(seg.path_mode);
         let chord_tol = match tol {
             Some(p) => 0.5 * p,
@@ -263,7 +278,7 @@ impl PathBuilder {
         a: &Point9,
         b: &Point9,
         seg: &PathSegment,
-        speed: f64,
+        speed: ProgrammedSpeed,
         chord_tolerance: f64,
         end_rule: EndRule,
         tolerance: f64,
@@ -291,6 +306,11 @@ impl PathBuilder {
             length,
             start_trim: 0.0,
             speed,
+            velocity_cap: if seg.velocity_cap > 0.0 {
+                seg.velocity_cap
+            } else {
+                f64::INFINITY
+            },
             accel_cap: seg.acceleration_cap,
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
@@ -383,11 +403,8 @@ impl PathBuilder {
         let centre: Point9 = std::array::from_fn(|i| p1[i] + radius * n1[i]);
         let e1 = n1.map(|x| -x);
         let e2 = prev.dir;
-        let speed = prev.speed.min(next.speed);
-        let (v_max, a_max, j_max) = arc_limits(&e1, &e2, radius, speed, false, &self.config.axes);
-        let (a_max, j_max) = cap_acceleration(a_max, j_max, prev.accel_cap.min(next.accel_cap));
         let exit: Point9 = std::array::from_fn(|i| corner[i] + d * next.dir[i]);
-        out(Piece {
+        out(self.limited(Piece {
             end: exit,
             shape: Shape::Arc {
                 centre,
@@ -396,9 +413,12 @@ impl PathBuilder {
                 radius,
             },
             length: radius * theta,
-            v_max,
-            a_max,
-            j_max,
+            speeds: [prev.speed, next.speed],
+            velocity_cap: prev.velocity_cap.min(next.velocity_cap),
+            accel_cap: prev.accel_cap.min(next.accel_cap),
+            v_max: 0.0,
+            a_max: 0.0,
+            j_max: 0.0,
             soft: false,
             entry_stop: false,
             line: next.line,
@@ -406,7 +426,7 @@ impl PathBuilder {
             spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
-        });
+        }));
         Some(d)
     }
 
@@ -447,24 +467,17 @@ impl PathBuilder {
             cos_turn: cos,
             sin_turn: sin,
         };
-        let n1: Point9 = perp.map(|x| x / sin);
-        let speed = prev.speed.min(next.speed);
-        let (v_max, a_max, j_max) = clothoid_limits(
-            &clothoid.t1,
-            &n1,
-            clothoid.max_curvature(),
-            clothoid.curvature_rate(),
-            speed,
-            &self.config.axes,
-        );
-        let (a_max, j_max) = cap_acceleration(a_max, j_max, prev.accel_cap.min(next.accel_cap));
-        out(Piece {
+        let _ = perp;
+        out(self.limited(Piece {
             end: clothoid.end(),
             shape: Shape::Clothoid(clothoid),
             length: clothoid.length(),
-            v_max,
-            a_max,
-            j_max,
+            speeds: [prev.speed, next.speed],
+            velocity_cap: prev.velocity_cap.min(next.velocity_cap),
+            accel_cap: prev.accel_cap.min(next.accel_cap),
+            v_max: 0.0,
+            a_max: 0.0,
+            j_max: 0.0,
             soft: true,
             entry_stop: false,
             line: next.line,
@@ -472,7 +485,7 @@ impl PathBuilder {
             spindles: prev.spindles,
             deviation: half * unit.from_chords + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
-        });
+        }));
         Some(d)
     }
 
@@ -488,15 +501,16 @@ impl PathBuilder {
         } else {
             std::array::from_fn(|i| c.end[i] - end_trim * c.dir[i])
         };
-        let (v_max, a_max, j_max) = line_limits(&c.dir, c.speed, &self.config.axes);
-        let (a_max, j_max) = cap_acceleration(a_max, j_max, c.accel_cap);
-        out(Piece {
+        out(self.limited(Piece {
             end,
             shape: Shape::Line { start, dir: c.dir },
             length,
-            v_max,
-            a_max,
-            j_max,
+            speeds: [c.speed, c.speed],
+            velocity_cap: c.velocity_cap,
+            accel_cap: c.accel_cap,
+            v_max: 0.0,
+            a_max: 0.0,
+            j_max: 0.0,
             soft: c.soft,
             entry_stop: c.entry_stop && c.start_trim == 0.0,
             line: c.line,
@@ -504,25 +518,34 @@ impl PathBuilder {
             spindles: c.spindles,
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
-        });
+        }));
     }
-}
 
-/// A piece's acceleration limited to `cap` (a segment under tool-centre-point control, see
-/// [`crate::tcp`]); the jerk shrinks in the same ratio so the S-curve keeps its shape.
-fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
-    if cap.is_finite() && cap > 0.0 && cap < a_max {
-        (cap, j_max * cap / a_max)
-    } else {
-        (a_max, j_max)
+    /// The piece with its speed, acceleration and jerk limits at the initial overrides.
+    #[inline]
+    fn limited(&self, mut piece: Piece) -> Piece {
+        let cap = piece.programmed_speed(&self.overrides);
+        let (v, a, j) = shape_limits(&piece.shape, cap, &self.config.axes);
+        let (a, j) = cap_acceleration(a, j, piece.accel_cap);
+        piece.v_max = v;
+        piece.a_max = a;
+        piece.j_max = j;
+        piece
     }
 }
 
 fn dwell_piece(at: Point9, seconds: f64, line: u32, command: u64, spindles: Spindles) -> Piece {
+    let fixed = ProgrammedSpeed {
+        speed: 0.0,
+        class: crate::segment::SpeedClass::Fixed,
+    };
     Piece {
         end: at,
         shape: Shape::Dwell { at, seconds },
         length: 0.0,
+        speeds: [fixed, fixed],
+        velocity_cap: f64::INFINITY,
+        accel_cap: f64::INFINITY,
         v_max: 0.0,
         a_max: 0.0,
         j_max: 0.0,

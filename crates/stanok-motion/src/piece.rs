@@ -7,7 +7,7 @@
 
 use crate::clothoid::Clothoid;
 use crate::limits::AxisLimit;
-use crate::segment::{Point9, Spindles};
+use crate::segment::{Point9, SpeedClass, Spindles};
 
 /// The geometry of a piece, parameterised by arc length s ∈ [0, length].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -101,6 +101,60 @@ impl Shape {
     }
 }
 
+/// The override factors in force (fractions: 1 = 100 %), see [`crate::overrides`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Overrides {
+    /// Feed override, 0…2.
+    pub feed: f64,
+    /// Rapid override, 0…1.
+    pub rapid: f64,
+    /// Spindle override, 0.5…1.2 (it scales spindle-synchronised moves too).
+    pub spindle: f64,
+}
+
+impl Default for Overrides {
+    fn default() -> Self {
+        Overrides {
+            feed: 1.0,
+            rapid: 1.0,
+            spindle: 1.0,
+        }
+    }
+}
+
+impl Overrides {
+    /// The factor that scales a speed of class `class`.
+    #[inline]
+    pub fn factor(&self, class: SpeedClass) -> f64 {
+        match class {
+            SpeedClass::Feed => self.feed,
+            SpeedClass::Rapid => self.rapid,
+            SpeedClass::Spindle => self.spindle,
+            SpeedClass::Fixed => 1.0,
+        }
+    }
+
+    /// The same factors brought into their ranges (NaN → 100 %).
+    pub fn clamped(self) -> Self {
+        let c = |x: f64, lo: f64, hi: f64| if x.is_nan() { 1.0 } else { x.clamp(lo, hi) };
+        Overrides {
+            feed: c(self.feed, 0.0, 2.0),
+            rapid: c(self.rapid, 0.0, 1.0),
+            spindle: c(self.spindle, 0.5, 1.2),
+        }
+    }
+}
+
+/// A programmed speed before any override: the speed, unit/s along the path, and which override
+/// scales it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProgrammedSpeed {
+    /// Unit/s (feed or rapid rate, clamped to the machine's maximum, as a path speed).
+    pub speed: f64,
+    /// Which override applies.
+    pub class: SpeedClass,
+}
+
 /// One piece of path with its speed limits (all in path units: unit/s, unit/s², unit/s³).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Piece {
@@ -110,7 +164,15 @@ pub struct Piece {
     pub end: Point9,
     /// Arc length, unit (0 only for a dwell).
     pub length: f64,
-    /// Highest path speed anywhere on the piece (feed, axis velocities, curvature).
+    /// The programmed speeds it runs at: the lower of the two, each times its override (a blend
+    /// joins two blocks; any other piece has the same speed twice).
+    pub speeds: [ProgrammedSpeed; 2],
+    /// Highest path speed the kinematics allow whatever the feed (tool-centre-point control's
+    /// joint-rate cap; ∞ otherwise), unit/s.
+    pub velocity_cap: f64,
+    /// Highest path acceleration the kinematics allow (tool-centre-point control; ∞ otherwise).
+    pub accel_cap: f64,
+    /// Highest path speed anywhere on the piece (feed × override, axis velocities, curvature).
     pub v_max: f64,
     /// Highest tangential acceleration (axis accelerations, minus the centripetal share on arcs).
     pub a_max: f64,
@@ -130,6 +192,71 @@ pub struct Piece {
     pub deviation: f64,
     /// The distance allowed (the G64 tolerance in force, or the internal tolerance), unit.
     pub tolerance: f64,
+}
+
+impl Piece {
+    /// The speed the programmed feeds allow under `overrides` (before axis limits), unit/s.
+    #[inline]
+    pub fn programmed_speed(&self, overrides: &Overrides) -> f64 {
+        let [a, b] = self.speeds;
+        (a.speed * overrides.factor(a.class))
+            .min(b.speed * overrides.factor(b.class))
+            .min(self.velocity_cap)
+            .max(0.0)
+    }
+
+    /// Sets `v_max`, `a_max`, `j_max` for a programmed speed `cap` (see
+    /// [`Piece::programmed_speed`]): v_max ≤ cap and the shape's limits. `floor` is the highest
+    /// speed the piece may actually run at when that is above v_max (a piece entered faster than
+    /// a lowered override allows, see [`crate::planner`]): on a curve the tangential acceleration
+    /// left beside the centripetal one shrinks with the speed, so a and j are those at
+    /// max(v_max, floor). A dwell keeps zeros.
+    pub fn set_limits(&mut self, cap: f64, floor: f64, axes: &[AxisLimit; 9]) {
+        if let Shape::Dwell { .. } = self.shape {
+            return;
+        }
+        let (v, a, j) = shape_limits(&self.shape, cap, axes);
+        let (a, j) = if floor > v {
+            let (_, a, j) = shape_limits(&self.shape, floor, axes);
+            (a, j)
+        } else {
+            (a, j)
+        };
+        let (a, j) = cap_acceleration(a, j, self.accel_cap);
+        self.v_max = v;
+        self.a_max = a;
+        self.j_max = j;
+    }
+}
+
+/// A piece's acceleration limited to `cap` (a segment under tool-centre-point control, see
+/// [`crate::tcp`]); the jerk shrinks in the same ratio so the S-curve keeps its shape.
+pub fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
+    if cap.is_finite() && cap > 0.0 && cap < a_max {
+        (cap, j_max * cap / a_max)
+    } else {
+        (a_max, j_max)
+    }
+}
+
+/// The limits (v, a, j) of a shape run at programmed speed `speed` (module functions below).
+pub fn shape_limits(shape: &Shape, speed: f64, axes: &[AxisLimit; 9]) -> (f64, f64, f64) {
+    match shape {
+        Shape::Line { dir, .. } => line_limits(dir, speed, axes),
+        Shape::Arc { e1, e2, radius, .. } => arc_limits(e1, e2, *radius, speed, false, axes),
+        Shape::Clothoid(c) => {
+            let n1: Point9 = std::array::from_fn(|i| c.n1(i));
+            clothoid_limits(
+                &c.t1,
+                &n1,
+                c.max_curvature(),
+                c.curvature_rate(),
+                speed,
+                axes,
+            )
+        }
+        Shape::Dwell { .. } => (0.0, 0.0, 0.0),
+    }
 }
 
 /// Centripetal acceleration may use this share of an arc's acceleration budget; the rest is kept

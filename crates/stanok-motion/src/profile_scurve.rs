@@ -227,13 +227,34 @@ impl SCurve {
         let (a, j) = (sane(a), sane(j));
         let length = length.max(0.0);
         let (v0, v1) = (v0.max(0.0), v1.max(0.0));
-        let lo_v = v0.max(v1);
-        let v_max = v_max.max(lo_v);
         let need = |vp: f64| ramp_distance(v0, vp, a, j) + ramp_distance(vp, v1, a, j);
-        let vp = if need(v_max) <= length {
-            v_max
+        let v_max = v_max.max(0.0);
+        let lo_v = v0.max(v1);
+        let vp = if v0 > v_max.max(v1) {
+            // Entered above the limit (a lowered override): slow down to it first. If the two
+            // ramps do not fit, the cruise is lower: the highest in [v1, limit] that fits — one
+            // ramp to v1 fits (the planner made v1 reachable), and the two ramps' distance is
+            // continuous in the cruise speed, so the bisection keeps a cruise above v1 (and above
+            // 0: a piece stalls only where the limit is 0).
+            let top = v_max.max(v1);
+            if need(top) <= length {
+                top
+            } else {
+                let (mut lo, mut hi) = (v1, top);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if need(mid) <= length {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                lo
+            }
+        } else if need(v_max.max(lo_v)) <= length {
+            v_max.max(lo_v)
         } else {
-            let (mut lo, mut hi) = (lo_v, v_max);
+            let (mut lo, mut hi) = (lo_v, v_max.max(lo_v));
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
                 if need(mid) <= length {
@@ -246,7 +267,12 @@ impl SCurve {
         };
         let (d_up, d_down) = (ramp_distance(v0, vp, a, j), ramp_distance(vp, v1, a, j));
         let cruise = length - d_up - d_down;
-        let squeeze = if cruise < 0.0 && d_up + d_down > 0.0 {
+        // Ramps longer than the piece by more than rounding are squeezed into it (scaling the
+        // positions, so every speed by the same factor); by a hair (≤ 1e-9, what the planner's
+        // "fits to rounding" allows) the profile is only clamped at the piece's end, where the
+        // speed left is that hair's: scaling would step every speed by v·1e-9, a third
+        // difference of v·1e-9/T² at the join.
+        let squeeze = if cruise < 0.0 && d_up + d_down > length * (1.0 + 1e-9) {
             length / (d_up + d_down)
         } else {
             1.0
@@ -269,6 +295,16 @@ impl SCurve {
     /// Total time, s.
     pub fn duration(&self) -> f64 {
         self.t_up + self.t_cruise + self.t_down
+    }
+
+    /// Arc length at the end of the profile: the piece's length, or less when it comes to rest
+    /// before the end (v_max = 0: a stall, see [`crate::profile_trapezoid::Trapezoid::new`]).
+    pub fn reached(&self) -> f64 {
+        if self.vp > 0.0 {
+            self.length
+        } else {
+            (self.d_up * self.squeeze).min(self.length)
+        }
     }
 
     /// The state at time `t` from the piece start (clamped).

@@ -68,6 +68,21 @@ impl Spindles {
     }
 }
 
+/// Which override scales a programmed speed (see [`crate::piece::Overrides`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SpeedClass {
+    /// A feed move: the feed override.
+    #[default]
+    Feed,
+    /// A rapid: the rapid override.
+    Rapid,
+    /// A spindle-synchronised move (G33, rigid tap): the spindle override, as the spindle's own
+    /// speed changes and the axes follow it.
+    Spindle,
+    /// No override (the program disabled it, M48/M50 and the like).
+    Fixed,
+}
+
 /// Chord tolerance of spline tessellation, mm.
 pub const SPLINE_CHORD_TOLERANCE: f64 = 1e-3;
 
@@ -81,14 +96,19 @@ pub struct PathSegment {
     /// Its shape.
     pub geometry: SegmentGeometry,
     /// Programmed speed along the 9-D path, unit/s (see the module doc), after clamping to the
-    /// machine's maximum feed (or the rapid rate) and applying the override; always > 0.
+    /// machine's maximum feed (or the rapid rate), before any override; always > 0.
     pub path_speed: f64,
     /// Highest path acceleration along it, unit/s² (`f64::INFINITY` = only the axis limits): set
     /// under tool-centre-point control, where the machine axes move faster than the path
     /// ([`crate::tcp`]).
     pub acceleration_cap: f64,
+    /// Highest path speed the kinematics allow whatever the feed and override (set under
+    /// tool-centre-point control, [`crate::tcp`]; ∞ otherwise), unit/s.
+    pub velocity_cap: f64,
     /// G0 (true) or a feed move.
     pub rapid: bool,
+    /// Which override scales `path_speed` (a rapid is always [`SpeedClass::Rapid`]).
+    pub speed_class: SpeedClass,
     /// How its end joins the next segment.
     pub path_mode: PathMode,
     /// BRISK or SOFT.

@@ -51,6 +51,8 @@ pub struct MotionStage {
     /// makes at most a handful, except a G95 feed under G96, which `css::split` may cut into up to
     /// `css::MAX_PIECES`.
     inputs: Vec<PlannerInput>,
+    /// The override factors last set through the stage's setters.
+    wanted: Option<crate::piece::Overrides>,
 }
 
 /// The sink as the machine sees it: setpoints through the kin stage when one is active.
@@ -64,6 +66,30 @@ fn mapped<'a>(
     }
 }
 
+/// Runs every piece the planner releases (module doc of [`crate::planner`], step 3): each is
+/// sampled with the planner at hand, so that an override change while it runs re-plans the pieces
+/// still in the window.
+fn run_ready(
+    planner: &mut Planner,
+    interpolator: &mut Interpolator,
+    stats: &mut StageStats,
+    out: &mut impl FnMut(&Setpoint),
+) {
+    while let Some(pp) = planner.pop_ready() {
+        stats.pieces += 1;
+        stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
+        if pp.piece.deviation
+            > pp.piece
+                .tolerance
+                .max(2.0 * crate::path::INTERNAL_TOLERANCE)
+                * (1.0 + 1e-9)
+        {
+            stats.tolerance_violations += 1;
+        }
+        interpolator.push(pp, planner, out);
+    }
+}
+
 impl MotionStage {
     /// A stage standing at the origin.
     pub fn new(config: &MotionConfig) -> Self {
@@ -71,13 +97,14 @@ impl MotionStage {
         MotionStage {
             adapter: CanonAdapter::new(&config),
             builder: PathBuilder::new(&config),
-            planner: Planner::new(config.lookahead),
+            planner: Planner::with_config(&config),
             inputs: Vec::new(),
             interpolator: Interpolator::new(config.servo_period, [0.0; 9]),
             stats: StageStats::default(),
             finished: None,
             tcp: None,
             commands: 0,
+            wanted: None,
         }
     }
 
@@ -90,14 +117,58 @@ impl MotionStage {
         self.commands
     }
 
-    /// Feed override (fraction 0.001…2) for the blocks from now on.
+    /// Feed override (fraction 0…2) from the next servo instant on, on the motion being executed
+    /// and everything planned (see [`crate::overrides`]).
     pub fn set_feed_override(&mut self, fraction: f64) {
-        self.adapter.set_feed_override(fraction);
+        let mut o = self.wanted_overrides();
+        o.feed = fraction;
+        self.wanted = Some(o.clamped());
+        self.interpolator.set_overrides(o);
     }
 
-    /// Rapid override (fraction 0.001…1) for the blocks from now on.
+    /// Rapid override (fraction 0…1) from the next servo instant on.
     pub fn set_rapid_override(&mut self, fraction: f64) {
-        self.adapter.set_rapid_override(fraction);
+        let mut o = self.wanted_overrides();
+        o.rapid = fraction;
+        self.wanted = Some(o.clamped());
+        self.interpolator.set_overrides(o);
+    }
+
+    /// Spindle override (fraction 0.5…1.2) from the next servo instant on.
+    pub fn set_spindle_override(&mut self, fraction: f64) {
+        let mut o = self.wanted_overrides();
+        o.spindle = fraction;
+        self.wanted = Some(o.clamped());
+        self.interpolator.set_overrides(o);
+    }
+
+    fn wanted_overrides(&self) -> crate::piece::Overrides {
+        self.wanted.unwrap_or(self.planner.overrides())
+    }
+
+    /// Connects the operator's override knobs, read at every servo instant (see
+    /// [`crate::overrides::OverrideSwitch`]); from now on their values are the ones wanted.
+    pub fn set_override_switch(
+        &mut self,
+        switch: std::sync::Arc<crate::overrides::OverrideSwitch>,
+    ) {
+        self.interpolator.set_override_switch(switch);
+    }
+
+    /// Timed override changes at machine times (`stanok run --override-at`).
+    pub fn schedule_overrides(&mut self, changes: &[crate::overrides::OverrideChange]) {
+        self.interpolator.schedule_overrides(changes);
+    }
+
+    /// The override factors in force now.
+    pub fn overrides(&self) -> crate::piece::Overrides {
+        self.planner.overrides()
+    }
+
+    /// True if a zero override stopped the machine for good (no change could come): the rest of
+    /// the run did not execute.
+    pub fn stalled_for_good(&self) -> bool {
+        self.interpolator.stalled_for_good()
     }
 
     /// Feed hold at simulated time `at` (s): brake on the path, stand `standstill` s, resume.
@@ -137,19 +208,8 @@ impl MotionStage {
         } = self;
         let out = &mut mapped(tcp, out);
         builder.push(input, &mut |piece| {
-            planner.push(piece, &mut |pp| {
-                stats.pieces += 1;
-                stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
-                if pp.piece.deviation
-                    > pp.piece
-                        .tolerance
-                        .max(2.0 * crate::path::INTERNAL_TOLERANCE)
-                        * (1.0 + 1e-9)
-                {
-                    stats.tolerance_violations += 1;
-                }
-                interpolator.push(&pp, out)
-            })
+            planner.push_piece(piece);
+            run_ready(planner, interpolator, stats, out);
         });
     }
 
@@ -160,12 +220,14 @@ impl MotionStage {
             builder,
             planner,
             interpolator,
+            stats,
             tcp,
             ..
         } = self;
         let out = &mut mapped(tcp, out);
         builder.set_position(at, &mut |piece| {
-            planner.push(piece, &mut |pp| interpolator.push(&pp, out))
+            planner.push_piece(piece);
+            run_ready(planner, interpolator, stats, out);
         });
         interpolator.set_position(at);
     }
@@ -226,13 +288,12 @@ impl MotionStage {
             ..
         } = self;
         let out = &mut mapped(tcp, out);
-        let mut release = |pp: crate::planner::PlannedPiece| {
-            stats.pieces += 1;
-            stats.max_deviation = stats.max_deviation.max(pp.piece.deviation);
-            interpolator.push(&pp, out)
-        };
-        builder.flush(&mut |piece| planner.push(piece, &mut release));
-        planner.flush(&mut release);
+        builder.flush(&mut |piece| {
+            planner.push_piece(piece);
+            run_ready(planner, interpolator, stats, out);
+        });
+        planner.finish_window();
+        run_ready(planner, interpolator, stats, out);
     }
 
     /// The program is over: runs everything and emits the final setpoint. Returns the trace

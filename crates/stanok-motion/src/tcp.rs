@@ -15,7 +15,8 @@
 //!      v ≤ V_k / q'_k        v² ≤ (A_k / 2) / q''_k        a ≤ (A_k / 2) / q'_k
 //!    ```
 //!    each times [`SAFETY`] for what the samples miss. The first two cap the segment's path
-//!    speed, the third its path acceleration ([`crate::segment::PathSegment::acceleration_cap`]).
+//!    speed ([`crate::segment::PathSegment::velocity_cap`], which no override raises), the third its
+//!    path acceleration ([`crate::segment::PathSegment::acceleration_cap`]).
 //! 2. **Orientation** ([`vector_polyline`]): under ORIVECT the tool vector turns on the great
 //!    circle, so the segment becomes a polyline whose rotary values follow the great circle,
 //!    sampled every [`ORIVECT_STEP_DEG`] and solved by continuity with the previous sample (the
@@ -179,7 +180,7 @@ pub fn limit_segment(seg: &mut PathSegment, kin: &FiveAxis, axes: &[AxisLimit; 9
         }
     }
     if v_cap.is_finite() && v_cap > 0.0 {
-        seg.path_speed = seg.path_speed.min(v_cap);
+        seg.velocity_cap = seg.velocity_cap.min(v_cap);
     }
     if a_cap.is_finite() && a_cap > 0.0 {
         seg.acceleration_cap = seg.acceleration_cap.min(a_cap);

@@ -137,6 +137,8 @@ proptest! {
         let after = p3(e[0] + 10.0, e[1] - 10.0, dz);
         let arc = PlannerInput::Segment(PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0 * (helix.length().powi(2)).sqrt() / helix.length(),
             rapid: false, path_mode: mode, profile, line: 2, command: 0, spindles: Default::default(),
@@ -244,6 +246,8 @@ fn soft_arc_below_the_reach_minimum_keeps_every_limit() {
     let after = p3(e[0] + 10.0, e[1] - 10.0, 0.0);
     let arc = PlannerInput::Segment(PathSegment {
         acceleration_cap: f64::INFINITY,
+        velocity_cap: f64::INFINITY,
+        speed_class: Default::default(),
         start: s,
         end: e,
         geometry: SegmentGeometry::Arc(helix),

@@ -150,6 +150,8 @@ proptest! {
         let after = p3(e[0] + 10.0, e[1] - 10.0, dz);
         let arc = PlannerInput::Segment(PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0, rapid: false, path_mode: mode, profile: SOFT, line: 2,
             command: 0,
@@ -250,6 +252,8 @@ fn circle(profile: AccelerationProfile, r: f64) -> (f64, TraceMonitor) {
     };
     let arc = PlannerInput::Segment(PathSegment {
         acceleration_cap: f64::INFINITY,
+        velocity_cap: f64::INFINITY,
+        speed_class: Default::default(),
         start: s,
         end: s,
         geometry: SegmentGeometry::Arc(helix),
@@ -331,6 +335,8 @@ fn soft_pieces_join_with_continuous_curvature() {
         let mut all = inputs.clone();
         all.push(PlannerInput::Segment(PathSegment {
             acceleration_cap: f64::INFINITY,
+            velocity_cap: f64::INFINITY,
+            speed_class: Default::default(),
             start: p,
             end: e,
             geometry: SegmentGeometry::Arc(helix),

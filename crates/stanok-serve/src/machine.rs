@@ -34,7 +34,7 @@ use crate::search::BlockSearch;
 use crate::state::{g_vector, m_vector, ActiveCode, MachineState, SpindleState};
 use serde::Serialize;
 use stanok_canon::{Canon, Diagnostic, Spanned};
-use stanok_interp::{InterpOptions, Interpreter};
+use stanok_interp::{InterpOptions, Interpreter, LengthComp};
 use stanok_machine::{MachineData, SimMachine, SimOptions};
 use stanok_motion::hold::HoldSwitch;
 use stanok_motion::Setpoint;
@@ -559,8 +559,13 @@ fn execute<R: std::io::BufRead + std::io::Seek>(
     sim.apply(cmd)?;
     state.apply(&cmd.value);
     let modal = interp.state();
-    let (g, m) = (g_vector(modal, dialect), m_vector(interp, state, dialect));
-    let edge = modal.axioma_modes.edge;
+    let axioma = interp.axioma_modes();
+    let length_comp = axioma.map_or(LengthComp::Off, |m| m.length_comp);
+    let (g, m) = (
+        g_vector(modal, length_comp, dialect),
+        m_vector(interp, state, dialect),
+    );
+    let edge = axioma.map_or(0, |m| m.edge);
     shared.publish(|s| {
         if let Canon::Message { text } = &cmd.value {
             s.message = text.trim().to_string();

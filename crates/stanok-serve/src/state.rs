@@ -137,7 +137,7 @@ impl MachineState {
             Canon::Mist { on } => self.mist = *on,
             Canon::Flood { on } => self.flood = *on,
             Canon::SelectTool { tool } => self.selected_tool = *tool,
-            Canon::ChangeTool { tool } => self.tool = *tool,
+            Canon::ChangeTool { tool, .. } => self.tool = *tool,
             Canon::SetPathMode { mode, .. } => {
                 self.path_mode = match mode {
                     PathMode::ExactStop => "ExactStop".into(),
@@ -212,8 +212,9 @@ fn code(group: &str, code: impl Into<String>) -> ActiveCode {
     }
 }
 
-/// The active G codes by modal group (module doc).
-pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
+/// The active G codes by modal group (module doc); `length_comp`: AxiOMA's tool length group
+/// (the others show G49).
+pub fn g_vector(s: &ModalState, length_comp: LengthComp, dialect: Dialect) -> Vec<ActiveCode> {
     let axioma = dialect == Dialect::Axioma;
     let mut v = vec![
         code(
@@ -288,7 +289,7 @@ pub fn g_vector(s: &ModalState, dialect: Dialect) -> Vec<ActiveCode> {
     ));
     v.push(code(
         "tool length",
-        match s.axioma_modes.length_comp {
+        match length_comp {
             LengthComp::Off => "G49",
             LengthComp::Plus => "G43",
             LengthComp::Minus => "G44",
@@ -376,7 +377,7 @@ mod tests {
         });
         s.apply(&Canon::Flood { on: true });
         s.apply(&Canon::SelectTool { tool: 7 });
-        s.apply(&Canon::ChangeTool { tool: 7 });
+        s.apply(&Canon::ChangeTool { tool: 7, slot: 7 });
         s.apply(&Canon::StraightFeed(stanok_canon::LineMove {
             start: pose(0.0, 0.0, 0.0),
             end: pose(5.0, 6.0, 7.0),

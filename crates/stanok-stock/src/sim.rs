@@ -334,7 +334,7 @@ impl StockSim {
             }
             Canon::SetG92Offset { offset } => self.frame_now.shift = [offset.x, offset.y, offset.z],
             Canon::SetXyRotation { degrees } => self.frame_now.rotation = *degrees,
-            Canon::ChangeTool { tool } | Canon::SetCurrentTool { tool, .. } => {
+            Canon::ChangeTool { tool, .. } | Canon::SetCurrentTool { tool, .. } => {
                 push(self, after, Event::Tool(*tool))
             }
             Canon::UseToolLengthOffset { offset } => {

@@ -66,7 +66,7 @@ fn sim_in(
             xy_rotation: 0.0,
         },
     );
-    s.command(2, &Canon::ChangeTool { tool: 1 });
+    s.command(2, &Canon::ChangeTool { tool: 1, slot: 1 });
     s.command(
         3,
         &Canon::StartSpindle {

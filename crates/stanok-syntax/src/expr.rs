@@ -212,7 +212,7 @@ impl Rs<'_> {
             None => {
                 return self.fail(
                     "syntax::unbalanced-brackets",
-                    "`[` has no matching `]`",
+                    "Unclosed expression",
                     start,
                     start + 1,
                 )

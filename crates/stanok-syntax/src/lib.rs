@@ -35,8 +35,12 @@
 //! ## Files
 //!
 //! `lexer.rs` (byte helpers, pending diagnostics), `number.rs` (numbers), `axioma.rs` (AxiOMA lines),
-//! `rs274.rs` (RS274/NGC lines and O-words), `expr.rs` (RS274/NGC real values and expressions),
-//! `hll.rs` / `hll_parse.rs` (the AxiOMA high-level language: tree and parser),
+//! `rs274.rs` (RS274/NGC lines and O-words; Mazatrol EIA/ISO uses it too), `expr.rs` (RS274/NGC
+//! real values and expressions), `hll.rs` / `hll_parse.rs` (the AxiOMA high-level language: tree
+//! and parser), `balt.rs` (Balt-System CVU lines: letters without digits, words run together,
+//! `CVU=`/`MOVST=`, mnemonic blocks as comments), `labs/` (the lab-collection readers: NC-31 frames,
+//! the 2P32/MC2101/GOST-20999 word lines, fixture-comment stripping; they share nothing with
+//! [`BlockParser`] but its rule that reading never fails), `ast.rs` (blocks, words, [`Dialect`]),
 //! `reader.rs` (streaming and seeking).
 //!
 //! ## Diagnostic codes

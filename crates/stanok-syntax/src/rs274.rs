@@ -357,7 +357,8 @@ impl Rs<'_> {
         let Some(close) = find_byte(b, start + 1, b')') else {
             return self.fail(
                 "syntax::unclosed-comment",
-                "unclosed comment: `(` has no `)` on this line",
+                // LinuxCNC's words (the span shows the `(` without its `)`).
+                "Unclosed comment found",
                 start,
                 b.len(),
             );
@@ -365,7 +366,7 @@ impl Rs<'_> {
         if let Some(nested) = find_byte(&b[..close], start + 1, b'(') {
             return self.fail(
                 "syntax::nested-comment",
-                "nested comment: `(` inside a comment",
+                "Nested comment found",
                 nested,
                 nested + 1,
             );

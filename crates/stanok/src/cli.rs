@@ -228,6 +228,12 @@ pub struct MotionArgs {
     /// the path, stands SECONDS, then resumes (`--feed-hold 2.5:1`).
     #[arg(long, value_name = "AT:SECONDS")]
     pub feed_hold: Option<String>,
+    /// Override change at machine time T seconds, acting within the servo period on the motion
+    /// being executed and on everything planned: `T:PERCENT` (feed, 0…200), `T:rapid=PERCENT`
+    /// (0…100), `T:spindle=PERCENT` (50…120). Repeatable; the last feed and rapid values must not
+    /// be 0 (the machine would stand for ever).
+    #[arg(long, value_name = "T:PERCENT")]
+    pub override_at: Vec<String>,
     /// Planner look-ahead window, path pieces (at least 2).
     #[arg(long, value_name = "PIECES", default_value_t = 1024)]
     pub lookahead: usize,

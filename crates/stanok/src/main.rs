@@ -31,6 +31,7 @@ use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
 use stanok_machine::{linuxcnc, MachineData, SimMachine, SimOptions, StoredOffsets};
+use stanok_machine::{OverrideChange, OverrideKind};
 use stanok_syntax::Dialect;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
@@ -498,6 +499,29 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
             }
         }
     };
+    let override_changes = m
+        .override_at
+        .iter()
+        .map(|text| parse_override_at(text))
+        .collect::<Result<Vec<_>, _>>()?;
+    for kind in [OverrideKind::Feed, OverrideKind::Rapid] {
+        let last = override_changes
+            .iter()
+            .filter(|c| c.kind == kind)
+            .max_by(|a, b| a.at.total_cmp(&b.at));
+        if let Some(c) = last.filter(|c| c.fraction == 0.0) {
+            return Err(format!(
+                "--override-at: the {} override stays at 0 % from t = {} s, so the machine would \
+                 stand for ever; add a later change that raises it",
+                if kind == OverrideKind::Feed {
+                    "feed"
+                } else {
+                    "rapid"
+                },
+                c.at
+            ));
+        }
+    }
     Ok(SimOptions {
         servo_period_s: m.servo_period * 1e-3,
         feed_override: m.feed_override / 100.0,
@@ -508,6 +532,52 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
             cli::ProfileArg::Soft => stanok_canon::AccelerationProfile::Soft,
             cli::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
         }),
+        override_changes,
+    })
+}
+
+/// One `--override-at` value: `T:PERCENT` (feed), `T:rapid=PERCENT`, `T:spindle=PERCENT`.
+fn parse_override_at(text: &str) -> Result<OverrideChange, String> {
+    let bad = || {
+        format!(
+            "--override-at wants T:PERCENT, T:rapid=PERCENT or T:spindle=PERCENT (T seconds ≥ 0), \
+             not {text}"
+        )
+    };
+    let (at, rest) = text.split_once(':').ok_or_else(bad)?;
+    let at: f64 = at.trim().parse().map_err(|_| bad())?;
+    let (kind, value) = match rest.split_once('=') {
+        None => (OverrideKind::Feed, rest),
+        Some((name, value)) => match name.trim() {
+            "feed" => (OverrideKind::Feed, value),
+            "rapid" => (OverrideKind::Rapid, value),
+            "spindle" => (OverrideKind::Spindle, value),
+            _ => return Err(bad()),
+        },
+    };
+    let percent: f64 = value
+        .trim()
+        .trim_end_matches('%')
+        .trim()
+        .parse()
+        .map_err(|_| bad())?;
+    let (lo, hi) = match kind {
+        OverrideKind::Feed => (0.0, 200.0),
+        OverrideKind::Rapid => (0.0, 100.0),
+        OverrideKind::Spindle => (50.0, 120.0),
+    };
+    if !(at.is_finite() && at >= 0.0) {
+        return Err(bad());
+    }
+    if !(percent >= lo && percent <= hi) {
+        return Err(format!(
+            "--override-at {text}: the percentage must be {lo} … {hi} for this override"
+        ));
+    }
+    Ok(OverrideChange {
+        at,
+        kind,
+        fraction: percent / 100.0,
     })
 }
 

@@ -107,7 +107,7 @@ fn direct_switch_between_g43_and_g43_4() {
     );
     let r = head_table(&text);
     r.ok();
-    assert!(r.canon.contains(&Canon::ChangeTool { tool: 1 }));
+    assert!(r.canon.contains(&Canon::ChangeTool { tool: 1, slot: 1 }));
     assert!(r.canon.contains(&Canon::SelectTool { tool: 2 }));
     // N02 under G43 (T01, L = 100): m = P + w + L·ẑ.
     assert_axes(

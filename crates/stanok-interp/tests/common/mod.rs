@@ -92,40 +92,9 @@ pub fn strip_counter(line: &str) -> String {
         .unwrap_or_default()
 }
 
-/// Splits a line into its text with numbers replaced by `#`, and the numbers.
-pub fn split_numbers(line: &str) -> (String, Vec<f64>) {
-    let b = line.as_bytes();
-    let mut skeleton = String::new();
-    let mut nums = Vec::new();
-    let mut i = 0;
-    while i < b.len() {
-        let starts_number =
-            b[i].is_ascii_digit() || (b[i] == b'-' && i + 1 < b.len() && b[i + 1].is_ascii_digit());
-        // A digit inside an identifier (CANON_PLANE_XY, G5X) is text.
-        let in_word = i > 0 && (b[i - 1].is_ascii_alphabetic() || b[i - 1] == b'_');
-        if starts_number && !in_word {
-            let start = i;
-            i += 1;
-            while i < b.len() && (b[i].is_ascii_digit() || b[i] == b'.') {
-                i += 1;
-            }
-            nums.push(line[start..i].parse().unwrap_or(f64::NAN));
-            skeleton.push('#');
-        } else {
-            let ch = line[i..].chars().next().unwrap();
-            skeleton.push(ch);
-            i += ch.len_utf8();
-        }
-    }
-    (skeleton, nums)
-}
-
-/// True if two trace lines agree: same text, numbers within `tol`.
-pub fn same_line(a: &str, b: &str, tol: f64) -> bool {
-    let (sa, na) = split_numbers(a);
-    let (sb, nb) = split_numbers(b);
-    sa == sb && na.len() == nb.len() && na.iter().zip(&nb).all(|(x, y)| (x - y).abs() <= tol)
-}
+/// The comparison rules of every LinuxCNC parity check (`stanok_canon::linuxcnc_trace`).
+#[allow(unused_imports)]
+pub use stanok_canon::linuxcnc_trace::same_line;
 
 /// An rs274 trace file split into canon lines (counter stripped, exit ON_RESET pair removed), the
 /// error message and the offending block (both empty when the run succeeded).
@@ -135,25 +104,9 @@ pub struct Trace {
 }
 
 pub fn read_trace(text: &str) -> Trace {
-    let mut lines = Vec::new();
-    let mut rest = text.lines();
-    for l in rest.by_ref() {
-        if l == "executing" {
-            break;
-        }
-        lines.push(strip_counter(l));
-    }
-    // rs274 prints ON_RESET() twice when it exits.
-    for _ in 0..2 {
-        if lines.last().map(|l| l.ends_with("ON_RESET()")) == Some(true) {
-            lines.pop();
-        }
-    }
-    let msg = rest.next().map(str::to_string);
-    // Some messages end in a newline of their own ("G10 L0 not allowed with loaded tool <1>\n").
-    let block = rest.find(|l| !l.is_empty()).map(str::to_string);
+    let t = stanok_canon::linuxcnc_trace::parse(text);
     Trace {
-        lines,
-        error: msg.map(|m| (m, block.unwrap_or_default())),
+        lines: t.lines,
+        error: t.error.map(|m| (m, t.error_block.unwrap_or_default())),
     }
 }

@@ -34,6 +34,8 @@ pub fn line(
 ) -> PlannerInput {
     PlannerInput::Segment(PathSegment {
         acceleration_cap: f64::INFINITY,
+        velocity_cap: f64::INFINITY,
+        speed_class: Default::default(),
         start: a,
         end: b,
         geometry: SegmentGeometry::Line,

@@ -1,0 +1,312 @@
+//! STEP 2 of a block (grbl's "import words"): the words of a parsed block, their values evaluated,
+//! sorted into G codes, M codes and letter slots, with the span of each so that later checks can
+//! point at the word that is wrong.
+//!
+//! Invariant: after `Words::fill` succeeds every letter appears at most once (a front end's
+//! [`WordRules`] say what a repeated letter is: refused, as RS274/NGC does, or the last one kept
+//! with a warning, as AxiOMA's manual says; one letter may keep its second word as an extra word).
+//! `used` records which letters a function consumed, so that a word nothing consumed is reported
+//! instead of ignored.
+//!
+//! The values of expression words come from the front end ([`WordValues`]): the core reads
+//! numbers, the front end evaluates its own expression languages (RS274/NGC parameters and
+//! expressions, AxiOMA's high-level language).
+
+use stanok_canon::Diagnostic;
+use stanok_syntax::{Address, Block, ColSpan, ExprId, Keyword, Value};
+
+/// One evaluated value and the word it came from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Val {
+    /// Value as written (program units, not yet converted).
+    pub v: f64,
+    /// The word.
+    pub span: ColSpan,
+}
+
+/// The evaluated words of one block.
+#[derive(Debug)]
+pub struct Words {
+    /// G codes ×10 (`G91.1` → 911), in written order.
+    pub g: Vec<(u32, ColSpan)>,
+    /// M codes, in written order.
+    pub m: Vec<(u32, ColSpan)>,
+    /// Single-letter words other than G, M (`letter[b'X' - b'A']`), valid where `present` has the bit.
+    letter: [Val; 28],
+    /// Letters written in this block (bit i = letter `A + i`).
+    present: u32,
+    /// Letters a function has consumed.
+    used: u32,
+    /// Extended addresses (AxiOMA `S2=1000` → (b'S', 2, 1000)).
+    pub indexed: Vec<(u8, u8, Val)>,
+    /// Keywords with their index and value (AxiOMA `CR=`, Balt-System `CVU=` …).
+    pub keywords: Vec<(Keyword, Option<u8>, Option<Val>, ColSpan)>,
+    /// The second word of the letter [`WordRules::second_word`] names (Mazatrol `T01 T02 M6`: the
+    /// tool prepared next).
+    pub second: Option<Val>,
+}
+
+/// What a repeated letter means in a dialect.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Repeated {
+    /// An error with this code ("Multiple X words on one line", LinuxCNC's wording).
+    Refuse(&'static str),
+    /// The last word takes effect; a warning with this code names the earlier one.
+    LastWins(&'static str),
+}
+
+/// A front end's rules for sorting a block's words.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct WordRules {
+    /// A letter written twice.
+    pub repeated: Repeated,
+    /// A letter whose second word is kept in [`Words::second`] instead of being a repeat.
+    pub second_word: Option<u8>,
+}
+
+/// The values of a block's expression words, as the front end evaluates them.
+pub trait WordValues {
+    /// The value of `Value::Expr` (the block's expression arena).
+    fn expr(&self, block: &Block, e: ExprId, at: ColSpan) -> Result<f64, Diagnostic>;
+    /// The value of `Value::Hll`, evaluated before the block (None: no value).
+    fn hll(&self, _id: u32) -> Option<f64> {
+        None
+    }
+}
+
+/// Word values of a dialect without expressions: an expression word is refused.
+pub struct NoExpressions(pub &'static str);
+
+impl WordValues for NoExpressions {
+    fn expr(&self, block: &Block, _e: ExprId, at: ColSpan) -> Result<f64, Diagnostic> {
+        Err(Diagnostic::error(
+            "interp::unsupported",
+            format!(
+                "parameters and expressions are not supported by the {} front end",
+                self.0
+            ),
+            block.span_of(at),
+        ))
+    }
+}
+
+impl Default for Words {
+    fn default() -> Self {
+        Words {
+            g: Vec::new(),
+            m: Vec::new(),
+            letter: [Val {
+                v: 0.0,
+                span: ColSpan::default(),
+            }; 28],
+            present: 0,
+            used: 0,
+            indexed: Vec::new(),
+            keywords: Vec::new(),
+            second: None,
+        }
+    }
+}
+
+/// Slot of a letter: A–Z, then LinuxCNC's polar words `@` (radius) and `^` (angle).
+fn idx(letter: u8) -> usize {
+    match letter {
+        b'@' => 26,
+        b'^' => 27,
+        l => (l.to_ascii_uppercase() - b'A') as usize,
+    }
+}
+
+fn letter_of(i: usize) -> u8 {
+    match i {
+        26 => b'@',
+        27 => b'^',
+        i => b'A' + i as u8,
+    }
+}
+
+impl Words {
+    /// Clears for reuse.
+    pub fn clear(&mut self) {
+        self.g.clear();
+        self.m.clear();
+        self.present = 0;
+        self.used = 0;
+        self.indexed.clear();
+        self.keywords.clear();
+        self.second = None;
+    }
+
+    /// Evaluates and sorts the words of `block`.
+    #[inline]
+    pub fn fill(
+        &mut self,
+        block: &Block,
+        values: &impl WordValues,
+        rules: &WordRules,
+        warnings: &mut Vec<Diagnostic>,
+    ) -> Result<(), Diagnostic> {
+        self.clear();
+        for w in &block.words {
+            let value = match w.value {
+                Value::None => None,
+                Value::Number(v) => Some(v),
+                Value::Expr(e) => Some(values.expr(block, e, w.span)?),
+                // Evaluated by the front end before the block (AxiOMA's HLL).
+                Value::Hll(e) => values.hll(e.0),
+            };
+            let val = value.map(|v| Val { v, span: w.span });
+            match w.address {
+                Address::Letter(l) => {
+                    let Some(val) = val else {
+                        return Err(Diagnostic::error(
+                            "interp::missing-value",
+                            format!("{} word has no value", l as char),
+                            block.span_of(w.span),
+                        ));
+                    };
+                    if !val.v.is_finite() {
+                        return Err(Diagnostic::error(
+                            "interp::bad-value",
+                            format!("{} word value is not a finite number", l as char),
+                            block.span_of(w.span),
+                        ));
+                    }
+                    match l {
+                        b'G' => {
+                            let code = (val.v * 10.0).round();
+                            if (val.v * 10.0 - code).abs() > 1e-3 || !(0.0..=9999.0).contains(&code)
+                            {
+                                return Err(Diagnostic::error(
+                                    "interp::unknown-g-code",
+                                    format!("Unknown g code used: G{}", val.v),
+                                    block.span_of(w.span),
+                                ));
+                            }
+                            self.g.push((code as u32, w.span));
+                        }
+                        b'M' => {
+                            let code = val.v.round();
+                            if (val.v - code).abs() > 1e-6 || !(0.0..=9999.0).contains(&code) {
+                                return Err(Diagnostic::error(
+                                    "interp::unknown-m-code",
+                                    format!("Unknown m code used: M{}", val.v),
+                                    block.span_of(w.span),
+                                ));
+                            }
+                            self.m.push((code as u32, w.span));
+                        }
+                        b'A'..=b'Z' | b'@' | b'^' => {
+                            let i = idx(l);
+                            if self.present & (1 << i) != 0 {
+                                // Mazatrol `T01 T02 M6`: the second T is the next tool (prepared).
+                                if rules.second_word == Some(l) && self.second.is_none() {
+                                    self.second = Some(val);
+                                    continue;
+                                }
+                                let prev = self.letter[i];
+                                match rules.repeated {
+                                    Repeated::Refuse(code) => {
+                                        return Err(Diagnostic::error(
+                                            code,
+                                            format!(
+                                                "Multiple {} words on one line",
+                                                (l as char).to_ascii_lowercase()
+                                            ),
+                                            block.span_of(w.span),
+                                        ))
+                                    }
+                                    Repeated::LastWins(code) => warnings.push(
+                                        Diagnostic::warning(
+                                            code,
+                                            format!(
+                                                "{} appears twice in this block: only the last one takes effect",
+                                                l as char
+                                            ),
+                                            block.span_of(w.span),
+                                        )
+                                        .with_note(format!(
+                                            "the earlier one is `{}`",
+                                            block.slice(prev.span)
+                                        )),
+                                    ),
+                                }
+                            }
+                            self.letter[i] = val;
+                            self.present |= 1 << i;
+                        }
+                        _ => {
+                            return Err(Diagnostic::error(
+                                "interp::bad-address",
+                                "not a word address",
+                                block.span_of(w.span),
+                            ))
+                        }
+                    }
+                }
+                Address::Indexed { letter, index } => {
+                    let Some(val) = val else {
+                        return Err(Diagnostic::error(
+                            "interp::missing-value",
+                            format!("{}{}= has no value", letter as char, index),
+                            block.span_of(w.span),
+                        ));
+                    };
+                    self.indexed.push((letter, index, val));
+                }
+                Address::Keyword { keyword, index } => {
+                    self.keywords.push((keyword, index, val, w.span));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value of a letter, marking it used.
+    pub fn take(&mut self, letter: u8) -> Option<Val> {
+        let i = idx(letter);
+        if self.present & (1 << i) == 0 {
+            return None;
+        }
+        self.used |= 1 << i;
+        Some(self.letter[i])
+    }
+
+    /// Multiplies a written letter's value by `k` (RS274/NGC G7: X words are diameters, halved
+    /// before any code reads them). Does not mark it used.
+    pub fn scale(&mut self, letter: u8, k: f64) {
+        if self.has(letter) {
+            self.letter[idx(letter)].v *= k;
+        }
+    }
+
+    /// The value of a letter without marking it used.
+    pub fn peek(&self, letter: u8) -> Option<Val> {
+        self.has(letter).then(|| self.letter[idx(letter)])
+    }
+
+    /// True if the letter was written (does not mark it used).
+    pub fn has(&self, letter: u8) -> bool {
+        self.present & (1 << idx(letter)) != 0
+    }
+
+    /// The first letter that was written but never consumed, if any.
+    pub fn first_unused(&self) -> Option<(u8, Val)> {
+        let left = self.present & !self.used;
+        if left == 0 {
+            return None;
+        }
+        let i = left.trailing_zeros() as usize;
+        Some((letter_of(i), self.letter[i]))
+    }
+
+    /// True if the letter was consumed already.
+    pub fn is_used(&self, letter: u8) -> bool {
+        self.used & (1 << idx(letter)) != 0
+    }
+
+    /// True if any of the given letters was written.
+    pub fn any(&self, letters: &[u8]) -> bool {
+        letters.iter().any(|&l| self.has(l))
+    }
+}

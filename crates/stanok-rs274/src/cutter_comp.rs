@@ -1,0 +1,752 @@
+//! RS274/NGC cutter radius compensation G40, G41, G42, G41.1, G42.1 — LinuxCNC 2.9's rules
+//! (spec rs274ngc §4.20–§4.21; corner and entry behaviour taken from `rs274` traces, see
+//! tests/rs274/comp-*.ngc).
+//!
+//! ## Model
+//!
+//! Compensation works in the active plane (G17 or G18) on the *programmed* path: the state keeps
+//! the programmed point (where the program thinks the tool is) apart from the tool centre
+//! (`ModalState::position`). Every programmed element — a line or an arc — is offset by the tool
+//! radius r to the left (G41) or right (G42) of its direction of travel:
+//!
+//! * a line moves sideways by r (its normal n, left = direction rotated +90°);
+//! * an arc of radius R about C keeps C and gets radius R' = R − r when the tool is on its inside
+//!   (G41 with G3, G42 with G2) and R + r otherwise; R' ≤ 0 is an error.
+//!
+//! ## Entry (the first move after G41/G42)
+//!
+//! A line ends at its programmed end + r·n (the tool travels straight there from where it
+//! stands; the move must be longer than r). An arc ends at C + R'·u(E − C) on a circle whose
+//! centre lies on the line C–E and that passes through the current point.
+//!
+//! ## Corners (every later move), with `a` = the previous element's end tangent and `b` = the new
+//! element's start tangent at the programmed corner S
+//!
+//! * **convex** (the tool is on the outside: G41 turning right, G42 turning left, by more than
+//!   [`CONCAVE_TOLERANCE`]): an arc of radius r about S is inserted from the previous offset end to
+//!   the new offset start (clockwise for G41, counter-clockwise for G42);
+//! * **concave** (everything else, straight continuations and reversals included): the previous
+//!   offset element is shortened to where it meets the new offset element (line–line, line–circle
+//!   or circle–circle intersection); no intersection is a gouge error;
+//! * **tangent with an arc** (either element an arc, turn within ±[`CONCAVE_TOLERANCE`]): nothing
+//!   is moved; the new element starts where the tool is (LinuxCNC's "convex, one arc" case).
+//!
+//! An arc's offset uses its programmed points as LinuxCNC 2.9 does when the end is off the circle
+//! through the start (|E − C| ≠ |S − C|, by the program's rounding): the offset start is S moved
+//! r along the radius C→S, the offset end E moved r along C→E, and the circle it meets its
+//! neighbours on (and the radius check) is the end's, |E − C| ± r.
+//!
+//! Shortening the previous element means changing a command already queued: while compensation is
+//! on, the driver holds back the last motion command and everything after it (the interpreter's
+//! `held` rule), and the corner code edits it in place (`Emitter::last_motion_mut`). Moves without
+//! motion in the plane (a Z plunge) do not form corners; they follow the corner point when it moves.
+//!
+//! G40 releases the held commands; the next move goes from the tool position straight to the
+//! programmed point.
+
+use super::Rs274State;
+use crate::arc::PlanarArc;
+use crate::ctx::Ctx;
+use crate::params::Parameters;
+use stanok_canon::{Canon, Diagnostic, Plane, Pose};
+use stanok_syntax::ColSpan;
+
+mod stale;
+
+/// A corner turning the "convex" way by less than this many radians is joined like a concave one.
+pub const CONCAVE_TOLERANCE: f64 = 0.05;
+
+/// A programmed element in plane coordinates (mm, program frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Element {
+    /// A straight move.
+    Line {
+        /// Programmed start.
+        from: [f64; 2],
+        /// Programmed end.
+        to: [f64; 2],
+    },
+    /// An arc.
+    Arc {
+        /// Centre.
+        centre: [f64; 2],
+        /// Counter-clockwise.
+        ccw: bool,
+        /// Programmed end.
+        to: [f64; 2],
+        /// Radius of the tool's arc (R').
+        tool_radius: f64,
+        /// Where the tool's arc starts (plane, program frame).
+        tool_from: [f64; 2],
+    },
+}
+
+/// Cutter compensation state (part of `Rs274State`, so it is saved and restored with the block).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CutterComp {
+    /// 0 off (G40), 1 left (G41), 2 right (G42).
+    pub side: u8,
+    /// Tool radius r, mm.
+    pub radius: f64,
+    /// The programmed point in the plane, once the first move after G41/G42 set it.
+    pub program: Option<[f64; 2]>,
+    /// The last programmed element (its offset is the held motion).
+    pub last: Option<Element>,
+    /// Moves without plane motion emitted after the last element's motion (held with it).
+    pub moves_since: u32,
+    /// Where the tool's controlled point lies from its nose centre (plane coordinates): a lathe
+    /// tool of orientation 1–8 in G18 (`nose_shift`); every compensated move is emitted shifted.
+    pub nose: [f64; 2],
+    /// LinuxCNC's tool position when it is not the real one (nose centre, plane): reading a G70
+    /// profile under compensation leaves it at the profile's end (`stale.rs`).
+    pub stale: Option<[f64; 2]>,
+}
+
+impl CutterComp {
+    /// Compensation is on.
+    pub fn on(&self) -> bool {
+        self.side != 0
+    }
+
+    /// +1 for the left side, −1 for the right.
+    fn sign(&self) -> f64 {
+        if self.side == 1 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] + b[0], a[1] + b[1]]
+}
+fn scale(a: [f64; 2], k: f64) -> [f64; 2] {
+    [a[0] * k, a[1] * k]
+}
+fn len(a: [f64; 2]) -> f64 {
+    a[0].hypot(a[1])
+}
+fn unit(a: [f64; 2]) -> [f64; 2] {
+    let l = len(a);
+    if l > 0.0 {
+        scale(a, 1.0 / l)
+    } else {
+        [1.0, 0.0]
+    }
+}
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+/// `v` rotated +90°.
+fn left(v: [f64; 2]) -> [f64; 2] {
+    [-v[1], v[0]]
+}
+
+/// Tangent of an arc about `c` at point `p`.
+fn arc_tangent(c: [f64; 2], p: [f64; 2], ccw: bool) -> [f64; 2] {
+    let t = left(unit(sub(p, c)));
+    if ccw {
+        t
+    } else {
+        scale(t, -1.0)
+    }
+}
+
+impl Element {
+    fn end_tangent(&self) -> [f64; 2] {
+        match *self {
+            Element::Line { from, to } => unit(sub(to, from)),
+            Element::Arc {
+                centre, ccw, to, ..
+            } => arc_tangent(centre, to, ccw),
+        }
+    }
+}
+
+/// The plane coordinates of a pose.
+fn plane_of(p: &Pose, plane: Plane) -> [f64; 2] {
+    let (a, b, _) = plane.axes();
+    let v = p.to_array();
+    [v[a], v[b]]
+}
+
+fn with_plane(p: Pose, plane: Plane, q: [f64; 2]) -> Pose {
+    let (a, b, _) = plane.axes();
+    let mut v = p.to_array();
+    v[a] = q[0];
+    v[b] = q[1];
+    Pose::from_array(v)
+}
+
+/// LinuxCNC's lathe tool origin: a tool of orientation 1–8 (G18 only) is controlled at the
+/// point of its nose that the orientation names, r from the nose centre along Z and/or X
+/// (orientation 2: −X −Z; 1: −X +Z; 3: +X −Z; 4: +X +Z; 5/6/7/8: +Z/−X/−Z/+X only). The
+/// compensated path is that of the nose centre; every compensated move is emitted shifted by
+/// this (plane coordinates (z, x)), the moves after G40 are not.
+pub fn nose_shift(plane: Plane, orientation: u8, r: f64) -> [f64; 2] {
+    if plane != Plane::ZX {
+        return [0.0; 2];
+    }
+    let dx = match orientation {
+        1 | 2 | 6 => -r,
+        3 | 4 | 8 => r,
+        _ => 0.0,
+    };
+    let dz = match orientation {
+        2 | 3 | 7 => -r,
+        1 | 4 | 5 => r,
+        _ => 0.0,
+    };
+    [dz, dx]
+}
+
+/// The nose centre (plane, program frame): the tool position less the nose shift once a
+/// compensated move has put the tool there (before the entry move LinuxCNC takes the position
+/// as it is).
+fn tool_at(cx: &Ctx<'_>) -> [f64; 2] {
+    let comp = &cx.fe.modes.comp;
+    let here = plane_of(&cx.st.program_position(), cx.st.plane);
+    if comp.program.is_some() {
+        sub(here, comp.nose)
+    } else {
+        here
+    }
+}
+
+/// `end` with its plane coordinates set to the nose-centre point `q` shifted to the tool origin.
+fn emit_at(cx: &Ctx<'_>, end: Pose, q: [f64; 2]) -> Pose {
+    with_plane(end, cx.st.plane, add(q, cx.fe.modes.comp.nose))
+}
+
+fn err(cx: &Ctx<'_>, code: &'static str, msg: &str, span: ColSpan) -> Diagnostic {
+    cx.err(code, msg, span)
+}
+
+/// G41/G42 (410/420: radius from the tool table, D = tool number) and G41.1/G42.1 (411/421:
+/// D = diameter).
+pub(super) fn comp_on(
+    cx: &mut Ctx<'_>,
+    params: &Parameters,
+    code: u32,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    if cx.fe.modes.comp.on() {
+        return Err(err(
+            cx,
+            "rs274::comp-already-on",
+            "Cannot turn cutter radius comp on when on",
+            span,
+        ));
+    }
+    if cx.st.plane == Plane::YZ {
+        return Err(err(
+            cx,
+            "rs274::comp-plane",
+            "Cannot turn cutter radius comp on out of XY or XZ plane",
+            span,
+        ));
+    }
+    let dynamic = code % 10 == 1;
+    let d = cx.words.take(b'D');
+    let orientation = if dynamic { cx.words.take(b'L') } else { None };
+    let mut tool_orientation = 0;
+    let radius = if dynamic {
+        match d {
+            Some(d) => cx.mm(d.v) / 2.0,
+            None => {
+                return Err(err(
+                    cx,
+                    "rs274::comp-d-missing",
+                    "D word missing with G41.1 or G42.1",
+                    span,
+                ))
+            }
+        }
+    } else {
+        let tool = match d {
+            Some(d) => {
+                if d.v < 0.0 || d.v.fract() != 0.0 {
+                    return Err(err(
+                        cx,
+                        "rs274::comp-d",
+                        "Negative or non-integer D word with G41 or G42",
+                        d.span,
+                    ));
+                }
+                let t = d.v as u32;
+                if t != 0 && params.tools().get(t).is_none() {
+                    return Err(cx.err(
+                        "rs274::tool-not-found",
+                        format!("Requested tool {t} not found in the tool table"),
+                        d.span,
+                    ));
+                }
+                t
+            }
+            None => cx.st.current_tool,
+        };
+        let edge = params.tools().get(tool).and_then(|t| t.edges.first());
+        tool_orientation = edge.map_or(0, |e| e.orientation);
+        edge.map_or(0.0, |e| e.radius)
+    };
+    let orientation = orientation.map_or(tool_orientation, |l| l.v.round().clamp(0.0, 9.0) as u8);
+    // A negative diameter swaps the side, as in LinuxCNC.
+    let mut side = if code / 10 == 41 { 1 } else { 2 };
+    if radius < 0.0 {
+        side = 3 - side;
+    }
+    cx.fe.modes.comp = CutterComp {
+        side,
+        radius: radius.abs(),
+        program: None,
+        last: None,
+        moves_since: 0,
+        nose: nose_shift(cx.st.plane, orientation, radius.abs()),
+        stale: None,
+    };
+    cx.out.push(Canon::Comment {
+        text: format!(
+            "interpreter: cutter radius compensation on {}",
+            if side == 1 { "left" } else { "right" }
+        ),
+    });
+    Ok(())
+}
+
+/// G40.
+pub(super) fn comp_off(cx: &mut Ctx<'_>) {
+    // The programmed point stays until the exit move: its missing words come from it.
+    cx.fe.modes.comp = CutterComp {
+        program: cx.fe.modes.comp.program,
+        ..CutterComp::default()
+    };
+    cx.out.push(Canon::Comment {
+        text: "interpreter: cutter radius compensation off".into(),
+    });
+}
+
+/// The programmed point of the plane, if compensation has set it (else the tool position).
+pub fn programmed_point(st: &Rs274State) -> Option<[f64; 2]> {
+    st.comp.program
+}
+
+/// A straight move under compensation to the programmed `end` (program coordinates).
+pub(super) fn straight(
+    cx: &mut Ctx<'_>,
+    rapid: bool,
+    end: Pose,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let plane = cx.st.plane;
+    let comp = cx.fe.modes.comp;
+    let r = comp.radius;
+    let e = plane_of(&end, plane);
+    let Some(s) = comp.program else {
+        // Entry move.
+        let t = tool_at(cx);
+        let d = len(sub(e, t));
+        // LinuxCNC accepts an entry exactly as long as the radius.
+        if d < r {
+            return Err(err(
+                cx,
+                "rs274::comp-entry-short",
+                "Length of cutter compensation entry move is not greater than the tool radius",
+                span,
+            ));
+        }
+        let n = scale(left(unit(sub(e, t))), r * comp.sign());
+        cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
+        let c = &mut cx.fe.modes.comp;
+        c.program = Some(e);
+        c.last = Some(Element::Line { from: t, to: e });
+        c.moves_since = 0;
+        return Ok(());
+    };
+    // (Within 1e-9 mm: a G70 pass's first rapid to S comes back through the cycle's frame.)
+    if len(sub(e, s)) <= 1e-9 {
+        // No motion in the plane: the tool keeps its plane position (LinuxCNC's, if stale).
+        let t = comp.stale.unwrap_or_else(|| tool_at(cx));
+        cx.straight(rapid, emit_at(cx, end, t), feed);
+        cx.fe.modes.comp.moves_since += 1;
+        return Ok(());
+    }
+    let dir = unit(sub(e, s));
+    let n = scale(left(dir), r * comp.sign());
+    let new = Element::Line { from: s, to: e };
+    if let Some(c) = comp.stale {
+        stale::corner(cx, s, c, e, feed, span)?;
+    } else {
+        corner(cx, s, dir, add(s, n), new, feed, span)?;
+    }
+    cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
+    let c = &mut cx.fe.modes.comp;
+    c.stale = None;
+    c.program = Some(e);
+    c.last = Some(new);
+    c.moves_since = 0;
+    Ok(())
+}
+
+/// An arc under compensation: programmed end `end`, programmed centre and turns in `planar`.
+pub(super) fn arc(
+    cx: &mut Ctx<'_>,
+    ccw: bool,
+    end: Pose,
+    planar: PlanarArc,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let plane = cx.st.plane;
+    let comp = cx.fe.modes.comp;
+    let r = comp.radius;
+    let s = comp.program.unwrap_or_else(|| tool_at(cx));
+    let e = plane_of(&end, plane);
+    let c = planar.centre;
+    let radius = len(sub(e, c));
+    // Inside when the tool's side is the arc's turning side.
+    let inside = (comp.side == 1) == ccw;
+    let tool_radius = if inside { radius - r } else { radius + r };
+    // Zero is allowed: a circle of the tool's own size is cut with the tool standing at its centre.
+    if tool_radius < 0.0 {
+        return Err(err(
+            cx,
+            "rs274::comp-arc-radius",
+            "Tool radius not less than arc radius with comp",
+            span,
+        ));
+    }
+    let tool_end = add(c, scale(unit(sub(e, c)), tool_radius));
+    let mut new = Element::Arc {
+        centre: c,
+        ccw,
+        to: e,
+        tool_radius,
+        tool_from: [0.0; 2],
+    };
+    if comp.program.is_none() {
+        // Entry arc: through the current point, centre on the line C–E.
+        let t = tool_at(cx);
+        let u = unit(sub(e, c));
+        let chord = sub(tool_end, t);
+        let k = dot(u, chord);
+        if k.abs() < 1e-12 {
+            return Err(err(
+                cx,
+                "rs274::comp-entry-arc",
+                "Cannot make the cutter compensation entry arc from here",
+                span,
+            ));
+        }
+        let rho = dot(chord, chord) / (2.0 * k);
+        let centre = sub(tool_end, scale(u, rho));
+        if let Element::Arc { tool_from, .. } = &mut new {
+            *tool_from = t;
+        }
+        cx.arc(
+            plane,
+            ccw,
+            emit_at(cx, end, tool_end),
+            PlanarArc {
+                centre: add(centre, cx.fe.modes.comp.nose),
+                turns: planar.turns,
+            },
+            feed,
+        );
+    } else {
+        // The offset start lies on the radius through the programmed start, r from it.
+        let start_radius = len(sub(s, c));
+        let start_tool = add(
+            c,
+            scale(
+                unit(sub(s, c)),
+                if inside {
+                    start_radius - r
+                } else {
+                    start_radius + r
+                },
+            ),
+        );
+        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
+        if let Element::Arc { tool_from, .. } = &mut new {
+            *tool_from = tool_at(cx);
+        }
+        cx.arc(
+            plane,
+            ccw,
+            emit_at(cx, end, tool_end),
+            PlanarArc {
+                centre: add(c, cx.fe.modes.comp.nose),
+                turns: planar.turns,
+            },
+            feed,
+        );
+    }
+    let cc = &mut cx.fe.modes.comp;
+    cc.stale = None;
+    cc.program = Some(e);
+    cc.last = Some(new);
+    cc.moves_since = 0;
+    Ok(())
+}
+
+/// Joins the previous offset element to the new one at the programmed corner `s` (module doc).
+/// `dir` is the new element's start tangent, `start_tool` its offset start.
+fn corner(
+    cx: &mut Ctx<'_>,
+    s: [f64; 2],
+    dir: [f64; 2],
+    start_tool: [f64; 2],
+    new: Element,
+    feed: f64,
+    span: ColSpan,
+) -> Result<(), Diagnostic> {
+    let comp = cx.fe.modes.comp;
+    let Some(last) = comp.last else {
+        return Ok(());
+    };
+    let a = last.end_tangent();
+    let turn = cross(a, dir).atan2(dot(a, dir));
+    let plane = cx.st.plane;
+    if comp.sign() * turn < -CONCAVE_TOLERANCE {
+        // Convex: an arc about the corner.
+        reachable(cx, tool_at(cx), span)?;
+        let here = cx.st.program_position();
+        cx.arc(
+            plane,
+            comp.side == 2,
+            emit_at(cx, here, start_tool),
+            PlanarArc {
+                centre: add(s, comp.nose),
+                turns: 1,
+            },
+            feed,
+        );
+        return Ok(());
+    }
+    // Within the tolerance of tangent next to an arc, the new element starts where the tool is
+    // (LinuxCNC's "convex, one arc" case): no meeting point is sought, and the new offset start
+    // may be off the tool's position by as much as an arc's end is off its radius.
+    let with_arc = matches!(new, Element::Arc { .. }) || matches!(last, Element::Arc { .. });
+    if with_arc && (comp.sign() * turn).abs() <= CONCAVE_TOLERANCE {
+        return Ok(());
+    }
+    // Concave: where the two offset paths meet.
+    let r = comp.radius;
+    let prev_end = tool_at(cx);
+    let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
+        cx.err(
+            "rs274::comp-gouge",
+            // LinuxCNC words such a gouge at an arc as the arc's radius check.
+            "Tool radius not less than arc radius with comp",
+            span,
+        )
+        .with_note(format!(
+            "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
+        ))
+    })?;
+    reachable(cx, p, span)?;
+    move_held_end(cx, p);
+    Ok(())
+}
+
+/// LinuxCNC's check whenever a corner sets the held move's end (moved to a concave corner, or
+/// kept before a convex arc) at `to` (nose centre): a held straight move must still run its
+/// programmed direction from where it starts, else the tool would gouge (its error texts).
+fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
+    let comp = cx.fe.modes.comp;
+    let Some(Element::Line { from, to: end }) = comp.last else {
+        return Ok(());
+    };
+    let (frame, plane) = (cx.st.frame, cx.st.plane);
+    let mut start = None;
+    cx.out
+        .edit_last_motions(comp.moves_since as usize + 1, |cmd, first| {
+            match (first, &*cmd) {
+                (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
+                (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
+                _ => {}
+            }
+        });
+    let Some((s, rapid)) = start else {
+        return Ok(());
+    };
+    let s = sub(plane_of(&frame.to_program(&s), plane), comp.nose);
+    if dot(sub(end, from), sub(to, s)) >= 0.0 {
+        return Ok(());
+    }
+    let what = if rapid { "traverse" } else { "feed" };
+    Err(err(
+        cx,
+        "rs274::comp-concave-gouge",
+        &format!("Straight {what} in concave corner cannot be reached by the tool without gouging"),
+        span,
+    ))
+}
+
+/// Offset line of a programmed line: a point and the direction.
+fn offset_line(from: [f64; 2], to: [f64; 2], off: f64) -> ([f64; 2], [f64; 2]) {
+    let d = unit(sub(to, from));
+    (add(from, scale(left(d), off)), d)
+}
+
+/// How far apart (mm) elements may miss each other and still count as touching: offset paths
+/// that are tangent in exact arithmetic (a line running into an arc tangentially) miss by
+/// rounding only.
+const TANGENT_TOLERANCE: f64 = 1e-6;
+
+/// Intersections of a line (point p, unit direction d) with a circle (tangent within
+/// [`TANGENT_TOLERANCE`] counts as one double point).
+fn line_circle(p: [f64; 2], d: [f64; 2], c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
+    let f = sub(p, c);
+    let b = dot(f, d);
+    let mut disc = b * b - (dot(f, f) - r * r);
+    if disc < 0.0 {
+        // The line misses the circle by δ where −disc = 2rδ + δ².
+        if -disc > TANGENT_TOLERANCE * (2.0 * r + TANGENT_TOLERANCE) {
+            return Vec::new();
+        }
+        disc = 0.0;
+    }
+    let q = disc.sqrt();
+    vec![add(p, scale(d, -b - q)), add(p, scale(d, -b + q))]
+}
+
+/// Intersections of two circles; `same` is returned when they coincide (an arc continued by an
+/// arc of the same circle: the corner point is where the new one starts).
+fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64, same: [f64; 2]) -> Vec<[f64; 2]> {
+    let d = len(sub(c2, c1));
+    if d < TANGENT_TOLERANCE && (r1 - r2).abs() < TANGENT_TOLERANCE {
+        return vec![same];
+    }
+    if d == 0.0 || d > r1 + r2 + TANGENT_TOLERANCE || d < (r1 - r2).abs() - TANGENT_TOLERANCE {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let u = unit(sub(c2, c1));
+    let m = add(c1, scale(u, a));
+    vec![add(m, scale(left(u), h)), add(m, scale(left(u), -h))]
+}
+
+/// Angle swept from `a` to `b` about `c` in the arc's sense, in [0, 2π).
+fn sweep(c: [f64; 2], a: [f64; 2], b: [f64; 2], ccw: bool) -> f64 {
+    let (u, v) = (sub(a, c), sub(b, c));
+    let mut t = cross(u, v).atan2(dot(u, v));
+    if !ccw {
+        t = -t;
+    }
+    if t < 0.0 {
+        t += std::f64::consts::TAU;
+    }
+    t
+}
+
+/// Where the offset of `last` meets the offset of `new` (signed offset `off`: + left).
+/// `prev_end` is the last element's offset end, `new_start` the new one's offset start.
+fn meet(
+    last: Element,
+    new: Element,
+    off: f64,
+    prev_end: [f64; 2],
+    new_start: [f64; 2],
+) -> Option<[f64; 2]> {
+    let candidates: Vec<[f64; 2]> = match (last, new) {
+        (Element::Line { from, to }, Element::Line { from: f2, to: t2 }) => {
+            let (p1, d1) = offset_line(from, to, off);
+            let (p2, d2) = offset_line(f2, t2, off);
+            let den = cross(d1, d2);
+            if den.abs() < 1e-12 {
+                return Some(new_start);
+            }
+            let t = cross(sub(p2, p1), d2) / den;
+            vec![add(p1, scale(d1, t))]
+        }
+        (
+            Element::Line { from, to },
+            Element::Arc {
+                centre,
+                tool_radius,
+                ..
+            },
+        ) => {
+            let (p, d) = offset_line(from, to, off);
+            line_circle(p, d, centre, tool_radius)
+        }
+        (
+            Element::Arc {
+                centre,
+                tool_radius,
+                ..
+            },
+            Element::Line { from, to },
+        ) => {
+            let (p, d) = offset_line(from, to, off);
+            line_circle(p, d, centre, tool_radius)
+        }
+        (
+            Element::Arc {
+                centre: c1,
+                tool_radius: r1,
+                ..
+            },
+            Element::Arc {
+                centre: c2,
+                tool_radius: r2,
+                ..
+            },
+        ) => circle_circle(c1, r1, c2, r2, new_start),
+    };
+    match last {
+        // After a line: the intersection nearest the line's offset end.
+        Element::Line { .. } => candidates
+            .into_iter()
+            .min_by(|a, b| len(sub(*a, prev_end)).total_cmp(&len(sub(*b, prev_end)))),
+        // After an arc: the one the tool reaches first along it.
+        Element::Arc {
+            centre,
+            ccw,
+            tool_from,
+            ..
+        } => candidates.into_iter().min_by(|a, b| {
+            sweep(centre, tool_from, *a, ccw).total_cmp(&sweep(centre, tool_from, *b, ccw))
+        }),
+    }
+}
+
+/// Moves the end of the held motion (and the plane position of the moves without plane motion
+/// after it) to `p` (plane coordinates, program frame).
+fn move_held_end(cx: &mut Ctx<'_>, p: [f64; 2]) {
+    let plane = cx.st.plane;
+    let p = add(p, cx.fe.modes.comp.nose);
+    let frame = cx.st.frame;
+    let remap = |m: &Pose| -> Pose {
+        let prog = frame.to_program(m);
+        frame.to_machine(&with_plane(prog, plane, p))
+    };
+    let n = cx.fe.modes.comp.moves_since as usize + 1;
+    cx.out.edit_last_motions(n, |cmd, first| match cmd {
+        Canon::StraightFeed(l) | Canon::StraightTraverse(l) => {
+            if !first {
+                l.start = remap(&l.start);
+            }
+            l.end = remap(&l.end);
+        }
+        Canon::ArcFeed(a) => {
+            if !first {
+                a.start = remap(&a.start);
+            }
+            a.end = remap(&a.end);
+        }
+        _ => {}
+    });
+    let np = remap(&cx.st.position);
+    cx.st.position = np;
+}

@@ -1,0 +1,691 @@
+//! RS274/NGC O-word control flow: subroutines, if/elseif/else, while, do-while, repeat, break,
+//! continue — executed the way LinuxCNC does it, by moving the read position in the program
+//! text (the program is never held in memory).
+//!
+//! State:
+//! * `subs`: label → position of the line after `oN sub`, learnt when a definition is passed (its body
+//!   is skipped, not executed) or found by a forward scan when a call precedes the definition;
+//! * `calls`: one frame per active call, with the return position and the saved `#1…#30`;
+//! * `loops`: one frame per active loop, with where to jump back to and an iteration counter;
+//! * `ifs`: the labels of the active if-constructs;
+//! * `skip`: while set, lines are read but not executed until the O-word it waits for.
+//!
+//! Bounds: call depth ≤ `max_call_depth`, iterations of any loop ≤ `max_loop_iterations`; an
+//! unterminated construct at end of file is an error. Together with the driver's block limit no
+//! program can make the interpreter hang.
+
+use crate::params::{normalise_name, Evaluator, Slot};
+use stanok_canon::Diagnostic;
+use stanok_interp_core::CoreOptions as InterpOptions;
+use stanok_syntax::{Block, OKind, OLabel, SourcePos};
+use std::collections::HashMap;
+
+/// What the driver does with the current line.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum FlowAction {
+    /// An ordinary block: execute it.
+    Execute,
+    /// Read past it.
+    Skip,
+    /// An O-word line that was acted on (apply its parameter operations).
+    Handled,
+    /// Continue reading at this position.
+    Seek(SourcePos),
+    /// Call a subroutine kept in its own file (`o<name> call` with `name.ngc` on the subroutine
+    /// path): the driver opens it and reads the body after its `o<name> sub` line.
+    CallFile {
+        /// The file.
+        path: std::path::PathBuf,
+        /// The label as written in the file's `sub` line (normalised, with `<>`).
+        label: String,
+    },
+    /// Return from a subroutine file: close it and continue in the caller at this position.
+    ReturnFromFile(SourcePos),
+}
+
+/// A parameter operation requested by a call or return.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ParamOp {
+    /// Write a parameter.
+    Write(Slot),
+    /// Enter a local scope.
+    PushScope,
+    /// Leave it.
+    PopScope,
+}
+
+#[derive(Debug, Clone)]
+enum Skip {
+    Sub(String),
+    FindSub {
+        label: String,
+        args: Vec<f64>,
+        return_pos: SourcePos,
+    },
+    IfBranch(String),
+    ToEndIf(String),
+    LoopEnd(String),
+}
+
+/// A call about to be entered.
+struct Call {
+    label: String,
+    args: Vec<f64>,
+    return_pos: SourcePos,
+    file: bool,
+}
+
+impl Call {
+    fn new(label: String, args: Vec<f64>, return_pos: SourcePos, file: bool) -> Self {
+        Call {
+            label,
+            args,
+            return_pos,
+            file,
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+struct CallFrame {
+    label: String,
+    return_pos: SourcePos,
+    /// The subroutine is a file of its own (the driver reads it with a reader of its own).
+    file: bool,
+    saved: [f64; 30],
+    loops: usize,
+    ifs: usize,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum LoopKind {
+    While,
+    Do,
+    Repeat(u64),
+}
+
+#[derive(Debug, Clone)]
+struct LoopFrame {
+    label: String,
+    kind: LoopKind,
+    /// `while`: the `while` line itself (re-evaluated); `do`/`repeat`: the first body line.
+    target: SourcePos,
+    iterations: u64,
+}
+
+/// Control-flow state of one run.
+#[derive(Debug, Default)]
+pub struct Flow {
+    subs: HashMap<String, SourcePos>,
+    calls: Vec<CallFrame>,
+    loops: Vec<LoopFrame>,
+    ifs: Vec<String>,
+    skip: Option<Skip>,
+    ops: Vec<(ParamOp, f64)>,
+    /// Which file lines come from: 0 = the program, n = the n-th nested subroutine file. Keys of
+    /// `subs` carry it, so positions of one file are never used in another.
+    source: usize,
+}
+
+/// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
+fn subroutine_file(label: &str, opts: &InterpOptions) -> Option<std::path::PathBuf> {
+    let name = label.strip_prefix('<')?.strip_suffix('>')?;
+    opts.subroutine_path
+        .iter()
+        .map(|dir| dir.join(format!("{name}.ngc")))
+        .find(|p| p.is_file())
+}
+
+impl Flow {
+    /// The driver switched to reading file `source` (0 = the program).
+    pub fn set_source(&mut self, source: usize) {
+        self.source = source;
+    }
+
+    /// Key of a label in `subs`: the file it belongs to and the label.
+    fn sub_key(&self, label: &str) -> String {
+        format!("{}:{label}", self.source)
+    }
+}
+
+/// The normalised text of a label (`<name>` or the number), as `FlowAction::CallFile` names it.
+pub fn label_text(block: &Block, l: &OLabel) -> String {
+    label_key(block, l)
+}
+
+fn label_key(block: &Block, l: &OLabel) -> String {
+    match l {
+        OLabel::Number(n) => n.to_string(),
+        OLabel::Name(s) => format!("<{}>", normalise_name(block.slice(*s))),
+    }
+}
+
+fn flow_err(block: &Block, code: &'static str, msg: String) -> Diagnostic {
+    let span = block
+        .oword
+        .as_ref()
+        .map(|o| block.span_of(o.span))
+        .unwrap_or_else(|| block.span());
+    Diagnostic::error(code, msg, span)
+}
+
+impl Flow {
+    /// Whether lines are being skipped (and for what).
+    pub fn skipping(&self) -> Option<()> {
+        self.skip.as_ref().map(|_| ())
+    }
+
+    /// Parameter operations to apply after a `Handled` line.
+    pub fn take_param_writes(&mut self) -> Vec<(ParamOp, f64)> {
+        std::mem::take(&mut self.ops)
+    }
+
+    /// How many subroutine calls are active.
+    pub fn depth(&self) -> usize {
+        self.calls.len()
+    }
+
+    /// Calls subroutine `label` (normalised, e.g. `100`) with `args`, returning to `next`: the
+    /// O-word `call` and the lathe cycles' profile (`G71 Q100` calls `o100`) both come here.
+    pub fn call(
+        &mut self,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        label: String,
+        args: Vec<f64>,
+        next: SourcePos,
+        opts: &InterpOptions,
+    ) -> Result<FlowAction, Diagnostic> {
+        if let Some(&pos) = self.subs.get(&self.sub_key(&label)) {
+            self.enter(block, eval, Call::new(label, args, next, false), opts)?;
+            Ok(FlowAction::Seek(pos))
+        } else if let Some(path) = subroutine_file(&label, opts) {
+            self.enter(
+                block,
+                eval,
+                Call::new(label.clone(), args, next, true),
+                opts,
+            )?;
+            Ok(FlowAction::CallFile { path, label })
+        } else {
+            self.skip = Some(Skip::FindSub {
+                label,
+                args,
+                return_pos: next,
+            });
+            Ok(FlowAction::Skip)
+        }
+    }
+
+    /// Decides what happens with the line just read. `here` is where it starts, `next` where the
+    /// following line starts.
+    pub fn on_line(
+        &mut self,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        here: SourcePos,
+        next: SourcePos,
+        opts: &InterpOptions,
+    ) -> Result<FlowAction, Diagnostic> {
+        let Some(o) = &block.oword else {
+            return Ok(if self.skip.is_some() {
+                FlowAction::Skip
+            } else {
+                FlowAction::Execute
+            });
+        };
+        let label = label_key(block, &o.label);
+        let name = match &o.label {
+            OLabel::Number(n) => format!("o{n}"),
+            OLabel::Name(_) => format!("o{label}"),
+        };
+        if let Some(skip) = self.skip.clone() {
+            return self.while_skipping(skip, block, eval, &o.kind, label, next, opts);
+        }
+        match &o.kind {
+            OKind::Sub => {
+                self.subs.insert(self.sub_key(&label), next);
+                self.skip = Some(Skip::Sub(label));
+                Ok(FlowAction::Skip)
+            }
+            OKind::EndSub(v) | OKind::Return(v) => {
+                let value = match v {
+                    Some(e) => Some(eval.eval(*e)?),
+                    None => None,
+                };
+                let Some(frame) = self.calls.pop() else {
+                    return Err(flow_err(
+                        block,
+                        "flow::return-outside-sub",
+                        format!("{name} endsub/return outside a subroutine call"),
+                    ));
+                };
+                // `return` may carry the label of the if or loop it sits in (LinuxCNC's
+                // retval.ngc: `o1010 return` inside `o1010 if`); `endsub` must name the sub.
+                let is_return = matches!(o.kind, OKind::Return(_));
+                if frame.label != label && !is_return {
+                    self.calls.push(frame);
+                    return Err(flow_err(
+                        block,
+                        "flow::label-mismatch",
+                        format!("{name} does not match the active subroutine"),
+                    ));
+                }
+                self.loops.truncate(frame.loops);
+                self.ifs.truncate(frame.ifs);
+                self.ops.push((ParamOp::PopScope, 0.0));
+                for (i, v) in frame.saved.iter().enumerate() {
+                    self.ops.push((ParamOp::Write(Slot::Numbered(i + 1)), *v));
+                }
+                let returned = value.is_some();
+                self.ops.push((
+                    ParamOp::Write(Slot::Named {
+                        name: "_value".into(),
+                        global: true,
+                    }),
+                    value.unwrap_or(0.0),
+                ));
+                self.ops.push((
+                    ParamOp::Write(Slot::Named {
+                        name: "_value_returned".into(),
+                        global: true,
+                    }),
+                    if returned { 1.0 } else { 0.0 },
+                ));
+                if frame.file {
+                    Ok(FlowAction::ReturnFromFile(frame.return_pos))
+                } else {
+                    Ok(FlowAction::Seek(frame.return_pos))
+                }
+            }
+            OKind::Call(args) => {
+                let mut values = Vec::with_capacity(args.len());
+                for a in args {
+                    values.push(eval.eval(*a)?);
+                }
+                if values.len() > 30 {
+                    return Err(flow_err(
+                        block,
+                        "flow::too-many-arguments",
+                        format!("{name} call has more than 30 arguments"),
+                    ));
+                }
+                self.call(block, eval, label, values, next, opts)
+            }
+            OKind::If(c) => {
+                let cond = eval.eval(*c)? != 0.0;
+                self.ifs.push(label.clone());
+                if !cond {
+                    self.skip = Some(Skip::IfBranch(label));
+                }
+                Ok(FlowAction::Handled)
+            }
+            OKind::ElseIf(_) | OKind::Else => {
+                if self.ifs.last() != Some(&label) {
+                    return Err(flow_err(
+                        block,
+                        "flow::else-without-if",
+                        // LinuxCNC's words: it looks the label up among the open ifs.
+                        format!(
+                            "{}: undefined O-word label: '{}'",
+                            block.line,
+                            block.text.trim()
+                        ),
+                    ));
+                }
+                self.skip = Some(Skip::ToEndIf(label));
+                Ok(FlowAction::Handled)
+            }
+            OKind::EndIf => {
+                if self.ifs.last() != Some(&label) {
+                    return Err(flow_err(
+                        block,
+                        "flow::endif-without-if",
+                        // LinuxCNC's words: it looks the label up among the open ifs.
+                        format!(
+                            "{}: undefined O-word label: '{}'",
+                            block.line,
+                            block.text.trim()
+                        ),
+                    ));
+                }
+                self.ifs.pop();
+                Ok(FlowAction::Handled)
+            }
+            OKind::While(c) => {
+                let cond = eval.eval(*c)? != 0.0;
+                match self.loops.last_mut() {
+                    Some(f) if f.label == label && f.kind == LoopKind::Do => {
+                        if cond {
+                            f.iterations += 1;
+                            check_iterations(block, f, opts)?;
+                            Ok(FlowAction::Seek(f.target))
+                        } else {
+                            self.loops.pop();
+                            Ok(FlowAction::Handled)
+                        }
+                    }
+                    Some(f)
+                        if f.label == label && f.kind == LoopKind::While && f.target == here =>
+                    {
+                        if cond {
+                            f.iterations += 1;
+                            check_iterations(block, f, opts)?;
+                        } else {
+                            self.loops.pop();
+                            self.skip = Some(Skip::LoopEnd(label));
+                        }
+                        Ok(FlowAction::Handled)
+                    }
+                    _ => {
+                        if cond {
+                            self.loops.push(LoopFrame {
+                                label,
+                                kind: LoopKind::While,
+                                target: here,
+                                iterations: 1,
+                            });
+                        } else {
+                            self.skip = Some(Skip::LoopEnd(label));
+                        }
+                        Ok(FlowAction::Handled)
+                    }
+                }
+            }
+            OKind::EndWhile => match self.loops.last() {
+                Some(f) if f.label == label && f.kind == LoopKind::While => {
+                    Ok(FlowAction::Seek(f.target))
+                }
+                _ => Err(flow_err(
+                    block,
+                    "flow::endwhile-without-while",
+                    format!("{name} endwhile without a matching while"),
+                )),
+            },
+            OKind::Do => {
+                self.loops.push(LoopFrame {
+                    label,
+                    kind: LoopKind::Do,
+                    target: next,
+                    iterations: 1,
+                });
+                Ok(FlowAction::Handled)
+            }
+            OKind::Repeat(n) => {
+                let n = eval.eval(*n)?.round();
+                if n < 1.0 {
+                    self.skip = Some(Skip::LoopEnd(label));
+                } else {
+                    self.loops.push(LoopFrame {
+                        label,
+                        kind: LoopKind::Repeat(n.min(u64::MAX as f64) as u64),
+                        target: next,
+                        iterations: 1,
+                    });
+                }
+                Ok(FlowAction::Handled)
+            }
+            OKind::EndRepeat => self.end_repeat(block, &label, &name, opts),
+            OKind::Break => match self.loops.last() {
+                Some(f) if f.label == label => {
+                    self.loops.pop();
+                    self.skip = Some(Skip::LoopEnd(label));
+                    Ok(FlowAction::Handled)
+                }
+                _ => Err(flow_err(
+                    block,
+                    "flow::break-outside-loop",
+                    format!("{name} break outside its loop"),
+                )),
+            },
+            OKind::Continue => match self.loops.last().map(|f| f.kind) {
+                Some(LoopKind::Repeat(_))
+                    if self.loops.last().map(|f| &f.label) == Some(&label) =>
+                {
+                    self.end_repeat(block, &label, &name, opts)
+                }
+                Some(_) if self.loops.last().map(|f| &f.label) == Some(&label) => {
+                    let f = self.loops.last_mut().expect("checked");
+                    f.iterations += 1;
+                    check_iterations(block, f, opts)?;
+                    Ok(FlowAction::Seek(f.target))
+                }
+                _ => Err(flow_err(
+                    block,
+                    "flow::continue-outside-loop",
+                    format!("{name} continue outside its loop"),
+                )),
+            },
+        }
+    }
+
+    fn end_repeat(
+        &mut self,
+        block: &Block,
+        label: &str,
+        name: &str,
+        opts: &InterpOptions,
+    ) -> Result<FlowAction, Diagnostic> {
+        match self.loops.last_mut() {
+            Some(f) if f.label == label => {
+                let LoopKind::Repeat(remaining) = f.kind else {
+                    return Err(flow_err(
+                        block,
+                        "flow::endrepeat-without-repeat",
+                        format!("{name} endrepeat without a matching repeat"),
+                    ));
+                };
+                if remaining > 1 {
+                    f.kind = LoopKind::Repeat(remaining - 1);
+                    f.iterations += 1;
+                    check_iterations(block, f, opts)?;
+                    Ok(FlowAction::Seek(f.target))
+                } else {
+                    self.loops.pop();
+                    Ok(FlowAction::Handled)
+                }
+            }
+            _ => Err(flow_err(
+                block,
+                "flow::endrepeat-without-repeat",
+                format!("{name} endrepeat without a matching repeat"),
+            )),
+        }
+    }
+
+    fn enter(
+        &mut self,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        call: Call,
+        opts: &InterpOptions,
+    ) -> Result<(), Diagnostic> {
+        let Call {
+            label,
+            args,
+            return_pos,
+            file,
+        } = call;
+        if self.calls.len() >= opts.max_call_depth {
+            return Err(flow_err(
+                block,
+                "flow::call-depth",
+                format!(
+                    "subroutine calls nested deeper than {}",
+                    opts.max_call_depth
+                ),
+            ));
+        }
+        let mut saved = [0.0; 30];
+        for (i, s) in saved.iter_mut().enumerate() {
+            *s = eval.params.get(i + 1);
+        }
+        self.calls.push(CallFrame {
+            label,
+            return_pos,
+            file,
+            saved,
+            loops: self.loops.len(),
+            ifs: self.ifs.len(),
+        });
+        self.ops.push((ParamOp::PushScope, 0.0));
+        for i in 0..30 {
+            self.ops.push((
+                ParamOp::Write(Slot::Numbered(i + 1)),
+                args.get(i).copied().unwrap_or(0.0),
+            ));
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn while_skipping(
+        &mut self,
+        skip: Skip,
+        block: &Block,
+        eval: &Evaluator<'_>,
+        kind: &OKind,
+        label: String,
+        next: SourcePos,
+        opts: &InterpOptions,
+    ) -> Result<FlowAction, Diagnostic> {
+        match skip {
+            Skip::Sub(l) => {
+                if l == label && matches!(kind, OKind::EndSub(_)) {
+                    self.skip = None;
+                }
+                Ok(FlowAction::Skip)
+            }
+            Skip::FindSub {
+                label: wanted,
+                args,
+                return_pos,
+            } => {
+                if matches!(kind, OKind::Sub) {
+                    let key = self.sub_key(&label);
+                    self.subs.insert(key, next);
+                    if label == wanted {
+                        self.skip = None;
+                        self.enter(block, eval, Call::new(label, args, return_pos, false), opts)?;
+                        return Ok(FlowAction::Handled);
+                    }
+                }
+                Ok(FlowAction::Skip)
+            }
+            Skip::IfBranch(l) if l == label => match kind {
+                OKind::ElseIf(c) => {
+                    if eval.eval(*c)? != 0.0 {
+                        self.skip = None;
+                    }
+                    Ok(FlowAction::Handled)
+                }
+                OKind::Else => {
+                    self.skip = None;
+                    Ok(FlowAction::Handled)
+                }
+                OKind::EndIf => {
+                    self.skip = None;
+                    self.ifs.pop();
+                    Ok(FlowAction::Handled)
+                }
+                _ => Ok(FlowAction::Skip),
+            },
+            Skip::ToEndIf(l) if l == label && matches!(kind, OKind::EndIf) => {
+                self.skip = None;
+                self.ifs.pop();
+                Ok(FlowAction::Handled)
+            }
+            Skip::LoopEnd(l)
+                if l == label
+                    && matches!(kind, OKind::EndWhile | OKind::EndRepeat | OKind::While(_)) =>
+            {
+                self.skip = None;
+                Ok(FlowAction::Handled)
+            }
+            _ => Ok(FlowAction::Skip),
+        }
+    }
+
+    /// The error for a construct still open at end of file, if any.
+    pub fn unterminated(&self, last: &Block) -> Option<Diagnostic> {
+        let msg = match &self.skip {
+            // LinuxCNC's wording (it also names the file and the calling line).
+            Some(Skip::FindSub { label, .. }) => {
+                format!("EOF in file seeking o-word: o{label} (the subroutine is not defined)")
+            }
+            // A definition without its endsub swallows the rest of the file; LinuxCNC then
+            // reports the missing program end.
+            Some(Skip::Sub(l)) => {
+                format!("File ended with no percent sign or program end (o{l} sub has no endsub)")
+            }
+            Some(Skip::IfBranch(l)) | Some(Skip::ToEndIf(l)) => format!("o{l} if has no endif"),
+            Some(Skip::LoopEnd(l)) => format!("o{l} loop has no end"),
+            None => {
+                if let Some(c) = self.calls.last() {
+                    format!("file ended inside subroutine o{}", c.label)
+                } else if let Some(l) = self.loops.last() {
+                    format!("o{} loop has no end", l.label)
+                } else if let Some(i) = self.ifs.last() {
+                    format!("o{i} if has no endif")
+                } else {
+                    return None;
+                }
+            }
+        };
+        Some(Diagnostic::error("flow::unterminated", msg, last.span()))
+    }
+}
+
+fn check_iterations(block: &Block, f: &LoopFrame, opts: &InterpOptions) -> Result<(), Diagnostic> {
+    if f.iterations > opts.max_loop_iterations {
+        return Err(flow_err(
+            block,
+            "flow::too-many-iterations",
+            format!(
+                "loop o{} ran more than {} times: stopping (endless loop?)",
+                f.label, opts.max_loop_iterations
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// LinuxCNC `(DEBUG, …)`: `#n` and `#<name>` replaced by their values with six decimals.
+pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
+    let mut out = String::with_capacity(text.len());
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'#' {
+            if bytes.get(i + 1) == Some(&b'<') {
+                if let Some(end) = text[i + 2..].find('>') {
+                    let raw = &text[i + 2..i + 2 + end];
+                    let name = normalise_name(raw);
+                    let global = name.starts_with('_');
+                    let v = eval.params_named(&name, global);
+                    match v {
+                        Some(v) => out.push_str(&format!("{v:.6}")),
+                        None => out.push_str("######"),
+                    }
+                    i += end + 3;
+                    continue;
+                }
+            } else {
+                let digits = bytes[i + 1..]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .count();
+                if digits > 0 {
+                    let n: usize = text[i + 1..i + 1 + digits].parse().unwrap_or(0);
+                    out.push_str(&format!("{:.6}", eval.numbered(n)));
+                    i += 1 + digits;
+                    continue;
+                }
+            }
+        }
+        let ch = text[i..].chars().next().unwrap_or(' ');
+        out.push(ch);
+        i += ch.len_utf8();
+    }
+    out
+}

@@ -1,0 +1,630 @@
+//! LinuxCNC's lathe cycles: G70 finishing, G71/G71.1/G71.2 and G72/G72.1/G72.2 roughing, with the
+//! profile taken from the subroutine named by Q — behaviour read off LinuxCNC 2.9's `rs274`
+//! (spec rs274ngc §4.31–4.32 is thin; `scripts/regen-linuxcnc-goldens.sh` regenerates the traces).
+//!
+//! # How a cycle runs (three stages, each in its own block)
+//!
+//! 1. **The G7x block** (`begin`): checks its words (Q, G18, no cutter compensation for G71/G72,
+//!    I > 0 at the end), rapids to the cycle start S = X/Z (default: where the tool is) and leaves
+//!    a `LatheCall` in the state. The driver then *calls* `oQ` as an O-word call would.
+//! 2. **The profile**: the subroutine's blocks run as ordinary blocks (control flow, parameters and
+//!    `#<_x>`/`#<_z>` see the profile's own positions), but the driver keeps their commands back.
+//!    Its first motion is the approach to the profile start P0; the motions after it are the
+//!    profile (G0 counts as G1; F, S and the like in it are ignored).
+//! 3. **The return from oQ** (`finish`): the driver drops the kept commands, puts the tool back at
+//!    S and this module emits the cycle. Errors found now ("Not monotonic", I ≤ 0) belong to the
+//!    `endsub` block, as in LinuxCNC.
+//!
+//! # Geometry (plane coordinates (z, x) of G18; canonical frame (c, l))
+//!
+//! G71 (and G70) cut along Z in layers of constant X: cut axis c = z, level axis l = x. G72 cuts
+//! along X in layers of constant Z: c = x, l = z. The canonical frame flips both so that the
+//! profile runs towards +c overall and S lies on the +l side of P0:
+//!
+//! ```text
+//!   l ▲   S ●━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━● (Pend'.c, S.l)   ← level l₀ = S.l
+//!     │     ╲  closing line I → P0'     cut ──▶ | retract ↗ r       ┃
+//!     │      ╲━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━●                  ┃    ← level l₀ − I …
+//!     │  P0'  ●━━━━━━━━━━━━━━╮ profile' (= profile offset by D towards +l)
+//!     │                      ╰━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━● Pend'
+//!     └──────────────────────────────────────────────────────────────▶ c
+//! ```
+//!
+//! * I (the entry point): S if S is not past P0 along c (S.c ≤ P0.c), else (P0.c, S.l) — P0 of the
+//!   programmed profile, not of the offset one.
+//! * Roughing (G71/G72): rapid to I; for every level l = S.l − k·I while l > P0'.l: rapid to the
+//!   closing line I → P0' at l (c_s), feed along +c to the first crossing of the level with
+//!   profile' beyond c_s (none: to Pend'.c), retract r = min(R, cut/2) diagonally (−c, +l), rapid
+//!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
+//!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
+//!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
+//! * profile' is the profile offset by D as LinuxCNC offsets it, arcs that end off their radius
+//!   included (`arcs.rs`); an arc is printed with its own end point, the next feed's start.
+//! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
+//!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
+//!   profile is monotonic in Z, else G72's.
+//!
+//! Corners: `A` on a profile move rounds its end corner with a tangent arc of that radius, `C`
+//! cuts it with the chord between the same tangent points, next to lines and arcs alike
+//! (`corners.rs`).
+//!
+//! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, feed to
+//! P0' and along profile', staying at its end (LinuxCNC 2.9).
+//!
+//! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
+//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
+//! number of levels is bounded by `MAX_LEVELS`; every offset chain is connected
+//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`); an element
+//! the allowance swallows is left out and its neighbours joined, and an offset that would then
+//! come nearer the profile than the allowance is refused rather than cut.
+
+use crate::arc::PlanarArc;
+use crate::ctx::Ctx;
+use stanok_canon::{Canon, Diagnostic, Plane, Pose};
+use stanok_geom::chain2d::level_crossings;
+use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
+use stanok_syntax::ColSpan;
+
+mod arcs;
+mod climb;
+mod corners;
+mod pockets;
+
+/// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
+pub const MAX_LEVELS: usize = 10_000;
+
+/// A G7x block waiting for its profile (set by `begin`, taken by the driver).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LatheCall {
+    /// ×10: 700 G70, 710 G71, 711 G71.1, 712 G71.2, 720 G72, 721, 722.
+    pub code: u32,
+    /// The subroutine number (Q).
+    pub q: i64,
+    /// Cycle start S, program coordinates, mm.
+    pub start: Pose,
+    /// D: allowance left for finishing (G71/G72) or first finishing pass distance (G70), mm.
+    pub d: f64,
+    /// E: last finishing pass distance (G70), mm.
+    pub e: f64,
+    /// I: depth of cut per level, mm (> 0, checked at the end as LinuxCNC does).
+    pub i: f64,
+    /// R: retract, mm.
+    pub r: f64,
+    /// P: number of finishing passes (G70).
+    pub passes: i64,
+}
+
+/// Stage 1: the G7x block. Rapids to the cycle start and leaves the call for the driver.
+pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagnostic> {
+    let Some(q) = cx.words.take(b'Q') else {
+        return Err(cx.err("rs274::g7x-q-missing", "G7x.x  requires a Q word", span));
+    };
+    if cx.st.plane != Plane::ZX {
+        return Err(cx.err(
+            "rs274::g7x-plane",
+            format!(
+                "G{}.{} can only be used in XZ plane (G18)",
+                code / 10,
+                code % 10
+            ),
+            span,
+        ));
+    }
+    if code != 700 && cx.fe.modes.comp.on() {
+        return Err(cx.err(
+            "rs274::g7x-comp",
+            format!(
+                "G{}.{} cannot be used with cutter compensation enabled",
+                code / 10,
+                code % 10
+            ),
+            span,
+        ));
+    }
+    // X and Z are absolute even under G91 (LinuxCNC 2.9); the profile itself follows G90/G91.
+    let distance = cx.st.distance;
+    cx.st.distance = crate::state::DistanceMode::Absolute;
+    let start = cx.end_point();
+    cx.st.distance = distance;
+    let (start, _) = start?;
+    // Defaults are in program units, as LinuxCNC reads them (I 1, R 0.5: inches under G20).
+    let word = |cx: &mut Ctx<'_>, letter: u8, default: f64| {
+        let v = cx.words.take(letter).map_or(default, |w| w.v);
+        cx.mm(v)
+    };
+    let d = word(cx, b'D', 0.0);
+    let (mut e, mut i, mut r, mut passes) = (0.0, 1.0, 0.5, 1);
+    if code == 700 {
+        e = word(cx, b'E', 0.0);
+        passes = cx.words.take(b'P').map_or(1, |w| w.v.round() as i64);
+    } else {
+        i = word(cx, b'I', 1.0);
+        r = word(cx, b'R', 0.5);
+    }
+    // Under compensation (G70 only) the rapid is compensated like any move (LinuxCNC 2.9).
+    if cx.fe.modes.comp.on() {
+        super::cutter_comp::straight(cx, true, start, 0.0, span)?;
+    } else {
+        cx.straight(true, start, 0.0);
+    }
+    cx.fe.lathe_call = Some(LatheCall {
+        code,
+        q: q.v.round() as i64,
+        start,
+        d,
+        e,
+        i,
+        r,
+        passes,
+    });
+    Ok(())
+}
+
+/// Text of the internal marker a profile move with `A`/`C` leaves behind it in the captured
+/// commands: `MARK` + `A|C` + the size in mm. It never leaves the interpreter (the capture drains
+/// every command of the profile, `lathe.rs`).
+const CORNER_MARK: &str = "\u{0}g7x-corner ";
+
+/// A profile move's corner words: `A` fillet radius, `C` chamfer size (program units), at its end.
+pub(super) fn take_corner(cx: &mut Ctx<'_>) -> Result<Option<Canon>, Diagnostic> {
+    let a = cx.words.take(b'A');
+    let c = cx.words.take(b'C');
+    let (kind, w) = match (a, c) {
+        (Some(_), Some(c)) => {
+            return Err(cx.err(
+                "rs274::g7x-a-and-c",
+                "G7X error: Both A and C parameters on a corner",
+                c.span,
+            ))
+        }
+        (Some(a), None) => ('A', a),
+        (None, Some(c)) => ('C', c),
+        (None, None) => return Ok(None),
+    };
+    Ok(Some(Canon::Comment {
+        text: format!("{CORNER_MARK}{kind}{}", cx.mm(w.v)),
+    }))
+}
+
+/// A rounded (`A`) or chamfered (`C`) corner at the end of profile element `after`.
+#[derive(Debug, Clone, Copy)]
+struct Corner {
+    after: usize,
+    chamfer: bool,
+    size: f64,
+}
+
+/// The profile as read from the subroutine: its start P0 and its elements, (z, x) program mm.
+#[derive(Debug, Clone, Default)]
+pub struct Profile {
+    /// P0: the end of the subroutine's first motion.
+    pub start: P2,
+    /// The elements after it.
+    pub chain: Vec<Seg2>,
+}
+
+impl Profile {
+    /// The profile of the motions a profile subroutine produced (machine coordinates, converted
+    /// with the work frame `to_program`). Err: a reason for the diagnostic.
+    pub fn from_commands(
+        commands: &[Canon],
+        to_program: impl Fn(&Pose) -> Pose,
+    ) -> Result<Profile, String> {
+        let zx = |p: &Pose| {
+            let q = to_program(p);
+            [q.z, q.x]
+        };
+        let mut motions = commands.iter().filter(|c| c.motion().is_some());
+        let Some(first) = motions.next() else {
+            return Err("G7X error: the profile subroutine has no motion".into());
+        };
+        let end_of = |c: &Canon| match c {
+            Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
+            Canon::ArcFeed(a) => Some(a.end),
+            _ => None,
+        };
+        let Some(p0) = end_of(first) else {
+            return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into());
+        };
+        let mut profile = Profile {
+            start: zx(&p0),
+            chain: Vec::new(),
+        };
+        let mut corners: Vec<Corner> = Vec::new();
+        for c in commands
+            .iter()
+            .skip_while(|c| !std::ptr::eq(*c, first))
+            .skip(1)
+        {
+            if let Canon::Comment { text } = c {
+                if let Some(rest) = text.strip_prefix(CORNER_MARK) {
+                    let size = rest[1..].parse::<f64>().unwrap_or(0.0);
+                    if let Some(after) = profile.chain.len().checked_sub(1) {
+                        corners.push(Corner {
+                            after,
+                            chamfer: rest.starts_with('C'),
+                            size,
+                        });
+                    }
+                }
+                continue;
+            }
+            if c.motion().is_none() {
+                continue;
+            }
+            let seg = match c {
+                Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Seg2::Line {
+                    a: zx(&m.start),
+                    b: zx(&m.end),
+                },
+                Canon::ArcFeed(a) if a.plane == Plane::ZX && a.turns == 1 => {
+                    let centre = to_program(&Pose {
+                        x: a.centre[0],
+                        y: a.centre[1],
+                        z: a.centre[2],
+                        ..a.start
+                    });
+                    let (s, e) = (zx(&a.start), zx(&a.end));
+                    let full = stanok_geom::offset2d::dist2(s, e) < LEN_EPS;
+                    arcs::end_circle_arc([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
+                }
+                _ => return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into()),
+            };
+            if seg.length() > LEN_EPS {
+                profile.chain.push(seg);
+            }
+        }
+        for corner in corners.iter().rev() {
+            corners::round_corner(&mut profile.chain, *corner)?;
+        }
+        Ok(profile)
+    }
+}
+
+/// The canonical frame of a cycle (module comment): flips (and for G72 a swap) of (z, x).
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    /// G72: c = x, l = z (else c = z, l = x).
+    facing: bool,
+    sc: f64,
+    sl: f64,
+}
+
+impl Frame {
+    fn new(facing: bool, p0: P2, pend: P2, s: P2) -> Frame {
+        let (ci, li) = if facing { (1, 0) } else { (0, 1) };
+        let sign = |v: f64| if v < 0.0 { -1.0 } else { 1.0 };
+        Frame {
+            facing,
+            sc: sign(pend[ci] - p0[ci]),
+            sl: sign(s[li] - p0[li]),
+        }
+    }
+
+    fn to_canon(self, p: P2) -> P2 {
+        let (c, l) = if self.facing {
+            (p[1], p[0])
+        } else {
+            (p[0], p[1])
+        };
+        [self.sc * c, self.sl * l]
+    }
+
+    /// The inverse (every flip and the swap are involutions).
+    fn to_real(self, q: P2) -> P2 {
+        let (c, l) = (self.sc * q[0], self.sl * q[1]);
+        if self.facing {
+            [l, c]
+        } else {
+            [c, l]
+        }
+    }
+
+    /// Whether the map reverses orientation (arcs change their sense).
+    fn mirrors(self) -> bool {
+        let det = self.sc * self.sl * if self.facing { -1.0 } else { 1.0 };
+        det < 0.0
+    }
+
+    fn seg(self, s: &Seg2, to: impl Fn(P2) -> P2) -> Seg2 {
+        match *s {
+            Seg2::Line { a, b } => Seg2::Line { a: to(a), b: to(b) },
+            Seg2::Arc { c, sweep, .. } => {
+                let ccw = (sweep > 0.0) != self.mirrors();
+                Seg2::arc_through(to(c), to(s.start()), to(s.end()), ccw, false)
+            }
+        }
+    }
+}
+
+/// Whether coordinate `k` never turns back along the chain (arcs included).
+fn monotonic(chain: &[Seg2], k: usize) -> bool {
+    let mut dir = 0.0;
+    for s in chain {
+        let (v0, v1) = (s.start()[k], s.end()[k]);
+        if let Seg2::Arc { start, sweep, .. } = *s {
+            // The coordinate turns where the arc's tangent is perpendicular to axis k.
+            let phase = if k == 0 {
+                0.0
+            } else {
+                std::f64::consts::FRAC_PI_2
+            };
+            let (lo, hi) = if sweep > 0.0 {
+                (start, start + sweep)
+            } else {
+                (start + sweep, start)
+            };
+            let first = ((lo - phase) / std::f64::consts::PI).floor() + 1.0;
+            let turn = phase + first * std::f64::consts::PI;
+            if turn < hi - 1e-9 && turn > lo + 1e-9 {
+                return false;
+            }
+        }
+        let step = v1 - v0;
+        if step.abs() <= LEN_EPS {
+            continue;
+        }
+        if dir == 0.0 {
+            dir = step.signum();
+        } else if step.signum() != dir {
+            return false;
+        }
+    }
+    true
+}
+
+/// One move of the cycle, plane coordinates (z, x).
+enum Move {
+    Rapid(P2),
+    Feed(Seg2),
+}
+
+/// Stage 3: emits the cycle for `call` over `profile`, from S (the tool is there). `at` is the
+/// block the errors belong to (the profile's `endsub`).
+pub fn finish(
+    cx: &mut Ctx<'_>,
+    call: &LatheCall,
+    profile: &Profile,
+    at: ColSpan,
+) -> Result<(), Diagnostic> {
+    if call.code != 700 && call.i <= 0.0 {
+        return Err(cx.err(
+            "rs274::g7x-i",
+            "G7X error: I must be greater than zero.",
+            at,
+        ));
+    }
+    let s = [call.start.z, call.start.x];
+    let chain = &profile.chain;
+    let Some(last) = chain.last() else {
+        return Err(cx.err(
+            "rs274::g7x-empty",
+            "G7X error: the profile has no elements after its start",
+            at,
+        ));
+    };
+    let (p0, pend) = (profile.start, last.end());
+    let facing = match call.code {
+        700 => !monotonic(chain, 0) && monotonic(chain, 1),
+        c => c >= 720,
+    };
+    if !monotonic(chain, if facing { 1 } else { 0 }) {
+        return Err(cx.err("rs274::g7x-monotonic", "G7X error: Not monotonic", at));
+    }
+    let f = Frame::new(facing, p0, pend, s);
+    let canon: Vec<Seg2> = chain.iter().map(|g| f.seg(g, |p| f.to_canon(p))).collect();
+    let (s_c, p0_c) = (f.to_canon(s), f.to_canon(p0));
+    let entry = if s_c[0] <= p0_c[0] {
+        s_c
+    } else {
+        [p0_c[0], s_c[1]]
+    };
+    let offset = |d: f64| {
+        arcs::offset_profile(&canon, p0_c, d).ok_or_else(|| {
+            cx.err(
+                "rs274::g7x-offset",
+                "G7X error: the profile cannot be offset by this distance",
+                at,
+            )
+        })
+    };
+    let mut moves: Vec<Move> = Vec::new();
+    if call.code == 700 {
+        for k in (1..=call.passes.min(MAX_LEVELS as i64)).rev() {
+            let dist = (k - 1) as f64 * (call.d - call.e) / call.passes as f64 + call.e;
+            let pass = offset(dist)?;
+            moves.push(Move::Rapid(entry));
+            moves.push(Move::Rapid(pass[0].start()));
+            moves.extend(pass.into_iter().map(Move::Feed));
+        }
+    } else {
+        // A profile running away from S (l only falls): LinuxCNC 2.9 cuts no level, it feeds from
+        // the entry point onto the profile and along it, and stays at its end.
+        if !rising(&canon) && falling(&canon) {
+            let prof = offset(call.d)?;
+            moves.push(Move::Rapid(entry));
+            let onto = Seg2::Line {
+                a: entry,
+                b: prof[0].start(),
+            };
+            pass(&mut moves, call, [&onto].into_iter().chain(prof.iter()));
+            return emit(cx, call, &f, &moves, at);
+        }
+        let prof = offset(call.d)?;
+        rough(&mut moves, call, entry, s_c, &prof).ok_or_else(|| {
+            cx.err(
+                "rs274::g7x-levels",
+                format!("G7X error: more than {MAX_LEVELS} levels"),
+                at,
+            )
+        })?;
+    }
+    if cx.fe.modes.comp.on() {
+        // LinuxCNC read the profile by walking its idea of the tool along it (`stale.rs`).
+        cx.fe.modes.comp.stale = Some(pend);
+    }
+    emit(cx, call, &f, &moves, at)
+}
+
+/// Whether l never increases along the canonical chain (the profile runs away from S).
+fn falling(canon: &[Seg2]) -> bool {
+    let mirrored: Vec<Seg2> = canon
+        .iter()
+        .map(|s| match *s {
+            Seg2::Line { a, b } => Seg2::Line {
+                a: [a[0], -a[1]],
+                b: [b[0], -b[1]],
+            },
+            Seg2::Arc { c, sweep, .. } => Seg2::arc_through(
+                [c[0], -c[1]],
+                [s.start()[0], -s.start()[1]],
+                [s.end()[0], -s.end()[1]],
+                sweep < 0.0,
+                false,
+            ),
+        })
+        .collect();
+    rising(&mirrored)
+}
+
+/// Whether l never decreases along the canonical chain (a type-1 profile).
+fn rising(canon: &[Seg2]) -> bool {
+    let mut lowest = f64::NEG_INFINITY;
+    for s in canon {
+        for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+            let l = s.point(t)[1];
+            if l < lowest - 1e-6 {
+                return false;
+            }
+            lowest = lowest.max(l);
+        }
+    }
+    monotonic(canon, 1)
+}
+
+/// G71/G72 levels and the final pass, canonical frame (module comment). None: too many levels.
+fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2]) -> Option<()> {
+    let p0 = prof.first()?.start();
+    let pend = prof.last()?.end();
+    moves.push(Move::Rapid(entry));
+    let closing_c = |l: f64| {
+        if (p0[1] - entry[1]).abs() < LEN_EPS {
+            entry[0]
+        } else {
+            entry[0] + (l - entry[1]) / (p0[1] - entry[1]) * (p0[0] - entry[0])
+        }
+    };
+    // G7x.2 cuts only the pockets: a type-1 profile has none.
+    let levels = if call.code % 10 == 2 { 0 } else { MAX_LEVELS };
+    for k in 0..=levels {
+        let l = s[1] - k as f64 * call.i;
+        if l <= p0[1] + 1e-9 {
+            break;
+        }
+        if k == levels {
+            if levels == 0 {
+                break;
+            }
+            return None;
+        }
+        let cs = closing_c(l);
+        let ce = level_crossings(prof, l)
+            .into_iter()
+            .map(|(c, _)| c)
+            .find(|&c| c > cs + LEN_EPS)
+            .unwrap_or(pend[0]);
+        if ce <= cs + LEN_EPS {
+            continue;
+        }
+        // At most half the cut; a negative R retracts by half the cut (LinuxCNC 2.9).
+        let half = (ce - cs) / 2.0;
+        let r = if call.r < 0.0 { half } else { call.r.min(half) };
+        moves.push(Move::Rapid([cs, l]));
+        moves.push(Move::Feed(Seg2::Line {
+            a: [cs, l],
+            b: [ce, l],
+        }));
+        moves.push(Move::Rapid([ce - r, l + r]));
+        moves.push(Move::Rapid([cs + r, l + r]));
+        moves.push(Move::Rapid([cs, l]));
+    }
+    moves.push(Move::Rapid(p0));
+    let close = Seg2::Line {
+        a: pend,
+        b: [pend[0], s[1]],
+    };
+    if call.code % 10 == 1 {
+        climb::climb_pass(moves, prof, p0, close);
+        return Some(());
+    }
+    pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
+}
+
+/// Feeds along `elements`; G7x.1 (no pockets) feeds to every element's start first — LinuxCNC 2.9
+/// does, though the tool is there already.
+fn pass<'a>(moves: &mut Vec<Move>, call: &LatheCall, elements: impl Iterator<Item = &'a Seg2>) {
+    for seg in elements {
+        if call.code % 10 == 1 {
+            moves.push(Move::Feed(Seg2::Line {
+                a: seg.start(),
+                b: seg.start(),
+            }));
+        }
+        moves.push(Move::Feed(*seg));
+    }
+}
+
+/// Emits the moves (canonical frame) as Canon, program coordinates; other axes stay at S.
+/// Under cutter compensation (G70) every move is compensated as if programmed.
+fn emit(
+    cx: &mut Ctx<'_>,
+    call: &LatheCall,
+    f: &Frame,
+    moves: &[Move],
+    at: ColSpan,
+) -> Result<(), Diagnostic> {
+    let pose = |p: P2| Pose {
+        z: p[0],
+        x: p[1],
+        ..call.start
+    };
+    let comp = cx.fe.modes.comp.on();
+    for (k, m) in moves.iter().enumerate() {
+        match m {
+            Move::Rapid(q) if comp => {
+                super::cutter_comp::straight(cx, true, pose(f.to_real(*q)), 0.0, at)?
+            }
+            Move::Rapid(q) => cx.straight(true, pose(f.to_real(*q)), 0.0),
+            Move::Feed(seg) => {
+                let real = f.seg(seg, |p| f.to_real(p));
+                let feed = cx.path_feed(real.length());
+                match real {
+                    Seg2::Line { b, .. } if comp => {
+                        super::cutter_comp::straight(cx, false, pose(b), feed, at)?
+                    }
+                    Seg2::Line { b, .. } => cx.straight(false, pose(b), feed),
+                    Seg2::Arc { c, sweep, .. } => {
+                        let arc = PlanarArc {
+                            centre: c,
+                            turns: 1,
+                        };
+                        // An arc ends where the next feed starts: its end point may be off
+                        // the circle it crosses levels on (`arcs.rs`).
+                        let end = match moves.get(k + 1) {
+                            Some(Move::Feed(next)) if arcs::joins(seg, next) => {
+                                pose(f.to_real(next.start()))
+                            }
+                            _ => pose(real.end()),
+                        };
+                        if comp {
+                            super::cutter_comp::arc(cx, sweep > 0.0, end, arc, feed, at)?;
+                        } else {
+                            cx.arc(Plane::ZX, sweep > 0.0, end, arc, feed);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

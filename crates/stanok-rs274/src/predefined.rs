@@ -1,0 +1,143 @@
+//! LinuxCNC's predefined read-only named parameters (`#<_x>`, `#<_metric>`, `#<_feed>` …): values
+//! computed from the modal state when a program reads them (spec rs274ngc §3.5; the values and
+//! their encodings checked against LinuxCNC 2.9's `rs274`, e.g. `#<_plane>` = 170 for G17 and
+//! `#<_coord_system>` = 540 for G54).
+
+use crate::params::Parameters;
+use crate::state::{DistanceMode, ModalState, MotionMode};
+use crate::Rs274State;
+use stanok_canon::{FeedMode, LengthUnits, Plane, SpindleDirection};
+
+/// LinuxCNC's version the parity is measured against: 2.9.
+const VERSION: (f64, f64) = (2.9, 0.0);
+
+fn flag(b: bool) -> f64 {
+    if b {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// The value of predefined parameter `name` (without `#<`, `>`; lower case, leading `_`), or None
+/// if `name` is not one of them.
+pub fn predefined(
+    name: &str,
+    st: &ModalState,
+    rs: &Rs274State,
+    params: &Parameters,
+    line: u32,
+) -> Option<f64> {
+    let units = st.units.mm_per_unit();
+    let pos = st.program_position().to_array();
+    let axis = |i: usize| {
+        if matches!(i, 3..=5) {
+            pos[i]
+        } else {
+            pos[i] / units
+        }
+    };
+    let abs = st.position.to_array();
+    let abs_axis = |i: usize| {
+        if matches!(i, 3..=5) {
+            abs[i]
+        } else {
+            abs[i] / units
+        }
+    };
+    Some(match name {
+        "_vmajor" => VERSION.0,
+        "_vminor" => VERSION.1,
+        "_line" => line as f64,
+        "_motion_mode" => match rs.motion_code {
+            Some(c) => c as f64,
+            None => match st.motion {
+                MotionMode::Rapid => 0.0,
+                MotionMode::Linear => 10.0,
+                MotionMode::ArcCw => 20.0,
+                MotionMode::ArcCcw => 30.0,
+                MotionMode::None if rs.motion_unset => -1.0,
+                MotionMode::None => 800.0,
+            },
+        },
+        "_plane" => match st.plane {
+            Plane::XY => 170.0,
+            Plane::ZX => 180.0,
+            Plane::YZ => 190.0,
+        },
+        "_ccomp" => match rs.comp.side {
+            1 => 410.0,
+            2 => 420.0,
+            _ => 400.0,
+        },
+        "_metric" => flag(st.units == LengthUnits::Millimetres),
+        "_imperial" => flag(st.units == LengthUnits::Inches),
+        "_absolute" => flag(st.distance == DistanceMode::Absolute),
+        "_incremental" => flag(st.distance == DistanceMode::Incremental),
+        "_inverse_time" => flag(st.feed_mode == FeedMode::InverseTime),
+        "_units_per_minute" => flag(st.feed_mode == FeedMode::UnitsPerMinute),
+        "_units_per_rev" => flag(st.feed_mode == FeedMode::UnitsPerRevolution),
+        "_coord_system" => match st.g5x_index {
+            7 => 591.0,
+            8 => 592.0,
+            9 => 593.0,
+            i => 530.0 + 10.0 * i as f64,
+        },
+        "_tool_offset" => flag(*st.frame.tlo() != stanok_canon::Pose::ZERO),
+        "_retract_r_plane" => flag(!st.retract_to_initial),
+        "_retract_old_z" => flag(st.retract_to_initial),
+        "_spindle_rpm_mode" => flag(!rs.css),
+        "_spindle_css_mode" => flag(rs.css),
+        "_ijk_absolute_mode" => flag(st.arc_distance == DistanceMode::Absolute),
+        "_lathe_diameter_mode" => flag(st.diameter_mode),
+        "_lathe_radius_mode" => flag(!st.diameter_mode),
+        "_spindle_on" => flag(st.spindle_on[0]),
+        "_spindle_cw" => flag(rs.spindle_direction == Some(SpindleDirection::Clockwise)),
+        "_mist" => flag(st.mist),
+        "_flood" => flag(st.flood),
+        "_speed_override" => 1.0,
+        "_feed_override" => flag(!rs.feed_override_disabled),
+        "_adaptive_feed" => 0.0,
+        "_feed_hold" => 1.0,
+        "_feed" => {
+            if st.feed_mode == FeedMode::InverseTime {
+                st.feed
+            } else {
+                st.feed / rs.feed_units.map_or(units, |u| u.mm_per_unit())
+            }
+        }
+        "_rpm" => st.spindle_speed[0],
+        "_x" => axis(0),
+        "_y" => axis(1),
+        "_z" => axis(2),
+        "_a" => axis(3),
+        "_b" => axis(4),
+        "_c" => axis(5),
+        "_u" => axis(6),
+        "_v" => axis(7),
+        "_w" => axis(8),
+        "_abs_x" => abs_axis(0),
+        "_abs_y" => abs_axis(1),
+        "_abs_z" => abs_axis(2),
+        "_abs_a" => abs_axis(3),
+        "_abs_b" => abs_axis(4),
+        "_abs_c" => abs_axis(5),
+        "_abs_u" => abs_axis(6),
+        "_abs_v" => abs_axis(7),
+        "_abs_w" => abs_axis(8),
+        "_current_tool" => st.current_tool as f64,
+        // The tool's pocket as its table gives it (LinuxCNC's `P`; rs274 prints 10 for T10 P10).
+        "_current_pocket" => params
+            .tools()
+            .get(st.current_tool)
+            .map_or(0.0, |t| t.pocket as f64),
+        "_selected_tool" => st.selected_tool.map_or(-1.0, |t| t as f64),
+        "_selected_pocket" => st.selected_tool.map_or(-1.0, |t| {
+            params.tools().get(t).map_or(0.0, |t| t.pocket as f64)
+        }),
+        // Standalone interpretation (LinuxCNC's preview/rs274: 0; 1 = running on a machine).
+        "_task" => 0.0,
+        "_remap_level" => 0.0,
+        _ => return None,
+    })
+}

@@ -1,0 +1,107 @@
+//! Where lines come from besides the program: subroutine files found on the subroutine path
+//! (`o<name> call` of `name.ngc`, LinuxCNC's SUBROUTINE_PATH), and LinuxCNC's comment commands
+//! that write the program log.
+//!
+//! A subroutine file is read by a reader of its own, stacked on the program's
+//! (`stanok_interp_core::Source`): `flow.rs` decides when (its `CallFile` / `ReturnFromFile`
+//! actions), the front end opens and closes, and while a file is open every line, position and
+//! seek refer to it. `Flow::set_source` keeps labels of different files apart.
+
+use crate::{flow, params, Rs274};
+use stanok_canon::{Canon, Diagnostic, LogAction};
+use stanok_interp_core::{Core, OpenFile};
+use stanok_syntax::{Block, OKind};
+use std::io::{BufRead, Seek};
+use std::path::Path;
+
+/// LinuxCNC's comment commands `(LOGOPEN,f)`, `(LOGAPPEND,f)`, `(LOGCLOSE)`, `(LOG,text)` and
+/// `(PRINT,text)`: Some(command) for the log ones, Some(None) for PRINT (console output, no
+/// command), None for an ordinary comment. Keywords are case-insensitive, as in LinuxCNC.
+pub(crate) fn log_command(text: &str, eval: &params::Evaluator<'_>) -> Option<Option<Canon>> {
+    let (head, rest) = match text.split_once(',') {
+        Some((h, r)) => (h, r),
+        None => (text, ""),
+    };
+    let action = match head.trim().to_ascii_uppercase().as_str() {
+        "LOGOPEN" => LogAction::Open,
+        "LOGAPPEND" => LogAction::Append,
+        "LOGCLOSE" => LogAction::Close,
+        "LOG" => LogAction::Write,
+        "PRINT" => return Some(None),
+        _ => return None,
+    };
+    let text = match action {
+        LogAction::Write => flow::substitute_parameters(rest, eval),
+        LogAction::Close => String::new(),
+        _ => rest.to_string(),
+    };
+    Some(Some(Canon::Log { action, text }))
+}
+
+impl Rs274 {
+    /// `o<name> call` of a subroutine file: open it, find its `o<name> sub` line and continue
+    /// reading after it (LinuxCNC: "EOF in file … seeking o-word" if the file does not define it).
+    pub(crate) fn open_subroutine_file<R: BufRead + Seek>(
+        &mut self,
+        core: &mut Core<R>,
+        path: &Path,
+        label: &str,
+    ) -> Result<(), Diagnostic> {
+        let at = core.block.span();
+        if core.source.depth() >= core.opts.max_call_depth {
+            return Err(Diagnostic::error(
+                "flow::call-depth",
+                format!(
+                    "subroutine files nested deeper than {}",
+                    core.opts.max_call_depth
+                ),
+                at,
+            ));
+        }
+        let mut reader = core.source.open(path, at)?;
+        let mut block = Block::default();
+        let mut diags = Vec::new();
+        loop {
+            let more = reader.next_block(&mut block, &mut diags).map_err(|e| {
+                Diagnostic::error(
+                    "io::read",
+                    format!("cannot read {}: {e}", path.display()),
+                    at,
+                )
+            })?;
+            if !more {
+                return Err(Diagnostic::error(
+                    "flow::sub-not-found",
+                    format!("EOF in file:{} seeking o-word: o{label}", path.display()),
+                    at,
+                ));
+            }
+            if let Some(o) = &block.oword {
+                if matches!(o.kind, OKind::Sub) && flow::label_text(&block, &o.label) == label {
+                    break;
+                }
+            }
+        }
+        core.source.push(OpenFile {
+            reader,
+            path: path.to_path_buf(),
+        });
+        self.flow.set_source(core.source.depth());
+        Ok(())
+    }
+
+    /// A subroutine file ended before its endsub.
+    #[cold]
+    pub(crate) fn file_without_endsub<R: BufRead + Seek>(&self, core: &Core<R>) -> Diagnostic {
+        let path = core
+            .source
+            .current_file()
+            .map(|p| p.display().to_string())
+            .unwrap_or_default();
+        Diagnostic::error(
+            "flow::sub-no-endsub",
+            format!("subroutine file {path} ended without its endsub"),
+            core.block.span(),
+        )
+    }
+}

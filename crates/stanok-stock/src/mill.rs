@@ -3,7 +3,7 @@
 //! ## Why Z dexels (ARCHITECTURE.md, "stanok-stock")
 //! The solid is exact along Z and sampled in X and Y at the resolution. One swept tool needs one
 //! line–solid intersection per line it covers (closed form, `sweep.rs`), so a 0.5 mm finishing
-//! block of a Ø6 ball at 0.1 mm touches ~3 900 lines; memory is 16 bytes a line (1.6 MB per
+//! block of a Ø6 ball at 0.1 mm touches ~3 900 lines; memory is 16 bytes a line (16 MB per
 //! 100 × 100 mm at 0.1 mm) whatever the program. Tri-dexels (adding X and Y lines) would make
 //! vertical walls exact instead of within a cell, at three times the work per sweep; sparse
 //! voxels would quantise Z as well and cost a voxel per 0.001 mm³. Measured in docs/performance.md.

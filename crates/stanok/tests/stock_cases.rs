@@ -258,7 +258,7 @@ fn a_turned_step() {
     // Radius of every vertex: 20 over z −30…0, 25 below, within a cell (0.1) plus the fillet.
     for p in &mesh.vertices {
         let (r, z) = ((p[0] as f64).hypot(p[1] as f64), p[2] as f64);
-        if r > 5.0 && (z < -30.6 || z > -29.4) && z < -0.2 && z > -79.8 {
+        if r > 5.0 && !(-30.6..=-29.4).contains(&z) && z < -0.2 && z > -79.8 {
             let want = if z > -30.0 { 20.0 } else { 25.0 };
             assert!((r - want).abs() <= 0.1, "r {r} at z {z}");
         }

@@ -22,8 +22,7 @@ impl MachineData {
         };
         MachineData {
             name: "mill".into(),
-            description: "Built-in 3-axis vertical mill, travel generous enough for every corpus \
-                          example started at the origin"
+            description: "Built-in 3-axis vertical mill, travel ±500 mm in X and Y, ±300 mm in Z around the origin"
                 .into(),
             rapid_rate: 10_000.0,
             max_feed: 5_000.0,

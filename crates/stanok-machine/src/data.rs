@@ -53,14 +53,17 @@ use std::ops::Range;
 use std::path::Path;
 use toml::Spanned;
 
+mod builtins;
 mod channel;
 mod mazatrol;
 mod sections;
+mod stock;
 mod stored;
 pub use channel::ChannelData;
 pub use mazatrol::{MazatrolData, MazatrolFeedMode, MazatrolSeries};
 pub use sections::PATH_TOLERANCE;
 use sections::{rate_table, tolerance, validate_kinematics};
+pub use stock::StockData;
 pub use stored::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, PermParameters, StoredOffsets,
 };
@@ -110,6 +113,8 @@ pub struct MachineData {
     pub channel: ChannelData,
     /// The Mazatrol EIA/ISO control's parameters (`[mazatrol]`); None = the defaults.
     pub mazatrol: Option<MazatrolData>,
+    /// The stock-removal simulation's data (`[stock]`): stock, its frame, resolution, fixture.
+    pub stock: Option<StockData>,
 }
 
 /// The built-in 5-axis machines (`--machine NAME`), each a TOML file of `machines/`.
@@ -244,6 +249,7 @@ struct RawFile {
     tool: Option<Spanned<Vec<Spanned<RawTool>>>>,
     kinematics: Option<Spanned<KinematicsData>>,
     mazatrol: Option<Spanned<MazatrolData>>,
+    stock: Option<Spanned<stock::RawStock>>,
 }
 
 #[derive(Deserialize)]
@@ -578,6 +584,11 @@ impl RawFile {
             speed_table,
             channel,
             mazatrol,
+            stock: self
+                .stock
+                .as_ref()
+                .map(stock::RawStock::validate)
+                .transpose()?,
         })
     }
 }
@@ -695,75 +706,6 @@ impl MachineData {
             .is_some_and(|k| k.ttpc_frame == stanok_kin::TtpcFrame::Workpiece)
     }
 
-    /// The default 3-axis mill: X, Y ±500 mm, Z ±300 mm, 10 000 mm/min per axis and rapid, 5 000
-    /// mm/min feed, 1 000 mm/s², 20 000 mm/s³; no stored data. Equal to `machines/mill.toml`.
-    pub fn default_mill() -> MachineData {
-        let axis = |name: char, limit: f64| AxisData {
-            name,
-            kind: AxisKind::Linear,
-            min: -limit,
-            max: limit,
-            max_velocity: 10_000.0,
-            max_acceleration: 1_000.0,
-            max_jerk: 20_000.0,
-            transverse: false,
-        };
-        MachineData {
-            name: "mill".into(),
-            description: "Built-in 3-axis vertical mill, travel ±500 mm in X and Y, ±300 mm in Z around the origin"
-                .into(),
-            rapid_rate: 10_000.0,
-            max_feed: 5_000.0,
-            arc_tolerance: 0.01,
-            path_tolerance: PATH_TOLERANCE,
-            axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
-            linuxcnc_units: LengthUnits::Millimetres,
-            control: ControlData::default(),
-            m_functions: "generic".into(),
-            kinematics: None,
-            feed_table: BTreeMap::new(),
-            speed_table: BTreeMap::new(),
-            channel: ChannelData::default(),
-            mazatrol: None,
-        }
-    }
-
-    /// The built-in 2-axis lathe: X (transverse, radius values in machine data; may be programmed
-    /// as a diameter) −300…300 mm and Z −1000…500 mm, 8 000 mm/min per axis and rapid, 3 000 mm/min
-    /// feed, 800 mm/s², 16 000 mm/s³; no stored data. Equal to `machines/lathe.toml`.
-    pub fn default_lathe() -> MachineData {
-        let axis = |name: char, min: f64, max: f64, transverse: bool| AxisData {
-            name,
-            kind: AxisKind::Linear,
-            min,
-            max,
-            max_velocity: 8_000.0,
-            max_acceleration: 800.0,
-            max_jerk: 16_000.0,
-            transverse,
-        };
-        MachineData {
-            name: "lathe".into(),
-            description: "Built-in 2-axis lathe (X transverse, Z along the spindle)".into(),
-            rapid_rate: 8_000.0,
-            max_feed: 3_000.0,
-            arc_tolerance: 0.01,
-            path_tolerance: PATH_TOLERANCE,
-            axes: vec![
-                axis('X', -300.0, 300.0, true),
-                axis('Z', -1000.0, 500.0, false),
-            ],
-            linuxcnc_units: LengthUnits::Millimetres,
-            control: ControlData::default(),
-            m_functions: "generic".into(),
-            kinematics: None,
-            feed_table: BTreeMap::new(),
-            speed_table: BTreeMap::new(),
-            channel: ChannelData::default(),
-            mazatrol: None,
-        }
-    }
-
     /// Parses and validates machine data. `file_name` is only used in the diagnostic's note.
     pub fn from_toml_str(text: &str, file_name: &str) -> Result<MachineData, Diagnostic> {
         RawFile::parse(text, file_name)?
@@ -852,6 +794,9 @@ impl MachineData {
                 out.push('\n');
                 out.push_str(&text);
             }
+        }
+        if let Some(st) = &self.stock {
+            stock::write(&mut out, st);
         }
         if !control_tables.is_empty() {
             out.push('\n');

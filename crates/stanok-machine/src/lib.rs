@@ -33,6 +33,7 @@ mod sim;
 mod sim_motion;
 pub mod time_bound;
 mod travel;
+mod tool_body;
 
 pub use control_write::perm_to_toml;
 pub use data::{

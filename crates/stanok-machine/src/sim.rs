@@ -134,6 +134,9 @@ pub struct RunReport {
     /// Per spindle that turned: the range of its commanded speed over the setpoints (under G96 the
     /// speed the law gives at each position).
     pub spindles: Vec<crate::sim_motion::SpindleRange>,
+    /// The stock-removal simulation's results, when the run had a stock.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stock: Option<stanok_stock::report::StockReport>,
     /// A constant-surface-speed law (G96) was in force at some point of the run.
     pub surface_speed: bool,
     /// The operator's feed hold of the run (`SimOptions::feed_hold`): at machine time `at_s` for
@@ -239,6 +242,7 @@ impl SimMachine {
             violations: Vec::new(),
             violation_count: 0,
             spindles: Vec::new(),
+            stock: None,
             surface_speed: false,
             feed_hold: None,
         };
@@ -266,6 +270,17 @@ impl SimMachine {
     /// — dwells, straight cruises — are skipped, so a long dwell costs no work).
     pub fn set_progress_sink(&mut self, sink: SetpointSink) {
         self.motion.set_sparse_observer(sink);
+    }
+
+    /// Simulates the stock the program cuts (`stanok-stock`): from now on every accepted command
+    /// and every setpoint also go to it, and the report gets its results.
+    pub fn set_stock(&mut self, stock: stanok_stock::sim::StockSim) {
+        self.motion.set_stock(stock);
+    }
+
+    /// The stock simulation, if there is one (its mesh, its collisions so far).
+    pub fn stock(&self) -> Option<&stanok_stock::sim::StockSim> {
+        self.motion.stock()
     }
 
     /// Runs everything the planner holds to its end, so that the machine stands at the last

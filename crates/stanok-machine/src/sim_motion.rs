@@ -19,6 +19,7 @@ use serde::Serialize;
 use stanok_canon::{Canon, AXIS_LETTERS};
 use stanok_motion::monitor::TraceMonitor;
 use stanok_motion::{AxisLimit, MotionConfig, MotionStage, Setpoint};
+use stanok_stock::sim::StockSim;
 
 /// Receives every setpoint (e.g. a trace writer).
 pub type SetpointSink = Box<dyn FnMut(&Setpoint)>;
@@ -181,6 +182,8 @@ struct SetpointChecks {
     travel_violations: Vec<LoggedEvent>,
     travel_violation_count: u64,
     spindle_rpm_range: [Option<(f64, f64)>; 4],
+    /// The stock-removal simulation, when the run has a stock.
+    stock: Option<StockSim>,
 }
 
 impl SetpointChecks {
@@ -194,6 +197,9 @@ impl SetpointChecks {
             &mut self.travel_violation_count,
         );
         track_spindles(&mut self.spindle_rpm_range, &sp.spindle_rpm);
+        if let Some(s) = self.stock.as_mut() {
+            s.setpoint(sp);
+        }
         if let Some(o) = self.observer.as_mut() {
             o(sp);
         }
@@ -243,6 +249,7 @@ impl MotionRun {
                 travel_violations: Vec::new(),
                 travel_violation_count: 0,
                 spindle_rpm_range: [None; 4],
+                stock: None,
             },
             limits,
             feed_override: config.feed_override,
@@ -269,9 +276,22 @@ impl MotionRun {
         self.stage.stopped_at()
     }
 
-    /// Runs one accepted command.
+    pub(crate) fn set_stock(&mut self, stock: StockSim) {
+        self.checks.stock = Some(stock);
+    }
+
+    pub(crate) fn stock(&self) -> Option<&StockSim> {
+        self.checks.stock.as_ref()
+    }
+
+    /// Runs one accepted command. The stock simulation hears of it first, with the serial number
+    /// the stage is about to give it, so that it applies the command's state changes to exactly
+    /// the setpoints after it.
     pub(crate) fn apply(&mut self, cmd: &Canon, line: u32) {
         let Self { stage, checks, .. } = self;
+        if let Some(s) = checks.stock.as_mut() {
+            s.command(stage.commands() + 1, cmd);
+        }
         let mut sink = |sp: &Setpoint| checks.observe(sp);
         stage.apply(cmd, line, &mut sink);
     }
@@ -318,6 +338,9 @@ impl MotionRun {
         let Self { stage, checks, .. } = self;
         let mut sink = |sp: &Setpoint| checks.observe(sp);
         self.cycle_time = Some(stage.finish(&mut sink));
+        if let Some(s) = checks.stock.as_mut() {
+            s.finish();
+        }
     }
 
     /// The motion fields of the report.
@@ -409,6 +432,7 @@ impl MotionRun {
             + c.monitor.violation_count
             + stats.tolerance_violations
             + u64::from(self.stage.stopped_at().is_some());
+        r.stock = c.stock.as_ref().map(StockSim::report);
     }
 }
 

@@ -116,6 +116,7 @@ impl Tables {
             kind: Default::default(),
             edges: Vec::new(),
             comment: String::new(),
+            body: Default::default(),
         });
         if tool.edges.is_empty() {
             tool.edges.push(ToolEdge::default());

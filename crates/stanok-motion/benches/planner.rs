@@ -47,6 +47,7 @@ fn zigzag(n: usize, profile: AccelerationProfile) -> Vec<PlannerInput> {
             path_mode: PathMode::Continuous { tolerance: 0.01 },
             profile,
             line: k as u32,
+            command: 0,
             spindles: Default::default(),
         }));
         p = q;

@@ -63,6 +63,7 @@ fn main() {
             path_mode: mode,
             profile: AccelerationProfile::Brisk,
             line: k as u32 + 1,
+            command: 0,
             spindles: Default::default(),
         };
         stage.push_input(PlannerInput::Segment(seg), &mut sink);

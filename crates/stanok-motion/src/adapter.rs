@@ -74,6 +74,8 @@ pub struct CanonAdapter {
     orientation: OrientationInterpolation,
     /// G96's law of spindles 0–3, where in force.
     surface_speed: [Option<SurfaceSpeedLaw>; 4],
+    /// Serial number of the command being adapted (stamped on its segments).
+    command: u64,
 }
 
 /// The feed mode of a law (None: spindle-synchronised, which stops before and after anyway).
@@ -118,7 +120,14 @@ impl CanonAdapter {
             tcp: None,
             orientation: OrientationInterpolation::Axes,
             surface_speed: [None; 4],
+            command: 0,
         }
+    }
+
+    /// The serial number stamped on the segments adapted from now on (see
+    /// [`PathSegment::command`]).
+    pub fn set_command(&mut self, serial: u64) {
+        self.command = serial;
     }
 
     /// The kinematics of tool-centre-point control, while it is on.
@@ -227,6 +236,7 @@ impl CanonAdapter {
             path_mode: self.path_mode,
             profile: self.config.forced_profile.unwrap_or(self.profile),
             line,
+            command: self.command,
             spindles: self.spindles(),
         }
     }

@@ -248,6 +248,7 @@ mod tests {
             path_mode: PathMode::ExactStop,
             profile: AccelerationProfile::Brisk,
             line: 7,
+            command: 0,
             spindles: Spindles::default(),
         }
     }

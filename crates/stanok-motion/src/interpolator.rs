@@ -68,6 +68,9 @@ pub struct Setpoint {
     pub seq: u64,
     /// The piece is a blend joining two programmed segments (a junction).
     pub junction: bool,
+    /// Serial number of the Canon command of the piece ([`crate::MotionStage::commands`]): the
+    /// setpoints of command n run under every state change of the commands before n.
+    pub command: u64,
     /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
     /// evaluated at `position`; times the spindle override), whether it turns or not.
     pub spindle_rpm: [f64; 4],
@@ -159,6 +162,7 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         line: pc.line,
         seq: pc.seq,
         junction: pc.junction,
+        command: pc.command,
         spindle_rpm: [0.0; 4],
         spindle_dir: pc.spindles.directions(),
     };
@@ -202,6 +206,7 @@ pub struct Interpolator {
     end: Point9,
     line: u32,
     seq: u64,
+    command: u64,
     spindles: Spindles,
     hold: FeedHold,
     switch: Option<Arc<HoldSwitch>>,
@@ -247,6 +252,7 @@ impl Interpolator {
             end: at,
             line: 0,
             seq: 0,
+            command: 0,
             spindles: Spindles::default(),
             hold: FeedHold::default(),
             switch: None,
@@ -547,6 +553,7 @@ impl Interpolator {
         self.end = piece.piece.end;
         self.line = piece.piece.line;
         self.seq = piece.piece.seq;
+        self.command = piece.piece.command;
         self.spindles = piece.piece.spindles;
         run.duration = self.piece_start - started;
         run
@@ -612,6 +619,7 @@ impl Interpolator {
             line: self.line,
             seq: self.seq,
             junction: false,
+            command: self.command,
             spindle_rpm: self.spindles.rpm_at(&self.end),
             spindle_dir: self.spindles.directions(),
         });

@@ -106,6 +106,7 @@ struct Element {
     soft: bool,
     line: u32,
     seq: u64,
+    command: u64,
     spindles: Spindles,
     chord_tolerance: f64,
     end_rule: EndRule,
@@ -189,6 +190,8 @@ pub struct PathBuilder {
     spindles: Spindles,
     /// The running number of the last segment received (see [`PathBuilder::next_seq`]).
     seq: u64,
+    /// The command serial of the last segment received (dwells keep it).
+    command: u64,
     scratch: Vec<Point9>,
 }
 
@@ -216,6 +219,7 @@ impl PathBuilder {
             position: [0.0; 9],
             spindles: Spindles::default(),
             seq: 0,
+            command: 0,
             scratch: Vec::new(),
         }
     }
@@ -247,6 +251,7 @@ impl PathBuilder {
                         dwell_s,
                         line,
                         self.seq,
+                        self.command,
                         self.spindles,
                     ));
                 }
@@ -273,6 +278,7 @@ impl PathBuilder {
 
     fn push_segment(&mut self, seg: &PathSegment, out: &mut impl FnMut(Piece)) {
         self.seq += 1;
+        self.command = seg.command;
         if !finite9(&seg.start) || !finite9(&seg.end) {
             return;
         }
@@ -315,6 +321,7 @@ impl PathBuilder {
             soft: seg.profile == stanok_canon::AccelerationProfile::Soft,
             line: seg.line,
             seq: self.seq,
+            command: seg.command,
             spindles: seg.spindles,
             chord_tolerance: 0.0,
             end_rule,
@@ -495,6 +502,7 @@ impl PathBuilder {
             exact_stop: false,
             line: next.line,
             seq: next.seq,
+            command: next.command,
             junction: prev.seq != next.seq,
             spindles: prev.spindles,
             deviation,
@@ -554,6 +562,7 @@ impl PathBuilder {
             line: next.line,
             seq: next.seq,
             junction: prev.seq != next.seq,
+            command: next.command,
             spindles: prev.spindles,
             deviation: d * (0.25 * theta).tan() + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
@@ -614,6 +623,7 @@ impl PathBuilder {
             line: next.line,
             seq: next.seq,
             junction: prev.seq != next.seq,
+            command: next.command,
             spindles: prev.spindles,
             deviation: half * unit.from_chords + prev.chord_tolerance.max(next.chord_tolerance),
             tolerance: prev.tolerance.max(next.tolerance),
@@ -666,6 +676,7 @@ impl PathBuilder {
             line: c.line,
             seq: c.seq,
             junction: false,
+            command: c.command,
             spindles: c.spindles,
             deviation: c.chord_tolerance,
             tolerance: c.tolerance,
@@ -691,7 +702,14 @@ impl PathBuilder {
     }
 }
 
-fn dwell_piece(at: Point9, seconds: f64, line: u32, seq: u64, spindles: Spindles) -> Piece {
+fn dwell_piece(
+    at: Point9,
+    seconds: f64,
+    line: u32,
+    seq: u64,
+    command: u64,
+    spindles: Spindles,
+) -> Piece {
     let fixed = ProgrammedSpeed {
         speed: 0.0,
         class: SpeedClass::Fixed,
@@ -712,6 +730,7 @@ fn dwell_piece(at: Point9, seconds: f64, line: u32, seq: u64, spindles: Spindles
         line,
         seq,
         junction: false,
+        command,
         spindles,
         deviation: 0.0,
         tolerance: 0.0,

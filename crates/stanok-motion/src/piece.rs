@@ -218,6 +218,8 @@ pub struct Piece {
     pub seq: u64,
     /// A blend joining two programmed segments (a junction), as opposed to a piece of one.
     pub junction: bool,
+    /// Serial number of the Canon command ([`crate::segment::PathSegment::command`]).
+    pub command: u64,
     /// The spindles' speeds on this piece (evaluated per setpoint under G96).
     pub spindles: Spindles,
     /// Upper bound of the distance of any point of the piece from the programmed path, unit.

@@ -127,6 +127,10 @@ pub struct PathSegment {
     pub profile: AccelerationProfile,
     /// Source line (1-based) for reports.
     pub line: u32,
+    /// Serial number of the Canon command it comes from ([`crate::MotionStage::commands`]), so
+    /// that a consumer of the setpoints can tell which state changes of the command stream they
+    /// run under (0 = fed directly, not from a command).
+    pub command: u64,
     /// The spindles' speeds while it runs.
     pub spindles: Spindles,
 }

@@ -47,6 +47,8 @@ pub struct MotionStage {
     finished: Option<f64>,
     /// The kin stage while tool-centre-point control is on.
     tcp: Option<TcpMap>,
+    /// Canon commands fed so far (`apply`); the serial number of the last one.
+    commands: u64,
     /// The planner inputs of one Canon command (reused: no allocation per command). A command
     /// makes at most a handful, except a G95 feed under G96, which `css::split` may cut into up to
     /// `css::MAX_PIECES`.
@@ -120,12 +122,22 @@ impl MotionStage {
             stats: StageStats::default(),
             finished: None,
             tcp: None,
+            commands: 0,
             wanted: None,
             contour: ContourMonitor::default(),
             timer: BlockTimer::default(),
             spline_reference: None,
             skip_steady: false,
         }
+    }
+
+    /// How many Canon commands [`MotionStage::apply`] has received: the serial number of the
+    /// last one. Every setpoint carries the serial of the command its piece comes from
+    /// ([`Setpoint::command`]), so an observer that records state changes by serial (a tool
+    /// change, a spindle stop) can apply each to exactly the setpoints after it, although the
+    /// look-ahead releases setpoints later than the commands arrive.
+    pub fn commands(&self) -> u64 {
+        self.commands
     }
 
     /// Feed override (fraction 0…2) from the next servo instant on, on the motion being executed
@@ -299,6 +311,8 @@ impl MotionStage {
 
     /// Feeds one Canon command of source line `line`.
     pub fn apply(&mut self, cmd: &Canon, line: u32, out: &mut impl FnMut(&Setpoint)) {
+        self.commands += 1;
+        self.adapter.set_command(self.commands);
         if let Canon::Init { position, .. } = cmd {
             self.set_position(position.to_array(), out);
             return;

@@ -69,6 +69,7 @@ fn a_zero_length_arc_is_not_a_side_of_the_junction() {
         path_mode: g64,
         profile: b,
         line: 2,
+        command: 0,
         spindles: Default::default(),
     });
     let stage = run_contour(vec![

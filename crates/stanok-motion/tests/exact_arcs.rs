@@ -32,6 +32,7 @@ fn arc(
         path_mode: mode,
         profile,
         line: 2,
+        command: 0,
         spindles: Default::default(),
     })
 }

@@ -141,7 +141,7 @@ proptest! {
             speed_class: Default::default(),
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0 * (helix.length().powi(2)).sqrt() / helix.length(),
-            rapid: false, path_mode: mode, profile, line: 2, spindles: Default::default(),
+            rapid: false, path_mode: mode, profile, line: 2, command: 0, spindles: Default::default(),
         });
         let inputs = vec![line(before, s, feed, mode, profile), arc, line(e, after, feed, mode, profile)];
         let (trace, mon, t) = run(&cfg, before, inputs);
@@ -256,6 +256,7 @@ fn soft_arc_below_the_reach_minimum_keeps_every_limit() {
         path_mode: mode,
         profile,
         line: 2,
+        command: 0,
         spindles: Default::default(),
     });
     let inputs = vec![

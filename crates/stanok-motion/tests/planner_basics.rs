@@ -216,3 +216,46 @@ fn the_window_bounds_memory_and_a_tiny_window_stays_safe() {
     let (_, _, t_long) = run(&mill(), pts[0], long);
     assert!(t_short >= t_long, "{t_short} < {t_long}");
 }
+
+/// Every setpoint names the Canon command its piece comes from, so that state changes between
+/// commands (a spindle stop after a cut still in the look-ahead window) can be applied to exactly
+/// the setpoints after them.
+#[test]
+fn setpoints_carry_the_serial_of_their_command() {
+    use stanok_canon::{Canon, LineMove, Pose};
+    let cfg = mill();
+    let mut stage = stanok_motion::MotionStage::new(&cfg);
+    let at = |x: f64| Pose {
+        x,
+        ..Pose::default()
+    };
+    let mut seen: Vec<(u64, f64)> = Vec::new();
+    let mut out = |sp: &stanok_motion::Setpoint| seen.push((sp.command, sp.position[0]));
+    let cmds = [
+        Canon::StraightFeed(LineMove {
+            start: at(0.0),
+            end: at(10.0),
+            feed: 3000.0,
+            law: Default::default(),
+        }),
+        Canon::StopSpindle { spindle: 0 },
+        Canon::StraightTraverse(LineMove {
+            start: at(10.0),
+            end: at(20.0),
+            feed: 0.0,
+            law: Default::default(),
+        }),
+    ];
+    for (i, c) in cmds.iter().enumerate() {
+        stage.apply(c, i as u32 + 1, &mut out);
+        assert_eq!(stage.commands(), i as u64 + 1);
+    }
+    stage.finish(&mut out);
+    // Nothing is released before the end here (one continuous path within the window).
+    assert!(seen.iter().all(|&(c, _)| c == 1 || c == 3), "{seen:?}");
+    // Serials never decrease along the trace; the first command's setpoints stay at x ≤ 10 except
+    // inside the blend, which belongs to the next command.
+    assert!(seen.windows(2).all(|w| w[0].0 <= w[1].0));
+    assert!(seen.iter().filter(|s| s.0 == 1).all(|s| s.1 <= 10.0 + 1e-9));
+    assert!(seen.iter().filter(|s| s.0 == 3).all(|s| s.1 >= 9.0));
+}

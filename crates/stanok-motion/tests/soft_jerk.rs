@@ -154,6 +154,7 @@ proptest! {
             speed_class: Default::default(),
             start: s, end: e, geometry: SegmentGeometry::Arc(helix),
             path_speed: feed / 60.0, rapid: false, path_mode: mode, profile: SOFT, line: 2,
+            command: 0,
             spindles: Default::default(),
         });
         let inputs = vec![line(before, s, feed, mode, SOFT), arc, line(e, after, feed, mode, SOFT)];
@@ -261,6 +262,7 @@ fn circle(profile: AccelerationProfile, r: f64) -> (f64, TraceMonitor) {
         path_mode: mode,
         profile,
         line: 2,
+        command: 0,
         spindles: Default::default(),
     });
     let before = p3(r, -20.0, 0.0);
@@ -344,6 +346,7 @@ fn soft_pieces_join_with_continuous_curvature() {
             path_mode: mode,
             profile: SOFT,
             line: 2,
+            command: 0,
             spindles: Default::default(),
         }));
         all.push(line(

@@ -234,6 +234,8 @@ pub enum Command {
         #[command(flatten)]
         motion: MotionArgs,
         #[command(flatten)]
+        stock: crate::stock::StockArgs,
+        #[command(flatten)]
         colour: ColourArgs,
     },
     /// Print the canonical command stream (LinuxCNC's `rs274 -g` form, or JSON lines).
@@ -279,6 +281,8 @@ pub enum Command {
         machine: MachineArgs,
         #[command(flatten)]
         program: ProgramArgs,
+        #[command(flatten)]
+        stock: crate::stock::StockArgs,
     },
     /// Convert a program to another dialect: written from its canonical commands (cycles,
     /// subprograms and compensation expanded; positions absolute in the start frame).

@@ -30,6 +30,7 @@ mod program;
 mod progress;
 mod report;
 mod source;
+mod stock;
 mod tool_axis;
 mod trace;
 
@@ -46,7 +47,7 @@ use stanok_machine::{linuxcnc, MachineData, SimMachine, SimOptions, StoredOffset
 use stanok_machine::{OverrideChange, OverrideKind};
 use stanok_syntax::Dialect;
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -102,6 +103,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             program,
             var,
             motion,
+            stock,
             ..
         } => run_program(
             &file,
@@ -111,6 +113,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             json,
             &var,
             &motion,
+            &stock,
         ),
         Command::Canon {
             file,
@@ -137,16 +140,27 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             color,
             machine,
             program,
-        } => plot::plot(
-            &file,
-            dialect.dialect.map(Into::into),
-            output.as_deref(),
-            view,
-            size,
-            color,
-            &machine,
-            &program,
-        ),
+            stock,
+        } => match stock.stock.is_some() || stock.stock_out.is_some() {
+            true => plot_stock(
+                &file,
+                dialect.dialect.map(Into::into),
+                output.as_deref(),
+                &machine,
+                &program,
+                &stock,
+            ),
+            false => plot::plot(
+                &file,
+                dialect.dialect.map(Into::into),
+                output.as_deref(),
+                view,
+                size,
+                color,
+                &machine,
+                &program,
+            ),
+        },
         Command::Serve {
             bind,
             token,
@@ -367,6 +381,8 @@ fn prepare(
     Ok((machine, program, choice))
 }
 
+// One argument per option group of the verb (clap's flattened structs), as the CLI declares them.
+#[allow(clippy::too_many_arguments)]
 fn run_program(
     file: &Path,
     dialect: Option<Dialect>,
@@ -375,6 +391,7 @@ fn run_program(
     json: bool,
     var: &VarArgs,
     motion: &MotionArgs,
+    stock_args: &stock::StockArgs,
 ) -> Result<ExitCode, String> {
     let options = match sim_options(motion, &program_args.limits) {
         Ok(o) => o,
@@ -402,8 +419,15 @@ fn run_program(
         },
         None => None,
     };
+    let stock_sim = match stock::build(stock_args, &machine, dialect) {
+        Ok(s) => s,
+        Err(why) => return Ok(program::refuse(why)),
+    };
     let machine_for_hints = machine.clone();
     let mut sim = SimMachine::with_options(machine, options);
+    if let Some(s) = stock_sim {
+        sim.set_stock(s);
+    }
     let progress = progress::Progress::new(program.len());
     // A trace wants every servo period; the progress display alone does not, and then the
     // machine skips steady stretches (a long dwell, a slow straight feed) in constant time.
@@ -433,6 +457,7 @@ fn run_program(
         t.close()?;
     }
     rep.blocks = interp.stats().blocks_executed;
+    stock::write_outputs(stock_args, &sim)?;
     for d in warnings.iter_mut().chain(failure.as_mut()) {
         hints::enrich(d, &machine_for_hints);
     }
@@ -650,6 +675,78 @@ fn canon(
         diagnostics::render(&program, &d);
         return Ok(program::program_error());
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `plot --stock`: runs the program on the simulated machine with the stock and draws what is
+/// left (PNG; default `NAME.png` beside the current directory), collisions marked.
+fn plot_stock(
+    file: &Path,
+    given: Option<Dialect>,
+    output: Option<&Path>,
+    machine_args: &MachineArgs,
+    args: &ProgramArgs,
+    stock_args: &stock::StockArgs,
+) -> Result<ExitCode, String> {
+    let machine = match program::load_machine(machine_args, &args.probe_surface) {
+        Ok((m, _)) => m,
+        Err(code) => return Ok(code),
+    };
+    let (program, choice) = match program::open(file, given) {
+        Ok(p) => p,
+        Err(code) => return Ok(code),
+    };
+    let output = match output {
+        Some(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) => p.to_path_buf(),
+        Some(p) => {
+            return Ok(program::refuse(format!(
+                "{}: plot --stock draws a PNG (give -o NAME.png)",
+                p.display()
+            )))
+        }
+        None => {
+            let stem = program
+                .path
+                .as_ref()
+                .and_then(|p| p.file_stem())
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "stock".into());
+            PathBuf::from(format!("{stem}.png"))
+        }
+    };
+    program::say_dialect(&choice);
+    let dialect = choice.dialect;
+    let stock_sim = match stock::build(stock_args, &machine, dialect) {
+        Ok(Some(s)) => s,
+        Ok(None) => return Ok(program::refuse("plot --stock-out needs --stock")),
+        Err(why) => return Ok(program::refuse(why)),
+    };
+    let opts = program::options(dialect, &machine, false, args);
+    let mut interp = match program::interpreter(&program, opts) {
+        Ok(i) => i,
+        Err(code) => return Ok(code),
+    };
+    let mut sim = SimMachine::with_options(machine, SimOptions::default());
+    sim.set_stock(stock_sim);
+    let mut failure = None;
+    for item in interp.by_ref() {
+        if let Err(d) = item.and_then(|cmd| sim.apply(&cmd)) {
+            failure = Some(d);
+            break;
+        }
+    }
+    sim.finish();
+    if let Some(e) = sim.stock().and_then(|s| s.error()) {
+        return Ok(program::refuse(e));
+    }
+    stock::write_png(&sim, &output)?;
+    stock::write_outputs(stock_args, &sim)?;
+    if let Some(d) = failure {
+        diagnostics::render(&program, &d);
+        eprintln!("drew the stock up to the error: {}", output.display());
+        return Ok(program::program_error());
+    }
+    eprintln!("wrote {}", output.display());
     Ok(ExitCode::SUCCESS)
 }
 

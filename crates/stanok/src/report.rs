@@ -230,6 +230,9 @@ pub fn text(name: &str, dialect: Dialect, r: &RunReport, failure: Option<&Diagno
         .map(|i| format!("{}{:.3}", AXIS_LETTERS[i], p[i]))
         .collect();
     let _ = writeln!(s, "Final       {}", position.join(" "));
+    if let Some(st) = &r.stock {
+        s.push_str(&crate::stock::text(st));
+    }
     s
 }
 

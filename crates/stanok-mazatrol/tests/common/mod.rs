@@ -137,6 +137,7 @@ fn tool(n: u32, kind: ToolKind, length: [f64; 3], radius: f64, tip: u8) -> Tool 
             ..Default::default()
         }],
         comment: String::new(),
+        body: Default::default(),
     }
 }
 

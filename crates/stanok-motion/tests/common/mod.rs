@@ -44,6 +44,7 @@ pub fn line(
         path_mode: mode,
         profile,
         line: 1,
+        command: 0,
         spindles: Default::default(),
     })
 }

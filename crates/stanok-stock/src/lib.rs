@@ -1,0 +1,15 @@
+//! # stanok-stock: what the machine cuts
+#![deny(missing_docs)]
+
+pub mod dexel;
+pub mod lathe;
+pub mod mesh;
+mod mesh_merge;
+pub mod mill;
+pub mod render;
+pub mod report;
+pub mod sim;
+pub mod spec;
+pub mod sweep;
+pub mod tool;
+mod vec3;

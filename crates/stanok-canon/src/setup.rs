@@ -70,6 +70,84 @@ pub struct Tool {
     pub edges: Vec<ToolEdge>,
     /// Free text.
     pub comment: String,
+    /// The tool's shape beyond its edges' radius: what the stock-removal simulation and its
+    /// collision checks need (machine-data keys of `[[tool]]`, `machines/README.md`).
+    #[serde(skip_serializing_if = "ToolBody::is_unspecified")]
+    pub body: ToolBody,
+}
+
+/// The shape of a cutter's end.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CutterShape {
+    /// Flat end mill: a cylinder.
+    Flat,
+    /// Ball end mill: a hemisphere of the cutter radius on a cylinder.
+    Ball,
+    /// Bull-nose (torus) end mill: a corner radius (`ToolBody::corner_radius`).
+    Bull,
+    /// Drill: a cone of `ToolBody::point_angle` on a cylinder.
+    Drill,
+    /// Turning insert: a nose radius (the edge radius) and two cutting edges (the edge's
+    /// orientation, front and back angles).
+    Insert,
+}
+
+/// One section of a tool holder: a cylinder or a cone frustum, stacked upwards from where the tool
+/// leaves the holder (`ToolBody::reach` above the tip).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HolderSection {
+    /// Length along the tool axis, mm (> 0).
+    pub length: f64,
+    /// Diameter at the lower end (towards the tip), mm.
+    pub bottom_diameter: f64,
+    /// Diameter at the upper end, mm (= bottom for a cylinder).
+    pub top_diameter: f64,
+}
+
+/// What a tool looks like beyond its edges' radius. Every field is optional ("as written"): what
+/// is absent takes the defaults the stock simulation derives from the tool's kind and diameter
+/// (`stanok-stock`, docs/stock.md). Lengths mm, angles degrees.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct ToolBody {
+    /// The cutter's end shape.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cutter: Option<CutterShape>,
+    /// Bull-nose corner radius, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub corner_radius: Option<f64>,
+    /// Drill point angle (included), degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub point_angle: Option<f64>,
+    /// Length of the cutting part from the tip, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flute_length: Option<f64>,
+    /// Diameter of the shank (the part between the flutes and the holder), mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shank_diameter: Option<f64>,
+    /// Length from the tip to the holder (the tool's stick-out), mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reach: Option<f64>,
+    /// The cutter can plunge (cuts at its centre).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub centre_cutting: Option<bool>,
+    /// Steepest descent towards the tip a non-centre-cutting tool may take in material, degrees
+    /// from the plane normal to its axis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ramp_angle: Option<f64>,
+    /// Turning insert: length of its cutting edges from the nose, mm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub insert_length: Option<f64>,
+    /// The holder, from the tool upwards.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub holder: Vec<HolderSection>,
+}
+
+impl ToolBody {
+    /// Nothing was written.
+    pub fn is_unspecified(&self) -> bool {
+        *self == ToolBody::default()
+    }
 }
 
 /// The tool table, by T number.

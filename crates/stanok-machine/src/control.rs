@@ -45,6 +45,9 @@
 //! offset = { z = -1.5 }   # LinuxCNC per-axis tool offset, axes as above
 //! ```
 //!
+//! The tool-body keys of `[[tool]]` (cutter shape, flute length, shank, holder…) are read by
+//! `tool_body.rs`.
+//!
 //! Reading keeps every value's byte range (`toml::Spanned`) so that a validation failure points at
 //! the value; writing ([`control_to_toml`]) is sparse: only what differs from the empty control.
 
@@ -217,6 +220,16 @@ pub(crate) struct RawTool {
     kind: Option<Spanned<String>>,
     comment: Option<String>,
     edge: Option<Spanned<Vec<Spanned<RawEdge>>>>,
+    cutter: Option<Spanned<String>>,
+    corner_radius: Option<Spanned<f64>>,
+    point_angle: Option<Spanned<f64>>,
+    flute_length: Option<Spanned<f64>>,
+    shank_diameter: Option<Spanned<f64>>,
+    reach: Option<Spanned<f64>>,
+    centre_cutting: Option<bool>,
+    ramp_angle: Option<Spanned<f64>>,
+    insert_length: Option<Spanned<f64>>,
+    holder: Option<Spanned<Vec<Spanned<crate::tool_body::RawHolder>>>>,
 }
 
 /// `[[tool.edge]]`.
@@ -563,6 +576,19 @@ impl RawTool {
                 kind,
                 edges,
                 comment: self.comment.clone().unwrap_or_default(),
+                body: crate::tool_body::RawToolBody {
+                    cutter: &self.cutter,
+                    corner_radius: &self.corner_radius,
+                    point_angle: &self.point_angle,
+                    flute_length: &self.flute_length,
+                    shank_diameter: &self.shank_diameter,
+                    reach: &self.reach,
+                    centre_cutting: self.centre_cutting,
+                    ramp_angle: &self.ramp_angle,
+                    insert_length: &self.insert_length,
+                    holder: &self.holder,
+                }
+                .validate(number)?,
             },
         );
         Ok(())

@@ -158,6 +158,7 @@ fn write_tool(out: &mut String, t: &Tool) {
     if !t.comment.is_empty() {
         let _ = writeln!(out, "comment = {}", toml_string(&t.comment));
     }
+    crate::tool_body::write_body(out, &t.body, toml_float);
     for e in &t.edges {
         out.push_str("[[tool.edge]]\n");
         if e.length != [0.0; 3] {

@@ -28,6 +28,7 @@ pub mod files;
 pub mod linuxcnc;
 mod sim;
 mod sim_motion;
+mod tool_body;
 
 pub use control_write::perm_to_toml;
 pub use data::{

@@ -324,6 +324,8 @@ pub fn parse_tool_table(
                 kind: ToolKind::Milling,
                 edges: vec![parsed.edge],
                 comment: comment.to_string(),
+                // A `.tbl` line holds no body: the simulation's defaults from D apply.
+                body: Default::default(),
             },
         );
     }

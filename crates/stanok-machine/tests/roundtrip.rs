@@ -71,6 +71,44 @@ fn edge() -> impl Strategy<Value = ToolEdge> {
         )
 }
 
+/// Any tool body (the stock simulation's keys), each key present or not.
+fn body() -> impl Strategy<Value = stanok_canon::setup::ToolBody> {
+    use proptest::option::of;
+    use stanok_canon::setup::{CutterShape, HolderSection, ToolBody};
+    let shape = prop_oneof![
+        Just(CutterShape::Flat),
+        Just(CutterShape::Ball),
+        Just(CutterShape::Bull),
+        Just(CutterShape::Drill),
+        Just(CutterShape::Insert),
+    ];
+    let len = || 0.001..500.0f64;
+    let holder = (len(), 0.0..80.0f64, 0.001..80.0f64).prop_map(|(length, b, t)| HolderSection {
+        length,
+        bottom_diameter: b,
+        top_diameter: t,
+    });
+    (
+        (of(shape), of(0.0..5.0f64), of(1.0..179.0f64), of(len())),
+        (of(len()), of(len()), of(any::<bool>()), of(0.0..90.0f64)),
+        (of(len()), vec(holder, 0..3)),
+    )
+        .prop_map(|((cutter, corner, point, flute), (shank, reach, centre, ramp), (insert, holder))| {
+            ToolBody {
+                cutter,
+                corner_radius: corner,
+                point_angle: point,
+                flute_length: flute,
+                shank_diameter: shank,
+                reach,
+                centre_cutting: centre,
+                ramp_angle: ramp,
+                insert_length: insert,
+                holder,
+            }
+        })
+}
+
 fn tools(max_edges: usize, any_comment: bool) -> impl Strategy<Value = ToolTable> {
     let comment = if any_comment {
         ".{0,12}".boxed()
@@ -84,11 +122,14 @@ fn tools(max_edges: usize, any_comment: bool) -> impl Strategy<Value = ToolTable
         kind(),
         vec(edge(), 1..=max_edges),
         comment,
+        body(),
     );
     vec(tool, 0..5).prop_map(move |list| {
         let mut t = ToolTable::default();
-        for (number, pocket, kind, edges, comment) in list {
+        for (number, pocket, kind, edges, comment, body) in list {
             let kind = if any_comment { kind } else { ToolKind::Milling };
+            // A LinuxCNC table (the case without free comments) holds no body.
+            let body = if any_comment { body } else { Default::default() };
             t.tools.insert(
                 number,
                 Tool {
@@ -97,6 +138,7 @@ fn tools(max_edges: usize, any_comment: bool) -> impl Strategy<Value = ToolTable
                     kind,
                     edges,
                     comment,
+                    body,
                 },
             );
         }

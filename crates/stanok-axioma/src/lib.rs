@@ -17,11 +17,14 @@
 //! ```
 //!
 //! Conflicting words: the manual says only the last word of a group takes effect; Stanok does that
-//! and warns. Functions of later capabilities (5-axis kinematics, 3D compensation, orientation
-//! words) are recognised and rejected with `interp::unsupported` naming the issue that adds them.
+//! and warns. LEAD and TILT (named by the manual, described nowhere) are recognised and rejected
+//! with `interp::unsupported`. 3D tool radius compensation (CUT3D*, `comp3d/`) hooks in at three
+//! points: its mode words and the G40/G41/G42 it claims, `comp3d::before_motion` (normals, ISD,
+//! orientation method) and `comp3d::after_block` (the block's motions to its look-ahead).
 
 mod arc_rules;
 mod chain;
+pub mod comp3d;
 pub mod cutter_comp;
 pub mod cycles;
 mod extension;
@@ -219,6 +222,8 @@ fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic
 /// Executes one AxiOMA block.
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     technology::power_on(cx);
+    let block_start = cx.out.queue.len();
+    let mut words3 = comp3d::Words3::default();
     // Keywords.
     let mut cr: Option<Val> = None;
     let mut tech = TechWords::default();
@@ -242,7 +247,10 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             Keyword::Aspline => sw.keyword = Some((SplineKind::Akima, span)),
             Keyword::Cspline => sw.keyword = Some((SplineKind::Cubic, span)),
             Keyword::Bspline => sw.keyword = Some((SplineKind::Nurbs, span)),
-            Keyword::Splbreak => sw.splbreak = true,
+            Keyword::Splbreak => {
+                comp3d::forbidden(cx, "SPLBREAK", span)?;
+                sw.splbreak = true
+            }
             Keyword::Pw | Keyword::Pl | Keyword::Sd => {
                 let Some(v) = val else {
                     return Err(cx.err("interp::missing-value", "the word has no value", span));
@@ -260,26 +268,36 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             | Keyword::OriAxes
             | Keyword::OriVect
             | Keyword::OriWks
-            | Keyword::OriMks => orientation::keyword(cx, kw, span)?,
-            Keyword::Cut2df => {}
+            | Keyword::OriMks => {
+                comp3d::forbidden(cx, cx.block.slice(span), span)?;
+                orientation::keyword(cx, kw, span)?
+            }
+            Keyword::Cut2df
+            | Keyword::Cut3dc
+            | Keyword::Cut3dcc
+            | Keyword::Cut3dccd
+            | Keyword::Cut3df
+            | Keyword::Cut3dfs
+            | Keyword::Cut3dff => {
+                comp3d::mode_word(cx, kw, span)?;
+            }
+            Keyword::Isd => {
+                let Some(v) = val else {
+                    return Err(cx.err("interp::missing-value", "ISD= has no value", span));
+                };
+                words3.isd = Some(v);
+            }
             Keyword::Cr => {
                 cr = val;
                 if cr.is_none() {
                     return Err(cx.err("interp::missing-value", "CR= has no value", span));
                 }
             }
-            Keyword::Cut3dc
-            | Keyword::Cut3dcc
-            | Keyword::Cut3dccd
-            | Keyword::Cut3df
-            | Keyword::Cut3dfs
-            | Keyword::Cut3dff
-            | Keyword::Lead
-            | Keyword::Tilt => {
+            Keyword::Lead | Keyword::Tilt => {
                 return Err(unsupported(
                     cx,
                     cx.block.slice(span),
-                    "5-axis kinematics and 3D compensation",
+                    "LEAD/TILT (described nowhere in the manual)",
                     span,
                 ))
             }
@@ -302,7 +320,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     let mut m905_depth: Option<Val> = None;
     let mut ori_words = orientation::OriWords::default();
     for &(letter, index, val) in &cx.words.indexed {
-        if ori_words.take(letter, index, val) {
+        if ori_words.take(letter, index, val) || words3.take(letter, index, val) {
             continue;
         }
         match letter {
@@ -412,6 +430,11 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 cx.fe.ext.probe.g75 = true;
             }
             GAction::Dwell => dwell = Some(span),
+            GAction::Plane(_) | GAction::Workpiece(_) | GAction::LengthComp(_)
+                if cx.fe.ext.comp3d.in_contour() =>
+            {
+                return Err(comp3d::forbidden(cx, &g_name(_code), span).unwrap_err());
+            }
             GAction::Plane(p) if cx.st.plane != p => {
                 if comp_active {
                     return Err(forbidden_under_comp(
@@ -467,6 +490,20 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             }
             GAction::Css(on) => technology::css_mode(cx, on),
             GAction::Retract(initial) => cx.st.retract_to_initial = initial,
+            GAction::Radius(code) if cx.fe.ext.comp3d.claims(code) => {
+                comp3d::select(cx, code, span)?
+            }
+            GAction::Radius(code) if cx.fe.ext.comp3d.phase != comp3d::Phase::Off => {
+                return Err(comp3d::forbidden(cx, &g_name(code), span)
+                    .err()
+                    .unwrap_or_else(|| {
+                        cx.err(
+                            "axioma::cut3d-forbidden",
+                            format!("{} while 3D compensation is on", g_name(code)),
+                            span,
+                        )
+                    }));
+            }
             GAction::Radius(code) => Comp::select(cx, code, span)?,
             GAction::CycleCancel => cx.fe.ext.cycle.active = None,
             GAction::Cycle(kind) => cycles::activate(cx, kind),
@@ -607,6 +644,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // 4./5. S, T and prefix M functions.
     let table = &cx.fe.params.m_table;
     let mut ms: Vec<(MFunction, ColSpan)> = Vec::with_capacity(cx.words.m.len());
+    if let Some(&(number, span)) = cx.words.m.first() {
+        comp3d::forbidden(cx, &format!("M{number}"), span)?;
+    }
     for &(number, span) in &cx.words.m {
         let Some(f) = m_function(table, number) else {
             return Err(cx.err(
@@ -752,7 +792,9 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             || (cx.fe.ext.m.batch_probe
                 && cx.st.motion == MotionMode::Linear
                 && !cx.fe.modes.polar.on);
-        if orientation::check(cx, &ori_words)? {
+        let generalized = orientation::check(cx, &ori_words)?;
+        comp3d::before_motion(cx, &words3, generalized)?;
+        if generalized {
             orientation::motion(cx, at, &ori_words)?;
         } else if cx.fe.ext.spline.kind.is_some() {
             splines::point(cx, at, &sw)?;
@@ -764,6 +806,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     }
     cx.check_all_used()?;
     technology::refresh(cx);
+    comp3d::after_block(cx, block_start)?;
 
     // 7. Postfix M functions; program control last.
     let mut outcome = Outcome::Continue;

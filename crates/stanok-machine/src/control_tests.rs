@@ -126,17 +126,28 @@ fn workpiece_and_home_errors() {
 fn tool_body_errors_point_at_the_value() {
     let edge = "[[tool.edge]]\nradius = 1.0\n";
     let (m, line, col) = err(&format!("[[tool]]\nnumber = 2\ncutter = \"cone\"\n{edge}"));
-    assert!(m.contains("T2 cutter must be flat, ball, bull, drill or insert"), "{m}");
+    assert!(
+        m.contains("T2 cutter must be flat, ball, bull, drill or insert"),
+        "{m}"
+    );
     assert_eq!((line, col), (3, 10));
     let (m, line, col) = err(&format!("[[tool]]\nnumber = 2\nflute_length = 0.0\n{edge}"));
     assert!(m.contains("T2 flute_length must be more than 0"), "{m}");
     assert_eq!((line, col), (3, 16));
-    let (m, _, _) = err(&format!("[[tool]]\nnumber = 2\npoint_angle = 180.0\n{edge}"));
-    assert!(m.contains("point_angle must be more than 0 and at most 179"), "{m}");
+    let (m, _, _) = err(&format!(
+        "[[tool]]\nnumber = 2\npoint_angle = 180.0\n{edge}"
+    ));
+    assert!(
+        m.contains("point_angle must be more than 0 and at most 179"),
+        "{m}"
+    );
     let (m, line, _) = err(&format!(
         "[[tool]]\nnumber = 2\nholder = [{{ diameter = [1.0, 2.0, 3.0], length = 5.0 }}]\n{edge}"
     ));
-    assert!(m.contains("holder diameter must be a number or [bottom, top]"), "{m}");
+    assert!(
+        m.contains("holder diameter must be a number or [bottom, top]"),
+        "{m}"
+    );
     assert_eq!(line, 3);
     let (m, _, _) = err(&format!(
         "[[tool]]\nnumber = 2\nholder = [{{ diameter = 20.0, length = -1.0 }}]\n{edge}"

@@ -84,8 +84,15 @@ fn value(
     if ok {
         Ok(Some(x))
     } else {
-        let low = if positive { "more than 0" } else { "at least 0" };
-        Err((format!("{what} must be {low} and at most {max}, not {x}"), v.span()))
+        let low = if positive {
+            "more than 0"
+        } else {
+            "at least 0"
+        };
+        Err((
+            format!("{what} must be {low} and at most {max}, not {x}"),
+            v.span(),
+        ))
     }
 }
 
@@ -136,13 +143,8 @@ impl RawToolBody<'_> {
                     h.diameter.span(),
                 ));
             }
-            let length = value(
-                &Some(h.length.clone()),
-                &what("holder length"),
-                true,
-                LONG,
-            )?
-            .unwrap_or(0.0);
+            let length =
+                value(&Some(h.length.clone()), &what("holder length"), true, LONG)?.unwrap_or(0.0);
             holder.push(HolderSection {
                 length,
                 bottom_diameter: bottom,
@@ -183,7 +185,10 @@ pub(crate) fn write_body(out: &mut String, b: &ToolBody, float: impl Fn(f64) -> 
     if let Some(c) = b.centre_cutting {
         let _ = writeln!(out, "centre_cutting = {c}");
     }
-    for (key, v) in [("ramp_angle", b.ramp_angle), ("insert_length", b.insert_length)] {
+    for (key, v) in [
+        ("ramp_angle", b.ramp_angle),
+        ("insert_length", b.insert_length),
+    ] {
         if let Some(v) = v {
             let _ = writeln!(out, "{key} = {}", float(v));
         }

@@ -93,20 +93,22 @@ fn body() -> impl Strategy<Value = stanok_canon::setup::ToolBody> {
         (of(len()), of(len()), of(any::<bool>()), of(0.0..90.0f64)),
         (of(len()), vec(holder, 0..3)),
     )
-        .prop_map(|((cutter, corner, point, flute), (shank, reach, centre, ramp), (insert, holder))| {
-            ToolBody {
-                cutter,
-                corner_radius: corner,
-                point_angle: point,
-                flute_length: flute,
-                shank_diameter: shank,
-                reach,
-                centre_cutting: centre,
-                ramp_angle: ramp,
-                insert_length: insert,
-                holder,
-            }
-        })
+        .prop_map(
+            |((cutter, corner, point, flute), (shank, reach, centre, ramp), (insert, holder))| {
+                ToolBody {
+                    cutter,
+                    corner_radius: corner,
+                    point_angle: point,
+                    flute_length: flute,
+                    shank_diameter: shank,
+                    reach,
+                    centre_cutting: centre,
+                    ramp_angle: ramp,
+                    insert_length: insert,
+                    holder,
+                }
+            },
+        )
 }
 
 fn tools(max_edges: usize, any_comment: bool) -> impl Strategy<Value = ToolTable> {
@@ -129,7 +131,11 @@ fn tools(max_edges: usize, any_comment: bool) -> impl Strategy<Value = ToolTable
         for (number, pocket, kind, edges, comment, body) in list {
             let kind = if any_comment { kind } else { ToolKind::Milling };
             // A LinuxCNC table (the case without free comments) holds no body.
-            let body = if any_comment { body } else { Default::default() };
+            let body = if any_comment {
+                body
+            } else {
+                Default::default()
+            };
             t.tools.insert(
                 number,
                 Tool {

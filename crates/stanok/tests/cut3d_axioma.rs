@@ -352,7 +352,7 @@ fn section_13_4_cut3dccd_against_the_limiting_surface() {
     // the tip by R·tan α: 0.375 at the start, 0 at the end.
     let n60 = moves(&r, "N60");
     assert_near(start(n60[0]), [60.0, -0.5, 0.375], TOL, "N60 start");
-    assert_near(end(*n60.last().unwrap()), [20.0, -0.5, 0.0], TOL, "N60 end");
+    assert_near(end(n60.last().unwrap()), [20.0, -0.5, 0.0], TOL, "N60 end");
     // In the middle: normal (−0.3162, 0, 0.9487), tan α = 1/3.
     let mid = n60
         .iter()

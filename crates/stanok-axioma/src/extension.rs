@@ -54,6 +54,10 @@ pub struct AxiomaMachineParams {
     pub start_exact_stop: bool,
     /// Channel parameter "type of acceleration": SOFT (true) or BRISK (false, default) at start-up.
     pub start_soft: bool,
+    /// 3D compensation: allow direct rotary axes and angles/vectors to alternate along one
+    /// compensated contour, as the corner fragments of §13.5.2–§13.7.3 do although §13.2.3
+    /// forbids it (spec A-14). Default false: `axioma::cut3d-ori-method-change`.
+    pub cut3d_mixed_orientation: bool,
 }
 
 impl Default for AxiomaMachineParams {
@@ -83,6 +87,7 @@ impl Default for AxiomaMachineParams {
             cspline_window: 8,
             start_exact_stop: false,
             start_soft: false,
+            cut3d_mixed_orientation: false,
         }
     }
 }

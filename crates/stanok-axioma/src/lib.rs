@@ -644,10 +644,16 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // 4./5. S, T and prefix M functions.
     let table = &cx.fe.params.m_table;
     let mut ms: Vec<(MFunction, ColSpan)> = Vec::with_capacity(cx.words.m.len());
-    if let Some(&(number, span)) = cx.words.m.first() {
-        comp3d::forbidden(cx, &format!("M{number}"), span)?;
-    }
     for &(number, span) in &cx.words.m {
+        // §13.2.3: no M function inside a 3D-compensated contour; the program end ends it.
+        if !m_function(table, number).is_some_and(|f| {
+            matches!(
+                f.kind,
+                MKind::ProgramEnd | MKind::ProgramEndToWaitingPosition
+            )
+        }) {
+            comp3d::forbidden(cx, &format!("M{number}"), span)?;
+        }
         let Some(f) = m_function(table, number) else {
             return Err(cx.err(
                 "axioma::unknown-m-function",

@@ -209,8 +209,12 @@ impl Geometry {
     /// The compensated tip of element `e` at geometric parameter `s` with the axes at fraction
     /// `lambda` of the executed part.
     pub fn tip(&self, e: &Elem, s: f64, lambda: f64) -> Result<Vec3, Fail> {
+        self.tip_with(e, s, self.tool(&e.start, &e.end, lambda))
+    }
+
+    /// The compensated tip of `e` at `s` for the tool vector `t`.
+    pub fn tip_with(&self, e: &Elem, s: f64, t: Vec3) -> Result<Vec3, Fail> {
         let p = e.curve.tangent(s).ok_or(Fail::NoTangent)?;
-        let t = self.tool(&e.start, &e.end, lambda);
         let n = normal_at(e, s);
         let isd = e.isd0 + (e.isd1 - e.isd0) * s;
         Ok(add(e.curve.point(s), self.offset(p, t, n, isd)?))
@@ -293,6 +297,16 @@ impl Engine {
                         "axioma::cut3d-too-many-reorientations",
                         format!("3D compensation: more than {MAX_REORIENT} reorientation blocks in one corner"),
                     ));
+                }
+                // Spec A-21: the turning tool is checked against the side it touches now.
+                if let Some(first) = self.window.front().filter(|f| f.kind == Kind::Contour) {
+                    let p1 = first.curve.tangent(1.0).ok_or(fail_msg(Fail::NoTangent))?;
+                    for k in 0..=8 {
+                        let t = self.geo.tool(&e.start, &e.end, k as f64 / 8.0);
+                        self.geo
+                            .offset(p1, t, first.n1, first.isd1)
+                            .map_err(fail_msg)?;
+                    }
                 }
                 self.window.push_back(e);
             }
@@ -429,43 +443,58 @@ impl Engine {
                 Ok(0.0)
             }
             Corner::Inner => {
-                let (s_star, sg_star, d) = self.crossing(&first, e2, t_end, p1, n1)?;
+                // The first block ends at the crossing for the tool it ends with, the second
+                // starts at the crossing for the tool it starts with (after the reorientations);
+                // in between the tip follows the crossing for the turning tool.
+                let (s_star, _, d) = self.crossing(&first, e2, t_end, p1, n1)?;
                 self.emit_elem(&first, s_star, d)?;
-                let here = self.tool_at.map(|p| p.xyz()).unwrap_or(q2);
                 for r in &reorients {
-                    // The tip keeps the crossing point while the tool turns (see module doc).
-                    self.emit_line(r, here);
+                    let (a, b) = (r.start, r.end);
+                    let this = &*self;
+                    let mut points = Vec::with_capacity(17);
+                    for k in 0..=16 {
+                        let l = k as f64 / 16.0;
+                        let t = this.geo.tool(&a, &b, l);
+                        let (_, sg, _) = this.crossing(&first, e2, t, p1, n1)?;
+                        let q = this.geo.tip_with(e2, sg, t).map_err(fail_msg)?;
+                        points.push(with_xyz(lerp(&a, &b, l), q));
+                    }
+                    let start = self.tool_at.unwrap_or(points[0]);
+                    let out = super::fit::emit_points(&r.tmpl, start, &points, r.feed);
+                    self.push_out(r.slot, out);
                 }
+                let t_start = geo.tool(&e2.start, &e2.end, 0.0);
+                let (_, sg_star, _) = self.crossing(&first, e2, t_start, p1, n1)?;
                 // The new element starts at its crossing parameter.
                 Ok(sg_star)
             }
         }
     }
 
-    /// (s*, σ*, D): the inner-corner crossing and the off-plane jump spread over `first`.
+    /// (s*, σ*, D) for the tool vector `t`: the inner-corner crossing of both tip paths
+    /// (compensated with `t`) projected on the plane ⟂ t (face: the plane of n1 and p1), and the
+    /// off-plane jump that the first block spreads over its length.
     fn crossing(
         &self,
         first: &Elem,
         e2: &Elem,
-        t_end: Vec3,
+        t: Vec3,
         p1: Vec3,
         n1: Vec3,
     ) -> EResult<(f64, f64, Vec3)> {
         let geo = &self.geo;
         let normal = if geo.mode.face() {
-            normalize(cross(p1, n1)).unwrap_or(t_end)
+            normalize(cross(p1, n1)).unwrap_or(t)
         } else {
-            t_end
+            t
         };
         let (b1, b2) = plane_basis(normal);
         let from = first.from;
-        let span1 = (1.0 - from).max(1e-12);
         let c1 = |s: f64| {
-            let l = ((s - from) / span1).clamp(0.0, 1.0);
-            geo.tip(first, s, l)
+            geo.tip_with(first, s, t)
                 .unwrap_or_else(|_| first.curve.point(s))
         };
-        let c2 = |s: f64| geo.tip(e2, s, s).unwrap_or_else(|_| e2.curve.point(s));
+        let c2 = |s: f64| geo.tip_with(e2, s, t).unwrap_or_else(|_| e2.curve.point(s));
         let zero = geo.cutter.radius == 0.0 && geo.cutter.corner == 0.0;
         if zero {
             return Ok((1.0, 0.0, [0.0; 3]));

@@ -144,6 +144,24 @@ pub fn emit_path(
     out
 }
 
+/// Straight moves through `points` (poses on the exact path), from `start`.
+pub fn emit_points(
+    tmpl: &Spanned<Canon>,
+    start: Pose,
+    points: &[Pose],
+    feed: f64,
+) -> Vec<Spanned<Canon>> {
+    let mut out = Vec::with_capacity(points.len());
+    let mut from = start;
+    for &to in points {
+        if to != from {
+            out.push(line(tmpl, from, to, false, feed));
+            from = to;
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -387,7 +387,7 @@ pub fn before_motion(
         (_, Some(v)) => cx.mm(v.v),
     };
     // §13.2.3: one orientation method along the whole contour.
-    if cx.fe.ext.comp3d.in_contour() {
+    if cx.fe.ext.comp3d.in_contour() && !cx.fe.params.cut3d_mixed_orientation {
         let direct = cx.opts.five_axis.as_ref().and_then(|k| {
             k.rotary_axes()
                 .map(|a| a.name.to_ascii_uppercase() as u8)

@@ -73,17 +73,7 @@ fn moves<'a>(text: &str, out: &'a [Spanned<Canon>], n: &str) -> Vec<&'a Canon> {
 }
 
 fn end(c: &Canon) -> Pose {
-    c.value_end()
-}
-
-trait End {
-    fn value_end(&self) -> Pose;
-}
-
-impl End for Canon {
-    fn value_end(&self) -> Pose {
-        self.motion().unwrap().end()
-    }
+    c.motion().unwrap().end()
 }
 
 fn near(a: V3, b: V3, tol: f64) -> bool {
@@ -134,7 +124,7 @@ fn outer_corner_13_5_2_reorients_about_the_vertex_then_bypasses() {
             );
         }
     }
-    let e80 = end(*moves(&text, &out, "N80").last().unwrap());
+    let e80 = end(moves(&text, &out, "N80").last().unwrap());
     assert!(
         (e80.b - 60.0).abs() < 1e-9 && (e80.c - 45.0).abs() < 1e-9,
         "{e80:?}"
@@ -165,7 +155,7 @@ fn outer_corner_13_5_2_reorients_about_the_vertex_then_bypasses() {
     );
     let n90 = moves(&text, &out, "N90");
     assert!(near(
-        end(*n90.last().unwrap()).xyz(),
+        end(n90.last().unwrap()).xyz(),
         [60.0 + 5.0 * u2[0], 5.0 * u2[1], 5.0 * u2[2]],
         1e-9
     ));
@@ -186,7 +176,7 @@ fn inner_corner_13_5_3_shortens_both_sides_with_full_rotary_motion() {
     };
     let pc = [30.0, -30.0, 0.0];
     // N60 stops short of the vertex with B45 C15 reached: the tool touches both sides there.
-    let e60 = end(*moves(&text, &out, "N60").last().unwrap());
+    let e60 = end(moves(&text, &out, "N60").last().unwrap());
     assert!(
         (e60.b - 45.0).abs() < 1e-9 && (e60.c - 15.0).abs() < 1e-9,
         "{e60:?}"
@@ -202,7 +192,7 @@ fn inner_corner_13_5_3_shortens_both_sides_with_full_rotary_motion() {
         assert!((dist(e.xyz(), t, pc, p2) - 5.0).abs() < 1e-6, "{e:?}");
     }
     // N80 ends at B30 C0 (C2=0 ignored on a 5-axis machine), R to the left of (60, 0).
-    let e80 = end(*moves(&text, &out, "N80").last().unwrap());
+    let e80 = end(moves(&text, &out, "N80").last().unwrap());
     assert!((e80.b - 30.0).abs() < 1e-9 && e80.c.abs() < 1e-9, "{e80:?}");
     let t = tool(30.0, 0.0);
     let u = unit(cross(t, p2));

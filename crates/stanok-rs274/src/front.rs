@@ -387,6 +387,8 @@ impl FrontEnd for Rs274 {
     #[cold]
     fn rollback<R: BufRead + Seek>(&mut self, held: Self::Undo, core: &mut Core<R>) {
         self.pending.clear();
+        // The block's scratch mark of held commands goes with it.
+        self.held_at_begin = None;
         self.part.modes.rollback();
         self.part.lathe_call = None;
         self.params.rollback();

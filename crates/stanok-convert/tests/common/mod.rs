@@ -246,9 +246,20 @@ pub fn same_motion(src: &Canon, dst: &Canon) -> Result<(), String> {
             },
         ) => {
             end_err(&a.end, &b.end)?;
+            // Without configured probe surfaces the RS274/NGC probe stands 0.01 in (0.254 mm)
+            // short of its target, as LinuxCNC's standalone rs274 puts it (docs/decisions.md),
+            // where the other dialects' probe stands at the target: the same untripped probe.
+            let untripped_rs274 = |m: &stanok_canon::LineMove, c: &stanok_canon::Pose| {
+                let (s, e, c) = (m.start.to_array(), m.end.to_array(), c.to_array());
+                let len = (0..3).map(|k| (s[k] - e[k]).powi(2)).sum::<f64>().sqrt();
+                len > 0.0
+                    && (0..3).all(|k| (e[k] + 0.254 * (s[k] - e[k]) / len - c[k]).abs() < 1e-6)
+            };
             match (ca, cb) {
                 (None, None) => Ok(()),
                 (Some(x), Some(y)) => end_err(x, y),
+                (Some(x), None) if untripped_rs274(a, x) => Ok(()),
+                (None, Some(y)) if untripped_rs274(b, y) => Ok(()),
                 _ => Err("probe contact differs".into()),
             }
         }

@@ -210,15 +210,6 @@ use mtable::MKind;
 use splines::{SplineKind, SplineWords};
 use technology::TechWords;
 
-fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
-    cx.err(
-        "interp::unsupported",
-        format!("{what} is not supported yet"),
-        at,
-    )
-    .with_note(format!("planned in the issue on {issue}"))
-}
-
 /// Executes one AxiOMA block.
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     technology::power_on(cx);
@@ -294,24 +285,27 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 }
             }
             Keyword::Lead | Keyword::Tilt => {
-                return Err(unsupported(
-                    cx,
-                    cx.block.slice(span),
-                    "LEAD/TILT (described nowhere in the manual)",
-                    span,
-                ))
+                return Err(cx
+                    .err(
+                        "interp::unsupported",
+                        format!("{} is not supported yet", cx.block.slice(span)),
+                        span,
+                    )
+                    .with_note("the manual names LEAD and TILT but describes them nowhere (spec axioma-4 §1.2)"))
             }
             _ => {
-                return Err(unsupported(
-                    cx,
-                    cx.block.slice(span),
-                    "5-axis kinematics and 3D compensation",
-                    span,
-                ))
+                return Err(cx
+                    .err(
+                        "interp::unsupported",
+                        format!("{} is not supported yet", cx.block.slice(span)),
+                        span,
+                    )
+                    .with_note("not an AxiOMA function (a word of another control?)"))
             }
         }
     }
-    // Extended addresses: S2=… (speed of spindle 2); the others come with later issues.
+    // Extended addresses: orientation A2=…C3=, normals A4=…C5=, S2=… (speed of spindle 2), tools
+    // and edges of spindles 2…4, Q parameters, the M905 depth.
     let mut indexed_speeds: Vec<(u8, f64)> = Vec::new();
     let mut spindle_tools: Vec<(u8, Val)> = Vec::new();
     let mut spindle_edges: Vec<(u8, Val)> = Vec::new();
@@ -335,12 +329,13 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             b'T' if (2..=4).contains(&index) => spindle_tools.push((index - 1, val)),
             b'D' if (2..=4).contains(&index) => spindle_edges.push((index - 1, val)),
             _ => {
-                return Err(unsupported(
-                    cx,
-                    &format!("{}{}=", letter as char, index),
-                    "5-axis kinematics and 3D compensation (orientation words)",
-                    val.span,
-                ))
+                return Err(cx
+                    .err(
+                        "interp::unsupported",
+                        format!("{}{}= is not supported yet", letter as char, index),
+                        val.span,
+                    )
+                    .with_note("AxiOMA's extended addresses: A2=…C3= (orientation), A4=…C5= (surface normals), S1=…S4=, T2=…T4=, D2=…D4=, Q<i>=, N1=/H1= with M905"))
             }
         }
     }

@@ -216,3 +216,111 @@ fn face_corner_fragments_reach_obtuse_angles_a_21() {
     assert_eq!(e.code.to_string(), "axioma::cut3d-normal-obtuse");
     assert_eq!(e.span.line, line_of(&text, "N80"));
 }
+
+/// A 3-axis run (the tool along +Z) with T1 R 5 and the given workpiece frame G154.
+fn run_3axis(text: &str, frame: stanok_canon::setup::WorkpieceFrame) -> Vec<Spanned<Canon>> {
+    let mut o = InterpOptions::new(Dialect::Axioma);
+    o.control.tools.tools.insert(
+        1,
+        Tool {
+            number: 1,
+            edges: vec![ToolEdge {
+                radius: 5.0,
+                ..Default::default()
+            }],
+            body: stanok_canon::setup::ToolBody {
+                cutter: Some(stanok_canon::setup::CutterShape::Ball),
+                ..Default::default()
+            },
+            ..Default::default()
+        },
+    );
+    o.control.offsets.workpiece[0][0] = frame;
+    Interpreter::from_text(text, o)
+        .map(|c| c.unwrap_or_else(|d| panic!("{d:?}\n{text}")))
+        .collect()
+}
+
+fn tips(out: &[Spanned<Canon>]) -> Vec<V3> {
+    out.iter()
+        .filter_map(|c| c.value.motion().map(|m| m.end().xyz()))
+        .collect()
+}
+
+/// Metamorphic law: a workpiece frame turned about Z and shifted moves the compensated path of a
+/// vertical tool rigidly (the compensation is made in machine coordinates, after the frame).
+#[test]
+fn a_turned_workpiece_frame_turns_the_compensated_path() {
+    let body = "N10 M6 T1 F1000\nN20 G01 X-20 Y0 Z0\nN30 CUT3DC G41 X0 Y0\nN40 X30 Y30 ISD=2\nN50 G02 X60 Y0 I15 J-15\nN60 G01 X70 Y-20\nN70 G40 X90\nN80 M30\n";
+    let head = "G17 G90 G191 G71 G94 G49 G40 G64 CUT2DF\n";
+    let plain = tips(&run_3axis(
+        &format!("{head}G153\n{body}"),
+        Default::default(),
+    ));
+    let phi: f64 = 30.0;
+    let origin = [100.0, 50.0, -10.0];
+    let framed = tips(&run_3axis(
+        &format!("{head}G154\n{body}"),
+        stanok_canon::setup::WorkpieceFrame {
+            origin,
+            euler: [phi, 0.0, 0.0],
+        },
+    ));
+    assert_eq!(plain.len(), framed.len());
+    assert!(plain.len() >= 6);
+    let (s, c) = phi.to_radians().sin_cos();
+    for (p, f) in plain.iter().zip(&framed) {
+        let want = [
+            origin[0] + c * p[0] - s * p[1],
+            origin[1] + s * p[0] + c * p[1],
+            origin[2] + p[2],
+        ];
+        assert!(near(*f, want, 1e-9), "{f:?} want {want:?}");
+    }
+}
+
+/// Face modes in the three planes: CUT3DFS takes the plane's axis as the tool (G17 Z, G18 Y,
+/// G19 X), so the same contour written in each plane with its normal gives the same path with
+/// the axes permuted (ball end: v = R·(n − t)).
+#[test]
+fn cut3dfs_in_the_three_planes() {
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    // (plane, the contour's two axes (a, b) and the tool axis n)
+    let cases: [(&str, [usize; 3]); 3] =
+        [("G17", [0, 1, 2]), ("G18", [2, 0, 1]), ("G19", [1, 2, 0])];
+    let letters = ['X', 'Y', 'Z'];
+    let normal_words = ["A4", "B4", "C4"];
+    let mut results: Vec<Vec<V3>> = Vec::new();
+    for (plane, [a, b, n]) in cases {
+        // A ridge over the plane: up the slope, then down; normals (−1, 0, 1) and (1, 0, 1) in
+        // (a, n) coordinates.
+        let w = |va: f64, vn: f64| format!("{}{va} {}0 {}{vn}", letters[a], letters[b], letters[n]);
+        let nw = |ka: f64, kn: f64| format!("{}={ka} {}={kn}", normal_words[a], normal_words[n]);
+        let text = format!(
+            "G90 G191 G71 G94 G49 G40 G64 CUT2DF {plane}\nN10 M6 T1 F1000\nN20 G01 {}\nN30 CUT3DFS G41 {} {}\nN40 {}\nN50 {} {}\nN60 G40 {}\nN70 M30\n",
+            w(-10.0, 0.0),
+            w(0.0, 0.0),
+            nw(-1.0, 1.0),
+            w(30.0, 30.0),
+            w(60.0, 0.0),
+            nw(1.0, 1.0),
+            w(70.0, 0.0),
+        );
+        let out = run_3axis(&text, Default::default());
+        // Back to (a, b, n) coordinates.
+        results.push(tips(&out).iter().map(|q| [q[a], q[b], q[n]]).collect());
+    }
+    assert!(results[0].len() >= 5);
+    for r in &results[1..] {
+        assert_eq!(r.len(), results[0].len());
+        for (p, q) in r.iter().zip(&results[0]) {
+            assert!(near(*p, *q, 1e-9), "{p:?} vs {q:?}");
+        }
+    }
+    // The entry ends at v = 5·(n − t) of the first normal.
+    let entry = results[0][1];
+    assert!(
+        near(entry, [5.0 * -s, 0.0, 5.0 * (s - 1.0)], 1e-9),
+        "{entry:?}"
+    );
+}

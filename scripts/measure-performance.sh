@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Measures the figures of the README's Performance section in one run on this machine:
+# Measures the interpreter figures of docs/performance.md in one run on this machine:
 # criterion throughput (parse only; parse + interpret), instruction counts (callgrind; independent
 # of machine load), LinuxCNC's rs274 on the same 1M-block program (if installed), and the peak
 # resident memory of `stanok run` on a 10M-block program.

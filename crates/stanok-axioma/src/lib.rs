@@ -210,6 +210,17 @@ use mtable::MKind;
 use splines::{SplineKind, SplineWords};
 use technology::TechWords;
 
+/// `_area`: the part of the language it belongs to (for readers of the code; users are told only
+/// that it is not implemented).
+fn unsupported(cx: &Ctx<'_>, what: &str, _area: &str, at: ColSpan) -> Diagnostic {
+    cx.err(
+        "interp::unsupported",
+        format!("{what} is not supported yet"),
+        at,
+    )
+    .with_note("not implemented in this version of Stanok")
+}
+
 /// Executes one AxiOMA block.
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     technology::power_on(cx);
@@ -285,22 +296,16 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 }
             }
             Keyword::Lead | Keyword::Tilt => {
-                return Err(cx
-                    .err(
-                        "interp::unsupported",
-                        format!("{} is not supported yet", cx.block.slice(span)),
-                        span,
-                    )
-                    .with_note("the manual names LEAD and TILT but describes them nowhere (spec axioma-4 §1.2)"))
+                // The manual names LEAD and TILT but describes them nowhere (spec axioma-4 §1.2).
+                return Err(unsupported(cx, cx.block.slice(span), "LEAD/TILT", span));
             }
             _ => {
-                return Err(cx
-                    .err(
-                        "interp::unsupported",
-                        format!("{} is not supported yet", cx.block.slice(span)),
-                        span,
-                    )
-                    .with_note("not an AxiOMA function (a word of another control?)"))
+                return Err(unsupported(
+                    cx,
+                    cx.block.slice(span),
+                    "keywords of other controls",
+                    span,
+                ))
             }
         }
     }
@@ -329,13 +334,12 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             b'T' if (2..=4).contains(&index) => spindle_tools.push((index - 1, val)),
             b'D' if (2..=4).contains(&index) => spindle_edges.push((index - 1, val)),
             _ => {
-                return Err(cx
-                    .err(
-                        "interp::unsupported",
-                        format!("{}{}= is not supported yet", letter as char, index),
-                        val.span,
-                    )
-                    .with_note("AxiOMA's extended addresses: A2=…C3= (orientation), A4=…C5= (surface normals), S1=…S4=, T2=…T4=, D2=…D4=, Q<i>=, N1=/H1= with M905"))
+                return Err(unsupported(
+                    cx,
+                    &format!("{}{}=", letter as char, index),
+                    "extended addresses",
+                    val.span,
+                ))
             }
         }
     }

@@ -1,4 +1,4 @@
-//! AxiOMA high-level language (README "AxiOMA high-level language"): every construct, its
+//! AxiOMA high-level language (docs/axioma.md, "The high-level language"): every construct, its
 //! numbers asserted (end points to 1e-9 mm, messages exactly), and every kind of bad input as a
 //! diagnostic with its code and line, with nothing of the bad line executed.
 

@@ -326,7 +326,7 @@ fn one_pass(
         ));
         v_step
             .defaults
-            .push("machine speed n_act ≤ n (the text says \"<\"; spec [decide]: ≤ allowed)".into());
+            .push("machine speed n_act ≤ n (the method's text says \"<\"; an equal speed is allowed here)".into());
         v_step.lines.push(format!(
             "v_act = π · D · n_act / 1000 = π × {diameter:.3} × {n_act} / 1000 = {v_act:.2} m/min"
         ));
@@ -444,10 +444,8 @@ fn feed(
             "table 2.4: S = {}-{} mm/rev; S = {} mm/rev (the lower bound)",
             row.s[0], row.s[1], row.s[0]
         ));
-        step.defaults.push(
-            "a table feed range gives its lower bound (spec §5.6 [decide]; --feed chooses another)"
-                .into(),
-        );
+        step.defaults
+            .push("a table feed range gives its lower bound (--feed chooses another)".into());
         if input.operation != Operation::Longitudinal {
             step.lines.push(
                 "note: table 2.4 is for external longitudinal turning; used here as the nearest data"
@@ -602,7 +600,7 @@ fn cv_row<'t>(
     ));
     if matches!(row.feed_max, Some(m) if (feed - m).abs() < 1e-12) {
         step.defaults.push(format!(
-            "S = {feed} on the boundary of two rows: the first row (\"S ≤ {feed}\", handbook practice; spec [decide])"
+            "S = {feed} on the boundary of two rows: the first row (\"S ≤ {feed}\", as handbooks read it)"
         ));
     }
     if operation == "parting" && input.operation != Operation::PartingOff {
@@ -696,7 +694,7 @@ fn kv(
             None => {
                 if row.k[0] != row.k[1] {
                     step.defaults.push(format!(
-                        "K_nv range {}-{}: the lower bound (spec [decide]; --surface-factor gives another)",
+                        "K_nv range {}-{}: the lower bound (--surface-factor gives another)",
                         row.k[0], row.k[1]
                     ));
                 }

@@ -56,7 +56,7 @@ fn step(out: &mut String, number: &str, s: &Step) {
             c.table, c.row, c.column, c.value
         );
         if let Some(n) = &c.note {
-            let _ = write!(out, "   (doubt: {n})");
+            let _ = write!(out, "   (the printed table is unclear here: {n})");
         }
         out.push('\n');
     }

@@ -1,7 +1,7 @@
 //! Parameter- and subroutine-heavy interpretation: examples/hilbert-recursive.ngc (a Hilbert
 //! curve drawn by O-word recursion, order 7: 16,384 moves, ~137,000 executed blocks counting the
 //! O-word lines and assignments). Figures, and LinuxCNC's rs274 on the same file, go to the
-//! README's Performance section.
+//! docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use stanok_interp::{InterpOptions, Interpreter};

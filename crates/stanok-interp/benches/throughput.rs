@@ -1,5 +1,5 @@
 //! Parse-only and parse+interpret throughput on a generated 1,000,000-block program of lines and
-//! arcs (see program_gen.rs). Figures go to the README's Performance section.
+//! arcs (see program_gen.rs). Figures go to docs/performance.md.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use stanok_interp::{InterpOptions, Interpreter};

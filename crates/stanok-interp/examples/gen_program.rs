@@ -1,4 +1,4 @@
-//! Writes a generated program of N blocks to stdout (for the memory measurement in the README):
+//! Writes a generated program of N blocks to stdout (for the memory measurements in docs/performance.md):
 //! `cargo run --release -p stanok-interp --example gen_program -- 10000000 > big.ngc`
 
 #[path = "../benches/program_gen.rs"]

@@ -125,6 +125,21 @@ pub const BUILTIN_FIVE_AXIS: [(&str, &str); 6] = [
     ),
 ];
 
+/// The names of the built-in machines (`--machine NAME`), in the order `stanok machine list`
+/// shows them; [`MachineData::builtin`] knows each.
+pub const BUILTIN_MACHINES: [&str; 10] = [
+    "mill",
+    "lathe",
+    "beavermill",
+    "linuxcnc",
+    "5axis-bc-head",
+    "5axis-ab-head",
+    "5axis-ac-table",
+    "5axis-bc-head-table",
+    "millturn-bc",
+    "5axis-cvu-tt",
+];
+
 /// The AxiOMA M-function profiles a machine may name (`m_functions`): the generic table 2.2 and
 /// the BeaverMill BVR B-110 of table 2.3 / §8.1.
 pub const M_FUNCTION_PROFILES: [&str; 2] = ["generic", "beavermill"];
@@ -596,6 +611,12 @@ impl MachineData {
         }
     }
 
+    /// True for a lathe: a transverse (cross) axis and no Y axis. Its pictures are turning
+    /// drawings (Z right, X up).
+    pub fn is_lathe(&self) -> bool {
+        self.axes.iter().any(|a| a.transverse) && !self.axes.iter().any(|a| a.name == 'Y')
+    }
+
     /// The built-in `linuxcnc` machine: LinuxCNC's standalone `rs274` as a machine (X Y Z A B C,
     /// inch LinuxCNC units, the tool table of LinuxCNC's sim configurations), so that `stanok canon
     /// --machine linuxcnc` prints what `rs274 -g` prints (`machines/linuxcnc.toml`).
@@ -651,8 +672,7 @@ impl MachineData {
         };
         MachineData {
             name: "mill".into(),
-            description: "Built-in 3-axis vertical mill, travel generous enough for every corpus \
-                          example started at the origin"
+            description: "Built-in 3-axis vertical mill, travel ±500 mm in X and Y, ±300 mm in Z around the origin"
                 .into(),
             rapid_rate: 10_000.0,
             max_feed: 5_000.0,

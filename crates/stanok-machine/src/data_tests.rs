@@ -44,6 +44,18 @@ fn reads_a_good_file() {
 }
 
 #[test]
+fn every_listed_builtin_machine_loads_and_names_itself() {
+    for name in BUILTIN_MACHINES {
+        let m = MachineData::builtin(name).unwrap_or_else(|| panic!("{name}"));
+        assert_eq!(m.name, name);
+        assert!(!m.description.is_empty(), "{name}");
+    }
+    assert!(MachineData::builtin("lathe").unwrap().is_lathe());
+    assert!(!MachineData::builtin("mill").unwrap().is_lathe());
+    assert!(!MachineData::builtin("millturn-bc").unwrap().is_lathe());
+}
+
+#[test]
 fn machines_mill_toml_equals_the_builtin() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../machines/mill.toml");
     assert_eq!(MachineData::load(path), Ok(MachineData::default_mill()));

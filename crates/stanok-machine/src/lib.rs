@@ -33,9 +33,9 @@ mod tool_body;
 pub use control_write::perm_to_toml;
 pub use data::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, AxisData, AxisKind,
-    MachineData, PermParameters, StoredOffsets, BAD_DATA, BUILTIN_FIVE_AXIS,
+    MachineData, PermParameters, StoredOffsets, BAD_DATA, BUILTIN_FIVE_AXIS, BUILTIN_MACHINES,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
-pub use sim_motion::{AxisMotion, SetpointSink, SimOptions, SpindleRange};
+pub use sim_motion::{AxisMotion, FeedHoldReport, SetpointSink, SimOptions, SpindleRange};
 pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;

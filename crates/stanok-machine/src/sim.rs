@@ -70,7 +70,7 @@ impl BoundingBox {
 pub struct LoggedEvent {
     /// 1-based source line of the block.
     pub line: u32,
-    /// What happened, e.g. `M3 spindle 0 clockwise, 1200 rpm`.
+    /// What happened, e.g. `M3 spindle clockwise, 1200 rpm`.
     pub text: String,
 }
 
@@ -131,6 +131,11 @@ pub struct RunReport {
     /// Per spindle that turned: the range of its commanded speed over the setpoints (under G96 the
     /// speed the law gives at each position).
     pub spindles: Vec<crate::sim_motion::SpindleRange>,
+    /// A constant-surface-speed law (G96) was in force at some point of the run.
+    pub surface_speed: bool,
+    /// The operator's feed hold of the run (`SimOptions::feed_hold`): at machine time `at_s` for
+    /// `standstill_s` seconds; None without one.
+    pub feed_hold: Option<crate::sim_motion::FeedHoldReport>,
 }
 
 /// Executes Canon commands on a simulated machine (see the module doc).
@@ -147,6 +152,18 @@ pub struct SimMachine {
     /// positions are then tool poses, and the travel limits are checked on their joints.
     tcp: Option<FiveAxis>,
 }
+
+/// How the log names a spindle: the main one (Canon's 0) plainly, the others by their number
+/// counted from 1 (AxiOMA's S2…S4, LinuxCNC's `$1`… are spindles 2…).
+fn spindle_name(spindle: u8) -> String {
+    match spindle {
+        0 => "spindle".into(),
+        n => format!("spindle {}", u32::from(n) + 1),
+    }
+}
+
+/// The M-function log's entry for M9.
+const COOLANT_OFF: &str = "M9 coolant off";
 
 /// Which counter a straight move goes to.
 #[derive(Clone, Copy)]
@@ -216,6 +233,8 @@ impl SimMachine {
             violations: Vec::new(),
             violation_count: 0,
             spindles: Vec::new(),
+            surface_speed: false,
+            feed_hold: None,
         };
         let motion = MotionRun::new(&machine, &options);
         SimMachine {
@@ -327,7 +346,7 @@ impl SimMachine {
                 spindle, degrees, ..
             } => self.log(
                 line,
-                format!("M19 spindle {spindle} orient to {degrees} deg"),
+                format!("M19 {} orient to {degrees} deg", spindle_name(*spindle)),
             ),
             Canon::DigitalOutput { index, on, .. } => self.log(
                 line,
@@ -354,11 +373,24 @@ impl SimMachine {
                     Some(rpm) => format!(", {rpm} rpm"),
                     None => String::new(),
                 };
-                self.log(line, format!("{code} spindle {spindle} {sense}{speed}"));
+                self.log(
+                    line,
+                    format!("{code} {} {sense}{speed}", spindle_name(*spindle)),
+                );
             }
-            Canon::StopSpindle { spindle } => self.log(line, format!("M5 spindle {spindle} stop")),
-            Canon::Mist { on } => self.log(line, if *on { "M7 mist on" } else { "M9 mist off" }),
-            Canon::Flood { on } => self.log(line, if *on { "M8 flood on" } else { "M9 flood off" }),
+            Canon::StopSpindle { spindle } => {
+                self.log(line, format!("M5 {} stop", spindle_name(*spindle)))
+            }
+            Canon::Mist { on: true } => self.log(line, "M7 mist on"),
+            Canon::Flood { on: true } => self.log(line, "M8 flood on"),
+            // M9 switches mist and flood off together: one entry, not one per coolant.
+            Canon::Mist { on: false } | Canon::Flood { on: false } => {
+                let logged = self.report.m_functions.last();
+                if !logged.is_some_and(|e| e.line == line && e.text == COOLANT_OFF) {
+                    self.log(line, COOLANT_OFF);
+                }
+            }
+            Canon::SetSurfaceSpeedLaw { law: Some(_), .. } => self.report.surface_speed = true,
             Canon::ChangeTool { tool, .. } => {
                 if !self.report.tools_used.contains(tool) {
                     self.report.tools_used.push(*tool);

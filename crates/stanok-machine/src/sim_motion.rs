@@ -96,12 +96,24 @@ pub struct SpindleRange {
     pub max_rpm: f64,
 }
 
+/// The operator's feed hold in a run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FeedHoldReport {
+    /// Machine time the hold was pressed at, s.
+    pub at_s: f64,
+    /// How long the machine stood, s.
+    pub standstill_s: f64,
+    /// False when the program ended before `at_s`: the hold never happened.
+    pub happened: bool,
+}
+
 /// The motion part of a simulated run (module doc).
 pub(crate) struct MotionRun {
     stage: MotionStage,
     checks: SetpointChecks,
     limits: [AxisLimit; 9],
     feed_override: f64,
+    feed_hold: Option<(f64, f64)>,
     cycle_time: Option<f64>,
 }
 
@@ -175,6 +187,7 @@ impl MotionRun {
             },
             limits,
             feed_override: config.feed_override,
+            feed_hold: options.feed_hold,
             cycle_time: None,
         }
     }
@@ -241,6 +254,11 @@ impl MotionRun {
         r.servo_period_s = self.stage.servo_period();
         r.setpoints = c.monitor.count();
         r.feed_override_percent = self.feed_override * 100.0;
+        r.feed_hold = self.feed_hold.map(|(at_s, standstill_s)| FeedHoldReport {
+            at_s,
+            standstill_s,
+            happened: at_s < r.cycle_time_s,
+        });
         r.spindles = (0..4u8)
             .filter_map(|i| {
                 let (min_rpm, max_rpm) = c.spindle_rpm_range[i as usize]?;

@@ -281,14 +281,14 @@ fn logs_m_functions_tools_and_messages_with_lines() {
         log,
         vec![
             (2, "M6 tool change to T3"),
-            (3, "M3 spindle 0 clockwise, 1200 rpm"),
+            (3, "M3 spindle clockwise, 1200 rpm"),
             (4, "M8 flood on"),
             (5, "M6 tool change to T7"),
             (6, "M6 tool change to T3"),
             (7, "M73 auxiliary function (after motion)"),
             (8, "M1 optional stop"),
-            (9, "M5 spindle 0 stop"),
-            (9, "M9 flood off"),
+            (9, "M5 spindle stop"),
+            (9, "M9 coolant off"),
             (10, "pallet shuttle"),
             (10, "M2/M30 program end"),
         ]

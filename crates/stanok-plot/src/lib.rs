@@ -1,45 +1,52 @@
 //! # stanok-plot: the tool path as a drawing
 //!
-//! [`render_svg`] draws the motion of a Canon stream on one SVG sheet with four views in a 2×2 grid:
-//! XY (top), isometric, XZ (front) and YZ (side) (see `view.rs` for the arrangement). Rapids are
-//! dashed, feed moves solid in another colour; a dot marks the start point.
+//! A program is drawn in two streaming passes over its Canon stream, so that a program of any
+//! length plots in memory bounded by the picture:
 //!
-//! ## Algorithm
-//! 1. **Collect** the motion commands as segments (line, arc or spline, rapid or feed; a probe
-//!    move up to its contact point), in machine X Y Z.
-//!    Commands with a non-finite coordinate are skipped, so one bad number cannot blank the sheet.
-//! 2. **Bound** the path: end points plus the exact arc extrema (`Helix::bounding_box`).
-//! 3. **Fit**: one scale for the three orthographic views, the largest at which the box fits all of
-//!    them; the isometric view fits on its own.
-//! 4. **Draw** each view: consecutive segments of one kind become one `<path>` (class `rapid` or
-//!    `feed`), with `M` only where the pen must jump. Arcs are drawn true:
-//!    * in an orthographic view whose plane is parallel to a flat, constant-radius arc, as SVG
-//!      elliptical-arc commands `A r r 0 0 sweep x y`, split into pieces of at most 180° (so the
-//!      large-arc flag is always 0). The arc turns counter-clockwise about its axis; seen with y up
-//!      that is counter-clockwise on screen when the axis points at the viewer, which in SVG's
-//!      y-down coordinates is sweep flag 0;
-//!    * otherwise (helices, spirals, oblique views, the isometric view) as a polyline from
-//!      `Helix::tessellate` with a chord tolerance of min(`chord_tolerance`, 0.25 px).
+//! 1. **[`Extent`]** reads every command once and keeps only the box around the path (end points
+//!    plus the exact extrema of arcs, `Helix::bounding_box`, and splines, `Nurbs::bounding_box`)
+//!    and the start point.
+//! 2. **[`Sheet`]** is laid out from that box — one view or four (`view.rs`), the scale fitted so
+//!    that the box fills them, one scale for all orthographic views so that a point lines up across
+//!    them — and then reads every command again, drawing it into each view at once. Each view has
+//!    one path per *layer* and colour ([`Style`]): rapids dashed, feed moves solid, the programmed
+//!    contour under a compensated path, tool-axis ticks. `decimate.rs` simplifies each path while it
+//!    streams and, once the sheet holds many vertices, leaves out segments that would only ink
+//!    pixels already inked; a hard byte cap bounds the rest.
 //!
-//!    Splines (NURBS, the form of every spline in the stream) are polylines from
-//!    `Nurbs::tessellate` with the same tolerance; their box comes from `Nurbs::bounding_box`.
-//! 5. **Annotate** each view: title, direction arrows for its axes, a scale bar of a round length
-//!    (1, 2 or 5 × 10ⁿ mm) and the start marker.
+//! [`Sheet::finish`] writes the SVG document: a header with the title and the legend, then per view
+//! its frame and title, a grid with coordinates and the path's extents dimensioned (orthographic
+//! views), the layers, the start marker, direction arrows and a scale bar. [`png::render_png`] turns
+//! the SVG into a PNG with resvg.
+//!
+//! Arcs are drawn true: in an orthographic view whose plane is parallel to a flat, constant-radius
+//! arc, as SVG elliptical-arc commands `A r r 0 0 sweep x y`, split into pieces of at most 180° (so
+//! the large-arc flag is always 0). The arc turns counter-clockwise about its axis; seen with y up
+//! that is counter-clockwise on screen when the axis points at the viewer, which in SVG's y-down
+//! coordinates is sweep flag 0. Otherwise (helices, spirals, oblique views, the isometric view, a
+//! dense sheet) an arc is a polyline from `Helix::tessellate`, a spline one from
+//! `Nurbs::tessellate`, both within min(`chord_tolerance`, 0.15 px) of the curve; the path's
+//! simplification adds at most 0.1 px while the sheet is not dense.
 //!
 //! Invariants: the output is a well-formed SVG document for any input (an empty stream gives a
-//! sheet that says "no motion"); all text is escaped; all numbers are finite; the same input gives
-//! byte-identical output.
+//! sheet that says "no motion"); all text is escaped; all numbers are finite (a command with a
+//! non-finite coordinate is skipped, so one bad number cannot blank the sheet); the same input
+//! gives byte-identical output; the path data of the whole sheet never exceeds
+//! [`PlotOptions::max_path_bytes`].
 #![deny(missing_docs)]
 
+mod decimate;
+mod decor;
+pub mod png;
+mod sheet;
 mod svg;
 mod view;
 
-use stanok_canon::{Canon, Spanned, SplineMove};
-use stanok_geom::{dot, normalize, Helix, Nurbs, Vec3};
-use std::f64::consts::PI;
-use std::fmt::Write;
-use svg::{escape, num, PathData};
-use view::{Mapping, Projection, View};
+pub use sheet::Sheet;
+pub use view::ViewChoice;
+
+use stanok_canon::{Canon, Motion, Spanned, SplineMove};
+use stanok_geom::{Helix, Nurbs, Vec3};
 
 /// How to draw the sheet.
 #[derive(Debug, Clone, PartialEq)]
@@ -51,66 +58,106 @@ pub struct PlotOptions {
     /// Sheet height, px (at least 240 is used).
     pub height: u32,
     /// Largest deviation of a drawn arc from the true arc, mm. The renderer never uses more than
-    /// 0.25 px either, whichever is smaller.
+    /// 0.15 px either, whichever is smaller.
     pub chord_tolerance: f64,
-    /// A second stream whose feed moves are drawn under the path in their own colour: the
-    /// programmed contour when the path is the compensated tool centre (empty = none).
-    pub reference: Vec<Spanned<Canon>>,
-    /// A lathe program (X = radius, Z along the spindle): the front view becomes the lathe's ZX
-    /// view, Z to the right and X (radius) up, as a turning drawing is read.
+    /// Which views.
+    pub view: ViewChoice,
+    /// A lathe program (X = radius, Z along the spindle): in [`ViewChoice::All`] the front view
+    /// becomes the lathe's ZX view, Z to the right and X (radius) up, as a turning drawing is read.
     pub lathe: bool,
-    /// Tool-axis ticks of a 5-axis program: each from the tool tip along the tool vector, machine
-    /// X Y Z mm (empty = none). The caller computes them with the machine's kinematics.
-    pub tool_axis: Vec<[[f64; 3]; 2]>,
+    /// Vertices on the sheet after which it is drawn at the picture's resolution (`decimate.rs`).
+    pub dense_after: usize,
+    /// Most bytes of path data on the whole sheet; beyond it nothing more is drawn.
+    pub max_path_bytes: usize,
+    /// Extra legend entries (label, colour), e.g. for paths drawn with [`Sheet::draw_styled`].
+    pub legend: Vec<(String, Colour)>,
 }
 
 impl Default for PlotOptions {
-    /// Untitled, 1200 × 900 px, 0.01 mm.
+    /// Untitled, 1200 × 900 px, 0.01 mm, all views, dense after 200 000 vertices, at most 4.5 MB
+    /// of path data.
     fn default() -> Self {
         PlotOptions {
             title: String::new(),
             width: 1200,
             height: 900,
             chord_tolerance: 0.01,
-            reference: Vec::new(),
+            view: ViewChoice::All,
             lathe: false,
-            tool_axis: Vec::new(),
+            dense_after: 200_000,
+            max_path_bytes: 4_500_000,
+            legend: Vec::new(),
         }
     }
 }
 
-/// Rapid or feed: which class, colour and dash a segment gets.
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Kind {
-    Rapid,
-    Feed,
-    /// A feed move of the reference stream (the programmed contour).
+/// What a path element is, which decides its default colour, dash and drawing order (first below).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Layer {
+    /// A feed move of the programmed contour (drawn under a cutter-compensated path).
     Programmed,
+    /// A rapid move.
+    Rapid,
+    /// A feed move (lines, arcs, splines, probe moves, taps).
+    Feed,
     /// A short tick along the tool axis from the tip (5-axis programs).
     ToolAxis,
 }
 
-impl Kind {
-    /// Class and presentation attributes of a path of this kind.
-    fn attributes(self) -> &'static str {
-        match self {
-            Kind::Rapid => {
-                r##"class="rapid" fill="none" stroke="#e8590c" stroke-width="1" stroke-dasharray="6 4""##
-            }
-            Kind::Feed => r##"class="feed" fill="none" stroke="#1864ab" stroke-width="1.5""##,
-            Kind::Programmed => {
-                r##"class="programmed" fill="none" stroke="#ae3ec9" stroke-width="1" stroke-dasharray="2 2""##
-            }
-            Kind::ToolAxis => {
-                r##"class="tool-axis" fill="none" stroke="#2f9e44" stroke-width="1""##
-            }
-        }
+/// An sRGB colour.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Colour(pub [u8; 3]);
+
+impl Colour {
+    /// `#rrggbb`.
+    pub fn hex(self) -> String {
+        let [r, g, b] = self.0;
+        format!("#{r:02x}{g:02x}{b:02x}")
     }
 }
 
-/// One motion in machine X Y Z.
+/// How one path element is drawn: its layer, and a colour in place of the layer's own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Style {
+    /// Layer (class, dash, order).
+    pub layer: Layer,
+    /// Stroke colour; `None` = the layer's.
+    pub colour: Option<Colour>,
+}
+
+impl Style {
+    /// The layer's own look.
+    pub fn plain(layer: Layer) -> Self {
+        Style {
+            layer,
+            colour: None,
+        }
+    }
+
+    /// Class and presentation attributes of a path of this style.
+    fn attributes(self) -> String {
+        let (class, colour, rest) = match self.layer {
+            Layer::Rapid => (
+                "rapid",
+                "#e8590c",
+                r#"stroke-width="1" stroke-dasharray="6 4""#,
+            ),
+            Layer::Feed => ("feed", "#1864ab", r#"stroke-width="1.5""#),
+            Layer::Programmed => (
+                "programmed",
+                "#ae3ec9",
+                r#"stroke-width="1" stroke-dasharray="2 2""#,
+            ),
+            Layer::ToolAxis => ("tool-axis", "#2f9e44", r#"stroke-width="1""#),
+        };
+        let colour = self.colour.map_or_else(|| colour.to_string(), Colour::hex);
+        format!(r#"class="{class}" fill="none" stroke="{colour}" {rest}"#)
+    }
+}
+
+/// One motion in machine X Y Z, as it is drawn.
 #[derive(Debug, Clone)]
-enum Shape {
+pub(crate) enum Shape {
     Line(Vec3, Vec3),
     Arc(Helix),
     /// A spline (NURBS), drawn as a polyline within the chord tolerance of the exact curve.
@@ -125,44 +172,11 @@ impl Shape {
             Shape::Spline(s) => s.start.xyz(),
         }
     }
-}
 
-/// Step 1: the segments of the stream and the start point.
-fn collect(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>) {
-    let finite = |p: &[Vec3]| p.iter().flatten().all(|c| c.is_finite());
-    let mut segments = Vec::new();
-    let mut start = None;
-    for cmd in commands {
-        let seg = match &cmd.value {
-            Canon::Init { position, .. } => {
-                if start.is_none() && finite(&[position.xyz()]) {
-                    start = Some(position.xyz());
-                }
-                continue;
-            }
-            Canon::StraightTraverse(m) => (Kind::Rapid, Shape::Line(m.start.xyz(), m.end.xyz())),
-            Canon::StraightFeed(m) => (Kind::Feed, Shape::Line(m.start.xyz(), m.end.xyz())),
-            Canon::ArcFeed(a) => (
-                Kind::Feed,
-                Shape::Arc(Helix {
-                    start: a.start.xyz(),
-                    end: a.end.xyz(),
-                    centre: a.centre,
-                    axis: a.axis,
-                    turns: a.turns,
-                }),
-            ),
-            Canon::SplineFeed(s) => (Kind::Feed, Shape::Spline(Box::new(s.clone()))),
-            // A probe move ends where the probe trips.
-            Canon::StraightProbe {
-                motion, contact, ..
-            } => (
-                Kind::Feed,
-                Shape::Line(motion.start.xyz(), contact.unwrap_or(motion.end).xyz()),
-            ),
-            _ => continue,
-        };
-        let ok = match &seg.1 {
+    /// False when a coordinate is not finite or a spline is malformed: such a move is skipped.
+    fn is_drawable(&self) -> bool {
+        let finite = |p: &[Vec3]| p.iter().flatten().all(|c| c.is_finite());
+        match self {
             Shape::Line(a, b) => finite(&[*a, *b]),
             Shape::Arc(h) => finite(&[h.start, h.end, h.centre, h.axis]),
             Shape::Spline(s) => {
@@ -171,340 +185,166 @@ fn collect(commands: &[Spanned<Canon>]) -> (Vec<(Kind, Shape)>, Option<Vec3>) {
                         .validate()
                         .is_ok()
             }
-        };
-        if ok {
-            start.get_or_insert(seg.1.start());
-            segments.push(seg);
         }
     }
-    (segments, start)
-}
 
-/// Step 2: the box around the path and the start point.
-fn bounds(segments: &[(Kind, Shape)], start: Vec3) -> (Vec3, Vec3) {
-    let (mut lo, mut hi) = (start, start);
-    let mut include = |a: Vec3, b: Vec3| {
-        for i in 0..3 {
-            lo[i] = lo[i].min(a[i]);
-            hi[i] = hi[i].max(b[i]);
-        }
-    };
-    for (_, shape) in segments {
-        match shape {
-            Shape::Line(a, b) => {
-                include(*a, *a);
-                include(*b, *b);
-            }
-            Shape::Arc(h) => {
-                let (a, b) = h.bounding_box();
-                include(a, b);
-            }
+    /// The box around the shape.
+    fn bounds(&self) -> (Vec3, Vec3) {
+        match self {
+            Shape::Line(a, b) => (
+                std::array::from_fn(|i| a[i].min(b[i])),
+                std::array::from_fn(|i| a[i].max(b[i])),
+            ),
+            Shape::Arc(h) => h.bounding_box(),
             Shape::Spline(s) => {
-                let (a, b) =
-                    Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots).bounding_box();
-                include(a, b);
+                Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots).bounding_box()
             }
         }
     }
-    (lo, hi)
 }
 
-/// Renders the tool path of `commands` as an SVG sheet (see the crate doc).
-pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String {
-    let width = f64::from(options.width.max(320));
-    let height = f64::from(options.height.max(240));
-    let mut out = String::new();
-    let _ = write!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif">"#,
-        w = num(width),
-        h = num(height)
-    );
-    out.push_str(concat!(
-        r##"<defs><marker id="arrow" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="7" markerHeight="7" orient="auto-start-reverse">"##,
-        r##"<path d="M0 0L10 5L0 10z" fill="#343a40"/></marker></defs>"##
-    ));
-    let _ = write!(
-        out,
-        r##"<rect x="0" y="0" width="{}" height="{}" fill="#ffffff"/>"##,
-        num(width),
-        num(height)
-    );
-    let _ = write!(
-        out,
-        r##"<text class="sheet-title" x="12" y="26" font-size="18" fill="#212529">{}</text>"##,
-        escape(&options.title)
-    );
-    let (mut segments, start) = collect(commands);
-    // The reference's feed moves go first, so the path is drawn over them.
-    let (reference, _) = collect(&options.reference);
-    let with_reference = reference.iter().any(|(k, _)| *k == Kind::Feed);
-    if with_reference {
-        let mut all: Vec<(Kind, Shape)> = reference
-            .into_iter()
-            .filter(|(k, _)| *k == Kind::Feed)
-            .map(|(_, s)| (Kind::Programmed, s))
-            .collect();
-        all.append(&mut segments);
-        segments = all;
-    }
-    segments.extend(
-        options
-            .tool_axis
-            .iter()
-            .filter(|t| t.iter().flatten().all(|c| c.is_finite()))
-            .map(|t| (Kind::ToolAxis, Shape::Line(t[0], t[1]))),
-    );
-    match start {
-        Some(start) if !segments.is_empty() => {
-            legend(&mut out, width, with_reference);
-            let views = view::layout(width, height, HEADER, options.lathe);
-            let (lo, hi) = bounds(&segments, start);
-            let mappings = view::fit(&views, lo, hi);
-            let tolerance = options.chord_tolerance;
-            for (v, m) in views.iter().zip(&mappings) {
-                draw_view(&mut out, v, m, &segments, start, tolerance);
-            }
-        }
-        _ => {
-            let _ = write!(
-                out,
-                r##"<text class="no-motion" x="{}" y="{}" text-anchor="middle" font-size="20" fill="#868e96">no motion</text>"##,
-                num(width / 2.0),
-                num(height / 2.0)
-            );
-        }
-    }
-    out.push_str("</svg>\n");
-    out
-}
-
-/// Height of the sheet's header band, px.
-const HEADER: f64 = 40.0;
-
-/// The key in the header: what the line styles mean.
-fn legend(out: &mut String, width: f64, with_reference: bool) {
-    let x = width - 330.0;
-    if with_reference {
-        let _ = write!(
-            out,
-            r##"<g class="legend-programmed" font-size="13" fill="#212529"><path d="M{} 21H{}" {}/><text x="{}" y="25">programmed</text></g>"##,
-            num(x - 150.0),
-            num(x - 114.0),
-            Kind::Programmed.attributes(),
-            num(x - 108.0),
-        );
-    }
-    let _ = write!(
-        out,
-        concat!(
-            r##"<g class="legend" font-size="13" fill="#212529">"##,
-            r##"<path d="M{x0} 21H{x1}" {rapid}/><text x="{t0}" y="25">rapid</text>"##,
-            r##"<path d="M{x2} 21H{x3}" {feed}/><text x="{t1}" y="25">feed</text>"##,
-            r##"<circle cx="{x4}" cy="21" r="4" fill="#2f9e44"/><text x="{t2}" y="25">start</text></g>"##
-        ),
-        x0 = num(x),
-        x1 = num(x + 36.0),
-        t0 = num(x + 42.0),
-        x2 = num(x + 100.0),
-        x3 = num(x + 136.0),
-        t1 = num(x + 142.0),
-        x4 = num(x + 206.0),
-        t2 = num(x + 216.0),
-        rapid = Kind::Rapid.attributes(),
-        feed = Kind::Feed.attributes(),
-    );
-}
-
-/// Step 4 and 5 for one view.
-fn draw_view(
-    out: &mut String,
-    v: &View,
-    m: &Mapping,
-    segments: &[(Kind, Shape)],
-    start: Vec3,
-    chord_tolerance: f64,
-) {
-    let c = v.cell;
-    let _ = write!(
-        out,
-        r##"<g class="view" data-view="{id}" data-scale="{s}"><rect x="{x}" y="{y}" width="{w}" height="{h}" fill="none" stroke="#ced4da"/>"##,
-        id = v.id,
-        s = m.scale,
-        x = num(c.x + 0.5),
-        y = num(c.y + 0.5),
-        w = num(c.w - 1.0),
-        h = num(c.h - 1.0),
-    );
-    let _ = write!(
-        out,
-        r##"<text class="view-title" x="{}" y="{}" font-size="14" font-weight="bold" fill="#343a40">{}</text>"##,
-        num(c.x + 12.0),
-        num(c.y + 19.0),
-        escape(v.title)
-    );
-    let _ = write!(
-        out,
-        r#"<clipPath id="clip-{id}"><rect x="{x}" y="{y}" width="{w}" height="{h}"/></clipPath><g clip-path="url(#clip-{id})">"#,
-        id = v.id,
-        x = num(c.x + 1.0),
-        y = num(c.y + 1.0),
-        w = num(c.w - 2.0),
-        h = num(c.h - 2.0),
-    );
-    draw_path(out, v.projection, m, segments, chord_tolerance);
-    let p = m.to_screen(v.projection.project(start));
-    let _ = write!(
-        out,
-        r##"<circle class="start" cx="{}" cy="{}" r="4" fill="#2f9e44"/></g>"##,
-        num(p[0]),
-        num(p[1])
-    );
-    arrows(out, v);
-    scale_bar(out, v, m.scale);
-    out.push_str("</g>");
-}
-
-/// Step 4: the path elements of one view.
-fn draw_path(
-    out: &mut String,
-    projection: Projection,
-    m: &Mapping,
-    segments: &[(Kind, Shape)],
-    chord_tolerance: f64,
-) {
-    let screen = |p: Vec3| m.to_screen(projection.project(p));
-    // Finer than 0.25 px, and than the caller's tolerance when that is smaller.
-    let px_tolerance = 0.25 / m.scale;
-    let tolerance = if chord_tolerance > 0.0 {
-        chord_tolerance.min(px_tolerance)
-    } else {
-        px_tolerance
+/// The shapes a command draws, with their default layer (a rigid tap draws its way down and back).
+pub(crate) fn shapes(cmd: &Canon) -> Vec<(Layer, Shape)> {
+    let line = |a: &stanok_canon::Pose, b: &stanok_canon::Pose| Shape::Line(a.xyz(), b.xyz());
+    let shapes = match cmd.motion() {
+        None => return Vec::new(),
+        Some(Motion::Rapid(m)) => vec![(Layer::Rapid, line(&m.start, &m.end))],
+        Some(Motion::Line(m)) => vec![(Layer::Feed, line(&m.start, &m.end))],
+        Some(Motion::Arc(a)) => vec![(
+            Layer::Feed,
+            Shape::Arc(Helix {
+                start: a.start.xyz(),
+                end: a.end.xyz(),
+                centre: a.centre,
+                axis: a.axis,
+                turns: a.turns,
+            }),
+        )],
+        Some(Motion::Spline(s)) => vec![(Layer::Feed, Shape::Spline(Box::new(s.clone())))],
+        // A probe move ends where the probe trips.
+        Some(Motion::Probe { motion, contact }) => vec![(
+            Layer::Feed,
+            line(&motion.start, &contact.unwrap_or(motion.end)),
+        )],
+        Some(Motion::RigidTap { start, bottom }) => vec![
+            (Layer::Feed, line(&start, &bottom)),
+            (Layer::Feed, line(&bottom, &start)),
+        ],
     };
-    let mut data = PathData::default();
-    let mut points = Vec::new();
-    for (i, (kind, shape)) in segments.iter().enumerate() {
-        data.start_at(screen(shape.start()));
-        match shape {
-            Shape::Line(_, b) => data.line_to(screen(*b)),
-            Shape::Arc(h) => match flat_arc_sweep_flag(h, projection) {
-                Some(flag) => {
-                    let r = h.start_radius() * m.scale;
-                    let pieces = ((h.sweep() / PI) - 1e-9).ceil().max(1.0);
-                    let n = pieces as u32;
-                    for k in 1..=n {
-                        data.arc_to(r, flag, screen(h.point_at(f64::from(k) / pieces)));
-                    }
-                }
-                None => {
-                    points.clear();
-                    h.tessellate(tolerance, &mut points);
-                    for p in &points {
-                        data.line_to(screen(*p));
-                    }
-                }
-            },
-            Shape::Spline(s) => {
-                points.clear();
-                Nurbs::new(s.degree, &s.control_points, &s.weights, &s.knots)
-                    .tessellate(tolerance, &mut points);
-                for p in &points {
-                    data.line_to(screen(*p));
-                }
-            }
-        }
-        let last_of_run = !matches!(segments.get(i + 1), Some((next, _)) if next == kind);
-        if last_of_run && !data.is_empty() {
-            let _ = write!(out, r#"<path {} d="{}"/>"#, kind.attributes(), data.take());
-        }
-    }
-}
-
-/// The SVG sweep flag when `h` can be drawn with `A` commands in this view: a flat, constant-radius
-/// arc whose plane is parallel to the view plane; `None` otherwise.
-fn flat_arc_sweep_flag(h: &Helix, projection: Projection) -> Option<u8> {
-    let normal = projection.normal()?;
-    let axis = normalize(h.axis).unwrap_or([0.0, 0.0, 1.0]);
-    let facing = dot(axis, normal);
-    let r = h.start_radius();
-    let flat = h.axial_travel().abs() <= 1e-9 * r.max(1.0);
-    let round = (h.end_radius() - r).abs() <= 1e-9 * r.max(1.0);
-    if facing.abs() >= 1.0 - 1e-12 && flat && round {
-        Some(if facing > 0.0 { 0 } else { 1 })
-    } else {
-        None
-    }
-}
-
-/// Direction arrows of the view's axes, bottom left of the cell.
-fn arrows(out: &mut String, v: &View) {
-    const LEN: f64 = 26.0;
-    let arrows = v.projection.arrows();
-    // Raise the origin so that an arrow pointing down (the isometric X) keeps its label in the cell.
-    let drop = arrows
-        .iter()
-        .map(|(_, d)| -d[1] * (LEN + 14.0))
-        .fold(0.0, f64::max);
-    let origin = [v.cell.x + 30.0, v.cell.y + v.cell.h - 12.0 - drop];
-    out.push_str(r##"<g class="axes" font-size="12" fill="#343a40">"##);
-    for (letter, d) in arrows {
-        let tip = [origin[0] + d[0] * LEN, origin[1] - d[1] * LEN];
-        let label = [
-            origin[0] + d[0] * (LEN + 9.0),
-            origin[1] - d[1] * (LEN + 9.0) + 4.0,
-        ];
-        let _ = write!(
-            out,
-            r##"<path d="M{} {}L{} {}" stroke="#343a40" stroke-width="1.2" marker-end="url(#arrow)"/><text x="{}" y="{}" text-anchor="middle">{letter}</text>"##,
-            num(origin[0]),
-            num(origin[1]),
-            num(tip[0]),
-            num(tip[1]),
-            num(label[0]),
-            num(label[1]),
-        );
-    }
-    out.push_str("</g>");
-}
-
-/// The longest 1, 2 or 5 × 10ⁿ mm that is at most `max_mm`.
-fn round_length(max_mm: f64) -> f64 {
-    let decade = 10f64.powf(max_mm.log10().floor());
-    [5.0, 2.0, 1.0]
+    shapes
         .into_iter()
-        .map(|k| k * decade)
-        .find(|&l| l <= max_mm)
-        .unwrap_or(decade)
+        .filter(|(_, s)| s.is_drawable())
+        .collect()
 }
 
-/// A length for a label: as many decimals as a 1-2-5 length needs.
-fn length_label(mm: f64) -> String {
-    let decimals = (-mm.log10().floor()).clamp(0.0, 12.0) as usize;
-    format!("{mm:.decimals$} mm")
+/// Pass 1: the box around everything a sheet will draw, and the start point.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Extent {
+    lo: Vec3,
+    hi: Vec3,
+    /// Where the path starts: the `Init` position, else the first move's start.
+    start: Option<Vec3>,
+    /// Something will be drawn.
+    any: bool,
 }
 
-/// Scale bar of a round length, bottom right of the cell.
-fn scale_bar(out: &mut String, v: &View, scale: f64) {
-    let max_px = (v.plot.w / 3.0).min(160.0);
-    let mm = round_length(max_px / scale);
-    let px = mm * scale;
-    if !(px.is_finite() && px > 0.0) {
-        return;
+impl Extent {
+    /// An empty extent.
+    pub fn new() -> Self {
+        Self::default()
     }
-    let right = v.cell.x + v.cell.w - 20.0;
-    let y = v.cell.y + v.cell.h - 14.0;
-    let left = right - px;
-    let _ = write!(
-        out,
-        r##"<g class="scale-bar" data-mm="{mm}"><path d="M{l} {t}V{y}H{r}V{t}" fill="none" stroke="#343a40" stroke-width="1.2"/><text x="{cx}" y="{ty}" font-size="12" text-anchor="middle" fill="#343a40">{label}</text></g>"##,
-        l = num(left),
-        r = num(right),
-        y = num(y),
-        t = num(y - 5.0),
-        cx = num((left + right) / 2.0),
-        ty = num(y - 8.0),
-        label = length_label(mm),
-    );
+
+    /// Includes what `cmd` draws (and takes the start point from the first `Init` or move).
+    pub fn add(&mut self, cmd: &Canon) {
+        if let Canon::Init { position, .. } = cmd {
+            let p = position.xyz();
+            if self.start.is_none() && p.iter().all(|c| c.is_finite()) {
+                self.start = Some(p);
+            }
+            return;
+        }
+        for (_, shape) in shapes(cmd) {
+            if self.start.is_none() {
+                self.start = Some(shape.start());
+            }
+            let (a, b) = shape.bounds();
+            self.include(a, b);
+        }
+    }
+
+    /// Includes the feed moves of a reference stream (the programmed contour).
+    pub fn add_reference(&mut self, cmd: &Canon) {
+        for (layer, shape) in shapes(cmd) {
+            if layer == Layer::Feed {
+                let (a, b) = shape.bounds();
+                self.include(a, b);
+            }
+        }
+    }
+
+    /// Includes a tool-axis tick from `a` to `b` (machine X Y Z, mm).
+    pub fn add_tick(&mut self, a: Vec3, b: Vec3) {
+        if a.iter().chain(&b).all(|c| c.is_finite()) {
+            self.include(a, a);
+            self.include(b, b);
+        }
+    }
+
+    /// Includes everything `other` holds (its start point only if this one has none).
+    pub fn union(&mut self, other: &Extent) {
+        if other.any {
+            self.include(other.lo, other.hi);
+        }
+        if self.start.is_none() {
+            self.start = other.start;
+        }
+    }
+
+    fn include(&mut self, a: Vec3, b: Vec3) {
+        if !self.any {
+            (self.lo, self.hi) = (a, b);
+            self.any = true;
+        }
+        for i in 0..3 {
+            self.lo[i] = self.lo[i].min(a[i]);
+            self.hi[i] = self.hi[i].max(b[i]);
+        }
+    }
+
+    /// True when nothing will be drawn.
+    pub fn is_empty(&self) -> bool {
+        !self.any
+    }
+
+    /// The box (with the start point), or None when empty.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let (mut lo, mut hi) = (self.lo, self.hi);
+        if let Some(s) = self.start {
+            for i in 0..3 {
+                lo[i] = lo[i].min(s[i]);
+                hi[i] = hi[i].max(s[i]);
+            }
+        }
+        self.any.then_some((lo, hi))
+    }
+
+    /// The start point.
+    pub fn start(&self) -> Option<Vec3> {
+        self.start.or(self.any.then_some(self.lo))
+    }
+}
+
+/// Renders the tool path of a whole stream as an SVG sheet (both passes over the slice).
+pub fn render_svg(commands: &[Spanned<Canon>], options: &PlotOptions) -> String {
+    let mut extent = Extent::new();
+    for c in commands {
+        extent.add(&c.value);
+    }
+    let mut sheet = Sheet::new(options, &extent);
+    for c in commands {
+        sheet.draw(&c.value);
+    }
+    sheet.finish()
 }
 
 #[cfg(test)]

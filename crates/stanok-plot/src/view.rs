@@ -97,7 +97,7 @@ impl Projection {
 /// One view of the sheet.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct View {
-    /// Short id used in element ids and `data-view` (`xy`, `xz`, `yz`, `iso`).
+    /// Short id used in element ids and `data-view` (`xy`, `xz`, `yz`, `iso`, `zx`).
     pub(crate) id: &'static str,
     /// Shown above the view.
     pub(crate) title: &'static str,
@@ -108,64 +108,103 @@ pub(crate) struct View {
     pub(crate) plot: Rect,
 }
 
-/// Space inside a cell above the drawing (view title), below it (arrows, scale bar) and at the sides.
-const TITLE_BAND: f64 = 28.0;
-const FOOT_BAND: f64 = 46.0;
-const SIDE_MARGIN: f64 = 18.0;
+impl View {
+    /// True for the orthographic views, which get a grid and dimensioned extents.
+    pub(crate) fn is_orthographic(&self) -> bool {
+        self.projection != Projection::Iso
+    }
+}
 
-/// The four views for a sheet of `width` × `height` px with a header band of `header` px. For a
-/// lathe the front view is ZX: Z to the right, X (the radius) up.
-pub(crate) fn layout(width: f64, height: f64, header: f64, lathe: bool) -> [View; 4] {
-    let cw = width / 2.0;
-    let ch = (height - header) / 2.0;
-    let view = |id, title, projection, col: f64, row: f64| {
-        let cell = Rect {
-            x: col * cw,
-            y: header + row * ch,
-            w: cw,
-            h: ch,
-        };
-        let plot = Rect {
-            x: cell.x + SIDE_MARGIN,
-            y: cell.y + TITLE_BAND,
-            w: (cw - 2.0 * SIDE_MARGIN).max(1.0),
-            h: (ch - TITLE_BAND - FOOT_BAND).max(1.0),
-        };
-        View {
-            id,
-            title,
-            projection,
-            cell,
-            plot,
-        }
+/// Space inside a cell above the drawing (view title), below it (extent dimension, arrows, scale
+/// bar) and at the sides (left: the other extent dimension and grid labels).
+const TITLE_BAND: f64 = 28.0;
+const FOOT_BAND: f64 = 64.0;
+const LEFT_MARGIN: f64 = 66.0;
+const RIGHT_MARGIN: f64 = 20.0;
+
+/// The views a sheet can show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ViewChoice {
+    /// XY, isometric, XZ (or the lathe's ZX) and YZ in a 2 × 2 grid.
+    All,
+    /// XY (top) alone.
+    Xy,
+    /// XZ (front) alone.
+    Xz,
+    /// YZ (side) alone.
+    Yz,
+    /// The isometric view alone.
+    Iso,
+    /// The lathe's ZX view alone: Z to the right, X (the radius) up.
+    Lathe,
+}
+
+fn single(choice: ViewChoice) -> (&'static str, &'static str, Projection) {
+    match choice {
+        ViewChoice::Xy | ViewChoice::All => ("xy", "XY (top)", Projection::Ortho { h: 0, v: 1 }),
+        ViewChoice::Xz => ("xz", "XZ (front)", Projection::Ortho { h: 0, v: 2 }),
+        ViewChoice::Yz => ("yz", "YZ (side)", Projection::Ortho { h: 1, v: 2 }),
+        ViewChoice::Iso => ("iso", "isometric", Projection::Iso),
+        ViewChoice::Lathe => ("zx", LATHE_TITLE, Projection::Ortho { h: 2, v: 0 }),
+    }
+}
+
+const LATHE_TITLE: &str = "ZX (lathe: Z right, X radius up)";
+
+/// The views for a sheet of `width` × `height` px with a header band of `header` px: the 2 × 2
+/// grid for [`ViewChoice::All`] (for a lathe with the ZX view in place of XZ), else one view filling
+/// the sheet.
+pub(crate) fn layout(
+    width: f64,
+    height: f64,
+    header: f64,
+    choice: ViewChoice,
+    lathe: bool,
+) -> Vec<View> {
+    let grid = choice == ViewChoice::All;
+    let (cw, ch) = if grid {
+        (width / 2.0, (height - header) / 2.0)
+    } else {
+        (width, height - header)
     };
-    [
-        view("xy", "XY (top)", Projection::Ortho { h: 0, v: 1 }, 0.0, 0.0),
-        view("iso", "isometric", Projection::Iso, 1.0, 0.0),
-        if lathe {
-            view(
-                "zx",
-                "ZX (lathe: Z right, X radius up)",
-                Projection::Ortho { h: 2, v: 0 },
-                0.0,
-                1.0,
-            )
-        } else {
-            view(
-                "xz",
-                "XZ (front)",
-                Projection::Ortho { h: 0, v: 2 },
-                0.0,
-                1.0,
-            )
-        },
+    let view =
+        |(id, title, projection): (&'static str, &'static str, Projection), col: f64, row: f64| {
+            let cell = Rect {
+                x: col * cw,
+                y: header + row * ch,
+                w: cw,
+                h: ch,
+            };
+            let plot = Rect {
+                x: cell.x + LEFT_MARGIN,
+                y: cell.y + TITLE_BAND,
+                w: (cw - LEFT_MARGIN - RIGHT_MARGIN).max(1.0),
+                h: (ch - TITLE_BAND - FOOT_BAND).max(1.0),
+            };
+            View {
+                id,
+                title,
+                projection,
+                cell,
+                plot,
+            }
+        };
+    if !grid {
+        return vec![view(single(choice), 0.0, 0.0)];
+    }
+    vec![
+        view(single(ViewChoice::Xy), 0.0, 0.0),
+        view(single(ViewChoice::Iso), 1.0, 0.0),
         view(
-            "yz",
-            "YZ (side)",
-            Projection::Ortho { h: 1, v: 2 },
-            1.0,
+            single(if lathe {
+                ViewChoice::Lathe
+            } else {
+                ViewChoice::Xz
+            }),
+            0.0,
             1.0,
         ),
+        view(single(ViewChoice::Yz), 1.0, 1.0),
     ]
 }
 
@@ -185,10 +224,18 @@ impl Mapping {
             self.screen_centre[1] - (w[1] - self.world_centre[1]) * self.scale,
         ]
     }
+
+    /// The inverse of [`Mapping::to_screen`].
+    pub(crate) fn to_world(self, s: [f64; 2]) -> [f64; 2] {
+        [
+            self.world_centre[0] + (s[0] - self.screen_centre[0]) / self.scale,
+            self.world_centre[1] - (s[1] - self.screen_centre[1]) / self.scale,
+        ]
+    }
 }
 
 /// Extent (min, max) of the projections of the eight corners of a box.
-fn projected_extent(projection: Projection, lo: Vec3, hi: Vec3) -> ([f64; 2], [f64; 2]) {
+pub(crate) fn projected_extent(projection: Projection, lo: Vec3, hi: Vec3) -> ([f64; 2], [f64; 2]) {
     let mut min = [f64::INFINITY; 2];
     let mut max = [f64::NEG_INFINITY; 2];
     for corner in 0..8 {
@@ -224,26 +271,30 @@ fn fit_scale(views: &[View], lo: Vec3, hi: Vec3) -> f64 {
     }
 }
 
-/// Mappings for the four views of `layout`: one common scale for the orthographic ones.
-pub(crate) fn fit(views: &[View; 4], lo: Vec3, hi: Vec3) -> [Mapping; 4] {
+/// Mappings for the views of `layout`: one common scale for the orthographic ones, so that a
+/// point lines up across them; the isometric view fits on its own.
+pub(crate) fn fit(views: &[View], lo: Vec3, hi: Vec3) -> Vec<Mapping> {
     let ortho: Vec<View> = views
         .iter()
-        .filter(|v| v.projection != Projection::Iso)
+        .filter(|v| v.is_orthographic())
         .copied()
         .collect();
     let ortho_scale = fit_scale(&ortho, lo, hi);
-    views.map(|v| {
-        let scale = match v.projection {
-            Projection::Iso => fit_scale(&[v], lo, hi),
-            Projection::Ortho { .. } => ortho_scale,
-        };
-        let (min, max) = projected_extent(v.projection, lo, hi);
-        Mapping {
-            scale,
-            world_centre: [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0],
-            screen_centre: v.plot.centre(),
-        }
-    })
+    views
+        .iter()
+        .map(|v| {
+            let scale = match v.projection {
+                Projection::Iso => fit_scale(std::slice::from_ref(v), lo, hi),
+                Projection::Ortho { .. } => ortho_scale,
+            };
+            let (min, max) = projected_extent(v.projection, lo, hi);
+            Mapping {
+                scale,
+                world_centre: [(min[0] + max[0]) / 2.0, (min[1] + max[1]) / 2.0],
+                screen_centre: v.plot.centre(),
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -267,7 +318,7 @@ mod tests {
 
     #[test]
     fn orthographic_views_share_scale_and_align() {
-        let views = layout(1000.0, 840.0, 40.0, false);
+        let views = layout(1000.0, 840.0, 40.0, ViewChoice::All, false);
         let m = fit(&views, [0.0, 0.0, -10.0], [100.0, 50.0, 0.0]);
         assert_eq!(m[0].scale, m[2].scale);
         assert_eq!(m[0].scale, m[3].scale);

@@ -15,7 +15,7 @@
 //! program can make the interpreter hang.
 
 use crate::params::{normalise_name, Evaluator, Slot};
-use stanok_canon::Diagnostic;
+use stanok_canon::{Diagnostic, Span};
 use stanok_interp_core::CoreOptions as InterpOptions;
 use stanok_syntax::{Block, OKind, OLabel, SourcePos};
 use std::collections::HashMap;
@@ -61,6 +61,9 @@ enum Skip {
         label: String,
         args: Vec<f64>,
         return_pos: SourcePos,
+        /// The call (for the error if the definition never comes) and the files tried.
+        call: Span,
+        tried: Vec<std::path::PathBuf>,
     },
     IfBranch(String),
     ToEndIf(String),
@@ -129,11 +132,21 @@ pub struct Flow {
 
 /// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
 fn subroutine_file(label: &str, opts: &InterpOptions) -> Option<std::path::PathBuf> {
-    let name = label.strip_prefix('<')?.strip_suffix('>')?;
+    subroutine_candidates(label, opts)
+        .into_iter()
+        .find(|p| p.is_file())
+}
+
+/// Where subroutine `label` may be kept: `name.ngc` in each directory of the search path (none
+/// for a numbered subroutine, which has no file of its own).
+fn subroutine_candidates(label: &str, opts: &InterpOptions) -> Vec<std::path::PathBuf> {
+    let Some(name) = label.strip_prefix('<').and_then(|l| l.strip_suffix('>')) else {
+        return Vec::new();
+    };
     opts.subroutine_path
         .iter()
         .map(|dir| dir.join(format!("{name}.ngc")))
-        .find(|p| p.is_file())
+        .collect()
 }
 
 impl Flow {
@@ -208,10 +221,18 @@ impl Flow {
             )?;
             Ok(FlowAction::CallFile { path, label })
         } else {
+            let tried = subroutine_candidates(&label, opts);
+            let call = block
+                .oword
+                .as_ref()
+                .map(|o| block.span_of(o.span))
+                .unwrap_or_else(|| block.span());
             self.skip = Some(Skip::FindSub {
                 label,
                 args,
                 return_pos: next,
+                call,
+                tried,
             });
             Ok(FlowAction::Skip)
         }
@@ -560,6 +581,7 @@ impl Flow {
                 label: wanted,
                 args,
                 return_pos,
+                ..
             } => {
                 if matches!(kind, OKind::Sub) {
                     let key = self.sub_key(&label);
@@ -609,9 +631,41 @@ impl Flow {
     /// The error for a construct still open at end of file, if any.
     pub fn unterminated(&self, last: &Block) -> Option<Diagnostic> {
         let msg = match &self.skip {
-            // LinuxCNC's wording (it also names the file and the calling line).
-            Some(Skip::FindSub { label, .. }) => {
-                format!("EOF in file seeking o-word: o{label} (the subroutine is not defined)")
+            // LinuxCNC's wording, located at the call (the end of the file only shows that the
+            // definition never came), with where it was looked for and what to do.
+            Some(Skip::FindSub {
+                label, call, tried, ..
+            }) => {
+                let mut d = Diagnostic::error(
+                    "flow::unterminated",
+                    format!(
+                        "EOF in file seeking o-word: o{label} from line: {}",
+                        call.line
+                    ),
+                    *call,
+                );
+                d = d.with_note(format!(
+                    "subroutine o{label} is not defined: looked for `o{label} sub` in the rest of the program{}",
+                    if tried.is_empty() {
+                        String::new()
+                    } else {
+                        format!(
+                            " and in {}",
+                            tried
+                                .iter()
+                                .map(|p| p.display().to_string())
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        )
+                    }
+                ));
+                if label.starts_with('<') {
+                    let name = label.trim_start_matches('<').trim_end_matches('>');
+                    d = d.with_note(format!(
+                        "a subroutine in its own file `{name}.ngc` is found with --subroutine-path DIR"
+                    ));
+                }
+                return Some(d);
             }
             // A definition without its endsub swallows the rest of the file; LinuxCNC then
             // reports the missing program end.

@@ -241,13 +241,15 @@ impl GCodes {
     }
 }
 
-fn unsupported(cx: &Ctx<'_>, what: &str, issue: &str, at: ColSpan) -> Diagnostic {
+/// `_area`: the part of the language it belongs to (for readers of the code; users are told only
+/// that it is not implemented).
+fn unsupported(cx: &Ctx<'_>, what: &str, _area: &str, at: ColSpan) -> Diagnostic {
     cx.err(
         "interp::unsupported",
         format!("{what} is not supported yet"),
         at,
     )
-    .with_note(format!("planned in the issue on {issue}"))
+    .with_note("not implemented in this version of Stanok")
 }
 
 /// Sorts the block's G codes into groups, into `g` (fresh from `GCodes::new`). An out-parameter:

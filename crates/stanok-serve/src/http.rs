@@ -1,7 +1,7 @@
 //! The HTTP side: the page, the JSON API, the WebSocket, and the access rules.
 //!
 //! Every control of the page is one small JSON call, so the tests drive the panel exactly as the
-//! page does (README, "Operator panel", lists them). Handlers never run the machine: they set a
+//! page does (docs/panel.md lists them). Handlers never run the machine: they set a
 //! switch or send an event to the machine thread and return at once; checking and previewing
 //! (which run the interpreter) go to tokio's blocking pool.
 //!

@@ -3,7 +3,7 @@
 //! AxiOMA part programs mix ISO blocks with statements of a C-like language (spec `axioma-1` §3
 //! proposal 1: a line is either an ISO block or HLL statements; `;` and `*` start comments only in
 //! ISO blocks). The HLL manual is not available, so the language is what a C programmer expects;
-//! the reference is README.md "AxiOMA high-level language".
+//! the reference is docs/axioma.md, "The high-level language".
 //!
 //! A line of HLL is a sequence of [`HItem`]s: declarations, expression statements, the *headers*
 //! of `if`/`else`/`for`/`while`/`do`, and the braces `{` `}`. Control structure that spans lines

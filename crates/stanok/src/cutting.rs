@@ -1,7 +1,7 @@
 //! `stanok cutting turn`: the command-line arguments to a `stanok_cutting::TurningInput`, the
 //! calculation, and its output as text or JSON.
 
-use crate::cli::{MaterialArg, OperationArg, PassArg, TurnArgs};
+use crate::cli_cutting::{MaterialArg, OperationArg, PassArg, TurnArgs};
 use stanok_cutting::{
     calculate, DepthInput, Operation, PassKind, Tables, TurningInput, WorkMaterial,
 };

@@ -6,39 +6,50 @@
 //! `stanok-machine`.
 //!
 //! Machine data: `--machine` names the machine, `--tools` / `--offsets` replace its tool table /
-//! offsets (LinuxCNC `.tbl` / `.var`, or Stanok `.toml`), `load_machine` reads and checks them
-//! before anything runs, `control_data` is what the interpreter receives, and `stanok machine show`
-//! prints the result (`machine_show.rs`).
+//! offsets (LinuxCNC `.tbl` / `.var`, or Stanok `.toml`), `program::load_machine` reads and checks
+//! them before anything runs, and `stanok machine show` prints the result (`machine_show.rs`).
+//! Programs: `program::open` reads a file or standard input (`source.rs`) and decides the dialect
+//! (`dialect.rs`). Exit status: 0 ok, 1 an error in the program or a data file, 2 the command
+//! line or a file could not be used (`cli.rs`).
 
+mod check;
 mod cli;
+mod cli_args;
+mod cli_cutting;
 mod cutting;
 mod diagnostics;
+mod dialect;
+mod hints;
+mod machine_list;
 mod machine_show;
 mod perm;
+mod plot;
+mod program;
 mod progress;
 mod report;
+mod source;
 mod tool_axis;
 mod trace;
 
-use clap::Parser;
-use cli::{
-    CanonFormat, Cli, Command, CuttingCommand, MachineArgs, MachineCommand, MotionArgs, VarArgs,
-};
-use machine_show::{DataSource, Sources};
-use stanok_canon::setup::ControlData;
-use stanok_canon::{linuxcnc::LinuxCncPrinter, Canon, Diagnostic, Spanned};
-use stanok_interp::{InterpOptions, Interpreter};
-use stanok_machine::files::{load_offset_file, load_tool_file, DataFileKind};
+use clap::{CommandFactory, Parser};
+use cli::{CanonFormat, Cli, ColourArgs, Command, MachineCommand};
+use cli_args::{MachineArgs, MotionArgs, ProgramArgs, VarArgs};
+use cli_cutting::CuttingCommand;
+use dialect::Choice;
+use source::Program;
+use stanok_canon::linuxcnc::LinuxCncPrinter;
+use stanok_canon::Diagnostic;
+use stanok_interp::Interpreter;
 use stanok_machine::{linuxcnc, MachineData, SimMachine, SimOptions, StoredOffsets};
 use stanok_machine::{OverrideChange, OverrideKind};
 use stanok_syntax::Dialect;
-use std::fs::File;
-use std::io::{BufReader, BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::io::{BufWriter, Write};
+use std::path::Path;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    diagnostics::set_colour(verb_colour(&cli.command).when.or(cli.colour.when));
     match run(cli) {
         Ok(code) => code,
         Err(message) => {
@@ -48,24 +59,51 @@ fn main() -> ExitCode {
     }
 }
 
+/// The verb's own `--color`, if it has one.
+fn verb_colour(command: &Command) -> ColourArgs {
+    match command {
+        Command::Check { colour, .. }
+        | Command::Run { colour, .. }
+        | Command::Canon { colour, .. }
+        | Command::Convert { colour, .. }
+        | Command::Serve { colour, .. }
+        | Command::Machine {
+            command: MachineCommand::Show { colour, .. },
+        } => *colour,
+        _ => ColourArgs { when: None },
+    }
+}
+
 fn run(cli: Cli) -> Result<ExitCode, String> {
     match cli.command {
         Command::Check {
-            file,
+            files,
             dialect,
+            json,
             machine,
-        } => check(&file, dialect.map(Into::into), &machine),
+            program,
+            ..
+        } => check::check(
+            &files,
+            dialect.dialect.map(Into::into),
+            json,
+            &machine,
+            &program,
+        ),
         Command::Run {
             file,
             dialect,
-            machine,
             json,
+            machine,
+            program,
             var,
             motion,
+            ..
         } => run_program(
             &file,
-            dialect.map(Into::into),
+            dialect.dialect.map(Into::into),
             &machine,
+            &program,
             json,
             &var,
             &motion,
@@ -75,23 +113,45 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             dialect,
             format,
             machine,
+            program,
             var,
-        } => canon(&file, dialect.map(Into::into), format, &machine, &var),
+            ..
+        } => canon(
+            &file,
+            dialect.dialect.map(Into::into),
+            format,
+            &machine,
+            &program,
+            &var,
+        ),
         Command::Plot {
             file,
             dialect,
             output,
+            view,
+            size,
             machine,
-        } => plot(&file, dialect.map(Into::into), &output, &machine),
+            program,
+        } => plot::plot(
+            &file,
+            dialect.dialect.map(Into::into),
+            output.as_deref(),
+            view,
+            size,
+            &machine,
+            &program,
+        ),
         Command::Serve {
             bind,
             token,
             programs,
             upload_limit,
             time_scale,
+            probe_surface,
             machine,
+            ..
         } => {
-            let machine = match load_machine(&machine) {
+            let machine = match program::load_machine(&machine, &probe_surface) {
                 Ok((m, _)) => m,
                 Err(code) => return Ok(code),
             };
@@ -105,6 +165,16 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             Ok(ExitCode::SUCCESS)
         }
         Command::Machine {
+            command: MachineCommand::List { json },
+        } => {
+            write_stdout(&if json {
+                machine_list::json()
+            } else {
+                machine_list::text()
+            })?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Machine {
             command:
                 MachineCommand::Show {
                     machine,
@@ -112,6 +182,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
                     toml,
                     tbl,
                     var,
+                    ..
                 },
         } => {
             let format = match (json, toml, tbl, var) {
@@ -130,24 +201,46 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output,
             chord_tolerance,
             machine,
+            program,
+            ..
         } => convert(
             &file,
-            dialect.map(Into::into),
+            dialect.dialect.map(Into::into),
             to.into(),
             output.as_deref(),
             chord_tolerance,
             &machine,
+            &program,
         ),
         Command::Cutting {
             command: CuttingCommand::Turn(args),
         } => cutting::turn(&args),
+        Command::Completions { shell } => {
+            let mut out = Vec::new();
+            clap_complete::generate(shell, &mut Cli::command(), "stanok", &mut out);
+            write_stdout_bytes(&out)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Man => {
+            let mut out = Vec::new();
+            clap_mangen::Man::new(Cli::command())
+                .render(&mut out)
+                .map_err(|e| e.to_string())?;
+            write_stdout_bytes(&out)?;
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }
 
 /// Writes to stdout; a closed pipe (`stanok … | head`) ends the program quietly instead of panicking.
 fn write_stdout(text: &str) -> Result<(), String> {
+    write_stdout_bytes(text.as_bytes())
+}
+
+/// [`write_stdout`] for bytes (a PNG, a man page).
+fn write_stdout_bytes(bytes: &[u8]) -> Result<(), String> {
     let mut out = std::io::stdout().lock();
-    match out.write_all(text.as_bytes()).and_then(|_| out.flush()) {
+    match out.write_all(bytes).and_then(|_| out.flush()) {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => std::process::exit(0),
         Err(e) => Err(e.to_string()),
@@ -162,83 +255,6 @@ fn quiet_on_broken_pipe(e: std::io::Error) -> Result<ExitCode, String> {
     }
 }
 
-/// The stored data the interpreter reads (tool table, offset tables, preset parameters): the
-/// machine's own, or what `--tools` / `--offsets` replaced it with.
-fn control_data(machine: &MachineData) -> ControlData {
-    machine.control.clone()
-}
-
-/// Opens a program and builds its interpreter.
-fn interpreter(
-    file: &Path,
-    dialect: Option<Dialect>,
-    machine: &MachineData,
-    check_mode: bool,
-    args: &MachineArgs,
-) -> Result<(Interpreter<BufReader<File>>, Dialect), String> {
-    let dialect = dialect.unwrap_or_else(|| Dialect::from_path(file));
-    let f = File::open(file).map_err(|e| format!("cannot open {}: {e}", file.display()))?;
-    let mut opts = InterpOptions::new(dialect);
-    opts.axes = machine.axis_mask();
-    opts.arc_tolerance_mm = machine.arc_tolerance;
-    opts.continue_after_error = check_mode;
-    opts.control = control_data(machine);
-    opts.diameter_axes = machine.diameter_axes();
-    opts.rs274_machine_units = machine.linuxcnc_units;
-    if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
-        opts.axioma.m_table = table;
-    }
-    opts.axioma
-        .set_table_entries(&machine.feed_table, &machine.speed_table);
-    opts.subroutine_path = args.subroutine_path.clone();
-    opts.optional_stop = !args.skip_optional_stops;
-    if let Some(n) = args.max_loop_iterations {
-        opts.max_loop_iterations = n;
-    }
-    opts.strip_fixture_comments = args.strip_fixture_comments;
-    opts.labs.correctors.extend(args.corrector.iter().copied());
-    // Tool-centre-point control needs the machine's kinematics, and the machine's permission.
-    opts.five_axis = machine.tcp_kinematics();
-    opts.ttpc_workpiece_frame = machine.ttpc_workpiece_frame();
-    Ok((Interpreter::new(BufReader::new(f), opts), dialect))
-}
-
-/// The machine named by `--machine`, with its tools and offsets replaced by `--tools` and
-/// `--offsets`, and where each part came from. A bad file is reported (file:line:column) and gives
-/// exit status 1.
-fn load_machine(args: &MachineArgs) -> Result<(MachineData, Sources), ExitCode> {
-    let fail = |path: &Path, d: &Diagnostic| {
-        diagnostics::render(path, d);
-        ExitCode::from(1)
-    };
-    let mut machine = match MachineData::builtin(&args.machine) {
-        Some(m) => m,
-        None => {
-            let path = PathBuf::from(&args.machine);
-            MachineData::load(&path).map_err(|d| fail(&path, &d))?
-        }
-    };
-    if let Some(u) = args.linuxcnc_units {
-        machine.linuxcnc_units = u.into();
-    }
-    if !args.probe_surface.is_empty() {
-        machine.control.probe_surfaces = args.probe_surface.clone();
-    }
-    let units = machine.linuxcnc_units;
-    let mut sources = Sources::machine(&machine.name);
-    if let Some(path) = &args.tools {
-        machine.control.tools = load_tool_file(path, units).map_err(|d| fail(path, &d))?;
-        sources.tools = DataSource::file(path, DataFileKind::of(path), units);
-    }
-    if let Some(path) = &args.offsets {
-        let stored = load_offset_file(path, units).map_err(|d| fail(path, &d))?;
-        machine.control.offsets = stored.offsets;
-        machine.control.parameters = stored.parameters;
-        sources.offsets = DataSource::file(path, DataFileKind::of(path), units);
-    }
-    Ok((machine, sources))
-}
-
 /// What `stanok machine show` prints.
 enum ShowFormat {
     Text,
@@ -249,7 +265,7 @@ enum ShowFormat {
 }
 
 fn machine_show(args: &MachineArgs, format: ShowFormat) -> Result<ExitCode, String> {
-    let (machine, sources) = match load_machine(args) {
+    let (machine, sources) = match program::load_machine(args, &[]) {
         Ok(m) => m,
         Err(code) => return Ok(code),
     };
@@ -271,78 +287,34 @@ fn machine_show(args: &MachineArgs, format: ShowFormat) -> Result<ExitCode, Stri
     Ok(ExitCode::SUCCESS)
 }
 
-fn check(file: &Path, dialect: Option<Dialect>, args: &MachineArgs) -> Result<ExitCode, String> {
-    let machine = match load_machine(args) {
-        Ok((m, _)) => m,
-        Err(code) => return Ok(code),
-    };
-    let (mut interp, _) = interpreter(file, dialect, &machine, true, args)?;
-    let mut errors = Vec::new();
-    // A bad block inside a loop fails on every pass (AxiOMA `for`, RS274/NGC `o… while`): each
-    // error is listed once.
-    let mut seen = std::collections::HashSet::new();
-    for item in interp.by_ref() {
-        if let Err(d) = item {
-            if seen.insert((
-                d.code.to_string(),
-                d.span.start,
-                d.span.end,
-                d.message.clone(),
-            )) {
-                errors.push(d);
-            }
-        }
-    }
-    let mut all: Vec<Diagnostic> = interp.take_warnings();
-    all.extend(errors.iter().cloned());
-    all.sort_by_key(|d| (d.span.line, d.span.column));
-    for d in &all {
-        diagnostics::render(file, d);
-    }
-    let warnings = all.len() - errors.len();
-    if errors.is_empty() {
-        eprintln!("{}: ok ({warnings} warning(s))", file.display());
-        Ok(ExitCode::SUCCESS)
-    } else {
-        eprintln!(
-            "{}: {} error(s), {warnings} warning(s)",
-            file.display(),
-            errors.len()
-        );
-        Ok(ExitCode::from(1))
-    }
-}
-
 /// `--var FILE`: the machine with its offsets replaced by the parameter file's, if the file exists
 /// (a missing file is created after the run, from the machine's offsets). Only for RS274/NGC.
 /// `--perm FILE` (AxiOMA) is read here too (`perm.rs`).
-fn load_var(
-    file: &Path,
-    dialect: Option<Dialect>,
-    var: &VarArgs,
-    machine: &mut MachineData,
-) -> Result<(), ExitCode> {
-    perm::load(file, dialect, var, machine)?;
+fn load_var(dialect: Dialect, var: &VarArgs, machine: &mut MachineData) -> Result<(), ExitCode> {
+    perm::load(dialect, var, machine)?;
     let Some(path) = &var.var else {
         return Ok(());
     };
-    let refuse = |why: &str| {
-        eprintln!("error: --var {}: {why}", path.display());
-        ExitCode::from(2)
-    };
-    if dialect.unwrap_or_else(|| Dialect::from_path(file)) != Dialect::Rs274ngc {
-        return Err(refuse(
-            "a LinuxCNC parameter file is for RS274/NGC programs",
-        ));
+    if dialect != Dialect::Rs274ngc {
+        return Err(program::refuse(format_args!(
+            "--var {}: a LinuxCNC parameter file is for RS274/NGC programs",
+            path.display()
+        )));
     }
-    if DataFileKind::of(path) != Some(DataFileKind::LinuxCncParameters) {
-        return Err(refuse("the file must be a LinuxCNC parameter file (.var)"));
+    if stanok_machine::files::DataFileKind::of(path)
+        != Some(stanok_machine::files::DataFileKind::LinuxCncParameters)
+    {
+        return Err(program::refuse(format_args!(
+            "--var {}: the file must be a LinuxCNC parameter file (.var)",
+            path.display()
+        )));
     }
     if path.exists() {
-        let stored = load_offset_file(path, machine.linuxcnc_units).map_err(|d| {
-            diagnostics::render(path, &d);
-            ExitCode::from(1)
-        })?;
+        let stored = stanok_machine::files::load_offset_file(path, machine.linuxcnc_units)
+            .map_err(|d| {
+                diagnostics::render_path(path, &d);
+                program::program_error()
+            })?;
         machine.control.offsets = stored.offsets;
         machine.control.parameters = stored.parameters;
     }
@@ -369,36 +341,56 @@ fn save_var<R: std::io::BufRead + std::io::Seek>(
         .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
+/// The machine, the program and its dialect for the verbs that run one; `Err` is the exit status.
+fn prepare(
+    file: &Path,
+    dialect: Option<Dialect>,
+    args: &MachineArgs,
+    program_args: &ProgramArgs,
+) -> Result<(MachineData, Program, Choice), ExitCode> {
+    let (machine, _) = program::load_machine(args, &program_args.probe_surface)?;
+    let (program, choice) = program::open(file, dialect)?;
+    Ok((machine, program, choice))
+}
+
 fn run_program(
     file: &Path,
     dialect: Option<Dialect>,
     args: &MachineArgs,
+    program_args: &ProgramArgs,
     json: bool,
     var: &VarArgs,
     motion: &MotionArgs,
 ) -> Result<ExitCode, String> {
     let options = match sim_options(motion) {
         Ok(o) => o,
-        Err(why) => {
-            eprintln!("error: {why}");
-            return Ok(ExitCode::from(2));
-        }
+        Err(why) => return Ok(program::refuse(why)),
     };
-    let mut machine = match load_machine(args) {
-        Ok((m, _)) => m,
+    let (mut machine, program, choice) = match prepare(file, dialect, args, program_args) {
+        Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    if let Err(code) = load_var(file, dialect, var, &mut machine) {
+    program::say_dialect(&choice);
+    let dialect = choice.dialect;
+    if let Err(code) = load_var(dialect, var, &mut machine) {
         return Ok(code);
     }
     let units = machine.linuxcnc_units;
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
+    let opts = program::options(dialect, &machine, false, program_args);
+    let mut interp = match program::interpreter(&program, opts) {
+        Ok(i) => i,
+        Err(code) => return Ok(code),
+    };
     let trace = match &motion.trace {
-        Some(path) => Some(trace::TraceWriter::create(path, &machine)?),
+        Some(path) => match trace::TraceWriter::create(path, &machine) {
+            Ok(t) => Some(t),
+            Err(why) => return Ok(program::refuse(why)),
+        },
         None => None,
     };
+    let machine_for_hints = machine.clone();
     let mut sim = SimMachine::with_options(machine, options);
-    let progress = progress::Progress::new(file);
+    let progress = progress::Progress::new(program.len());
     sim.set_setpoint_sink(trace::sink(trace.clone(), progress.clone()));
     let mut failure: Option<Diagnostic> = None;
     for item in interp.by_ref() {
@@ -412,28 +404,35 @@ fn run_program(
         }
     }
     save_var(var, &interp, units)?;
-    let warnings = interp.take_warnings();
+    let mut warnings = interp.take_warnings();
     let mut rep = sim.finish();
     progress.done();
     if let Some(t) = &trace {
         t.close()?;
     }
     rep.blocks = interp.stats().blocks_executed;
+    for d in warnings.iter_mut().chain(failure.as_mut()) {
+        hints::enrich(d, &machine_for_hints);
+    }
+    let name = program.display();
     if json {
-        let mut out = report::json(file, dialect, &rep, failure.as_ref(), &warnings);
+        let mut out = report::json(&name, dialect, &rep, failure.as_ref(), &warnings);
         out.push('\n');
         write_stdout(&out)?;
     } else {
         for w in &warnings {
-            diagnostics::render(file, w);
+            diagnostics::render(&program, w);
         }
         if let Some(d) = &failure {
-            diagnostics::render(file, d);
+            diagnostics::render(&program, d);
         }
-        write_stdout(&report::text(file, dialect, &rep, failure.as_ref()))?;
+        write_stdout(&report::text(&name, dialect, &rep, failure.as_ref()))?;
+        if failure.is_some() && choice.guessed {
+            check::hint_after_run(&program, dialect, &machine_for_hints, program_args);
+        }
     }
     Ok(if failure.is_some() {
-        ExitCode::from(1)
+        program::program_error()
     } else {
         ExitCode::SUCCESS
     })
@@ -510,8 +509,8 @@ fn sim_options(m: &MotionArgs) -> Result<SimOptions, String> {
         lookahead: m.lookahead,
         feed_hold,
         profile: m.profile.map(|p| match p {
-            cli::ProfileArg::Soft => stanok_canon::AccelerationProfile::Soft,
-            cli::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
+            cli_args::ProfileArg::Soft => stanok_canon::AccelerationProfile::Soft,
+            cli_args::ProfileArg::Brisk => stanok_canon::AccelerationProfile::Brisk,
         }),
         override_changes,
     })
@@ -567,16 +566,22 @@ fn canon(
     dialect: Option<Dialect>,
     format: Option<CanonFormat>,
     args: &MachineArgs,
+    program_args: &ProgramArgs,
     var: &VarArgs,
 ) -> Result<ExitCode, String> {
-    let mut machine = match load_machine(args) {
-        Ok((m, _)) => m,
+    let (mut machine, program, choice) = match prepare(file, dialect, args, program_args) {
+        Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    if let Err(code) = load_var(file, dialect, var, &mut machine) {
+    let dialect = choice.dialect;
+    if let Err(code) = load_var(dialect, var, &mut machine) {
         return Ok(code);
     }
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
+    let opts = program::options(dialect, &machine, false, program_args);
+    let mut interp = match program::interpreter(&program, opts) {
+        Ok(i) => i,
+        Err(code) => return Ok(code),
+    };
     // LinuxCNC's rs274 knows all nine axes whatever the machine: keep its traces comparable.
     let format = format.unwrap_or(match dialect {
         Dialect::Rs274ngc => CanonFormat::Linuxcnc,
@@ -613,97 +618,21 @@ fn canon(
     }
     drop(out);
     save_var(var, &interp, machine.linuxcnc_units)?;
-    for w in interp.take_warnings() {
-        diagnostics::render(file, &w);
+    for mut w in interp.take_warnings() {
+        hints::enrich(&mut w, &machine);
+        diagnostics::render(&program, &w);
     }
-    if let Some(d) = failure {
-        diagnostics::render(file, &d);
-        return Ok(ExitCode::from(1));
+    if let Some(mut d) = failure {
+        hints::enrich(&mut d, &machine);
+        diagnostics::render(&program, &d);
+        return Ok(program::program_error());
     }
-    Ok(ExitCode::SUCCESS)
-}
-
-/// The programmed contour of a program that uses cutter radius compensation: the same program run
-/// with every tool radius 0 (compensation then offsets by nothing). Empty when it moves exactly as
-/// the compensated run does (no compensation) or cannot be run.
-fn programmed_contour(
-    file: &Path,
-    dialect: Option<Dialect>,
-    machine: &MachineData,
-    args: &MachineArgs,
-    compensated: &[Spanned<Canon>],
-) -> Vec<Spanned<Canon>> {
-    let mut zero = machine.clone();
-    for tool in zero.control.tools.tools.values_mut() {
-        for edge in &mut tool.edges {
-            edge.radius = 0.0;
-            edge.radius_wear = 0.0;
-        }
-    }
-    let Ok((interp, _)) = interpreter(file, dialect, &zero, false, args) else {
-        return Vec::new();
-    };
-    let reference: Vec<Spanned<Canon>> = interp.map_while(Result::ok).collect();
-    let moves = |cmds: &[Spanned<Canon>]| -> Vec<Canon> {
-        cmds.iter()
-            .filter(|c| c.value.motion().is_some())
-            .map(|c| c.value.clone())
-            .collect()
-    };
-    if moves(&reference) == moves(compensated) {
-        return Vec::new();
-    }
-    reference
-}
-
-fn plot(
-    file: &Path,
-    dialect: Option<Dialect>,
-    output: &Path,
-    args: &MachineArgs,
-) -> Result<ExitCode, String> {
-    let machine = match load_machine(args) {
-        Ok((m, _)) => m,
-        Err(code) => return Ok(code),
-    };
-    let (mut interp, used) = interpreter(file, dialect, &machine, false, args)?;
-    let mut commands: Vec<Spanned<Canon>> = Vec::new();
-    let mut failure = None;
-    for item in interp.by_ref() {
-        match item {
-            Ok(c) => commands.push(c),
-            Err(d) => {
-                failure = Some(d);
-                break;
-            }
-        }
-    }
-    let title = file
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let options = stanok_plot::PlotOptions {
-        title,
-        reference: programmed_contour(file, dialect, &machine, args, &commands),
-        // The lab lathes (X = radius): the turning drawing's ZX view.
-        lathe: matches!(used, Dialect::Nc31 | Dialect::P2p32),
-        tool_axis: tool_axis::ticks(&commands, machine.five_axis().as_ref()),
-        ..Default::default()
-    };
-    let svg = stanok_plot::render_svg(&commands, &options);
-    std::fs::write(output, svg).map_err(|e| format!("cannot write {}: {e}", output.display()))?;
-    if let Some(d) = failure {
-        diagnostics::render(file, &d);
-        eprintln!("plotted up to the error: {}", output.display());
-        return Ok(ExitCode::from(1));
-    }
-    eprintln!("wrote {}", output.display());
     Ok(ExitCode::SUCCESS)
 }
 
 /// `stanok convert`: the program's Canon stream written in the target dialect. Nothing is written
 /// when the source has an error (a partial program is not a program); warnings name every command
-/// the target cannot express exactly.
+/// the target cannot express exactly, each once, in the same form as the interpreter's.
 fn convert(
     file: &Path,
     dialect: Option<Dialect>,
@@ -711,20 +640,25 @@ fn convert(
     output: Option<&Path>,
     chord_tolerance: f64,
     args: &MachineArgs,
+    program_args: &ProgramArgs,
 ) -> Result<ExitCode, String> {
     if !(chord_tolerance.is_finite() && chord_tolerance >= 1e-6) {
-        eprintln!("error: --chord-tolerance must be at least 1e-6 mm, not {chord_tolerance}");
-        return Ok(ExitCode::from(2));
+        return Ok(program::refuse(format_args!(
+            "--chord-tolerance must be at least 1e-6 mm, not {chord_tolerance}"
+        )));
     }
-    let machine = match load_machine(args) {
-        Ok((m, _)) => m,
+    let (machine, program, choice) = match prepare(file, dialect, args, program_args) {
+        Ok(p) => p,
         Err(code) => return Ok(code),
     };
-    let (mut interp, dialect) = interpreter(file, dialect, &machine, false, args)?;
-    let name = file
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    program::say_dialect(&choice);
+    let dialect = choice.dialect;
+    let opts = program::options(dialect, &machine, false, program_args);
+    let mut interp = match program::interpreter(&program, opts) {
+        Ok(i) => i,
+        Err(code) => return Ok(code),
+    };
+    let name = program.file_name().unwrap_or_else(|| "stdin".into());
     let mut options = stanok_convert::ConvertOptions::new(target, &name, dialect.id());
     options.chord_tolerance_mm = chord_tolerance;
     options.max_feed_mm_per_min = machine.max_feed;
@@ -744,30 +678,43 @@ fn convert(
             }
         }
     }
-    for w in interp.take_warnings() {
-        diagnostics::render(file, &w);
+    // The converter warns about every move written without a feed, with the feed it wrote: the
+    // interpreter's one warning about the same moves would say it twice.
+    let warnings: Vec<Diagnostic> = interp
+        .take_warnings()
+        .into_iter()
+        .filter(|w| w.code.to_string() != "lab::no-feed")
+        .collect();
+    for w in &warnings {
+        diagnostics::render(&program, w);
     }
-    if let Some(d) = failure {
-        diagnostics::render(file, &d);
+    if let Some(mut d) = failure {
+        hints::enrich(&mut d, &machine);
+        diagnostics::render(&program, &d);
         eprintln!(
             "{}: not converted (the program has an error)",
-            file.display()
+            program.display()
         );
-        return Ok(ExitCode::from(1));
+        return Ok(program::program_error());
     }
     converter.finish();
     text.push_str(&converter.take_text());
     for w in converter.warnings() {
-        eprintln!("warning: {}:{}: {}", file.display(), w.line, w.message);
+        diagnostics::render(&program, &report::convert_warning(&program, w));
     }
     match output {
         Some(path) => {
-            std::fs::write(path, &text)
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            if let Err(e) = std::fs::write(path, &text) {
+                return Ok(program::refuse(format_args!(
+                    "cannot write {}: {}",
+                    path.display(),
+                    source::plain(&e)
+                )));
+            }
             eprintln!(
                 "wrote {} ({} warning(s))",
                 path.display(),
-                converter.warnings().len()
+                converter.warnings().len() + warnings.len()
             );
         }
         None => write_stdout(&text)?,

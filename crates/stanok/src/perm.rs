@@ -4,41 +4,32 @@
 //! back after it with what the program left (also after an error: the failing line's own writes
 //! are already undone by the interpreter, so the file holds the state before that line).
 
-use crate::cli::VarArgs;
-use crate::diagnostics;
+use crate::cli_args::VarArgs;
+use crate::{diagnostics, program};
 use stanok_canon::setup::ControlData;
 use stanok_machine::{perm_from_toml_str, perm_to_toml, MachineData};
 use stanok_syntax::Dialect;
-use std::path::Path;
 use std::process::ExitCode;
 
 /// Before the run: the file's parameters replace the machine's. Only for AxiOMA programs.
-pub fn load(
-    file: &Path,
-    dialect: Option<Dialect>,
-    args: &VarArgs,
-    machine: &mut MachineData,
-) -> Result<(), ExitCode> {
+pub fn load(dialect: Dialect, args: &VarArgs, machine: &mut MachineData) -> Result<(), ExitCode> {
     let Some(path) = &args.perm else {
         return Ok(());
     };
-    if dialect.unwrap_or_else(|| Dialect::from_path(file)) != Dialect::Axioma {
-        eprintln!(
-            "error: --perm {}: $iPerm/$dPerm are AxiOMA's permanent parameters",
+    if dialect != Dialect::Axioma {
+        return Err(program::refuse(format_args!(
+            "--perm {}: $iPerm/$dPerm are AxiOMA's permanent parameters",
             path.display()
-        );
-        return Err(ExitCode::from(2));
+        )));
     }
     if !path.exists() {
         return Ok(());
     }
-    let text = std::fs::read_to_string(path).map_err(|e| {
-        eprintln!("error: cannot read {}: {e}", path.display());
-        ExitCode::from(2)
-    })?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| program::refuse(format_args!("cannot read {}: {e}", path.display())))?;
     let (int, double) = perm_from_toml_str(&text, &path.display().to_string()).map_err(|d| {
-        diagnostics::render(path, &d);
-        ExitCode::from(1)
+        diagnostics::render_path(path, &d);
+        program::program_error()
     })?;
     machine.control.perm_int = int;
     machine.control.perm_double = double;

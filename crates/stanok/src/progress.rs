@@ -8,7 +8,6 @@
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::cell::Cell;
-use std::path::Path;
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 
@@ -25,9 +24,8 @@ struct Inner {
 pub struct Progress(Rc<Inner>);
 
 impl Progress {
-    /// A hidden bar over the size of `file`.
-    pub fn new(file: &Path) -> Self {
-        let total = std::fs::metadata(file).map(|m| m.len()).unwrap_or(0);
+    /// A hidden bar over a program of `total` bytes.
+    pub fn new(total: u64) -> Self {
         let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
         if let Ok(style) = ProgressStyle::with_template(
             "{spinner} [{elapsed_precise}] {wide_bar} {bytes}/{total_bytes} of the program, {msg}",

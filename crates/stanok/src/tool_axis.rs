@@ -2,34 +2,58 @@
 //! five ticks per straight move (at 0, ¼, ½, ¾ and the end of the block), each [`TICK_MM`] long
 //! from the tip along the tool vector the machine's kinematics give for the pose's rotary values.
 
-use stanok_canon::{Canon, Pose, Spanned};
+#[cfg(test)]
+use stanok_canon::Spanned;
+use stanok_canon::{Canon, Pose};
 use stanok_kin::{FiveAxis, Kinematics};
 
 /// Length of a tick, mm.
 pub const TICK_MM: f64 = 10.0;
 
-/// The ticks of a Canon stream (empty without kinematics or without tool-centre-point control).
-pub fn ticks(commands: &[Spanned<Canon>], machine: Option<&FiveAxis>) -> Vec<[[f64; 3]; 2]> {
-    let Some(kin) = machine else {
-        return Vec::new();
-    };
-    let mut on = false;
-    let mut out = Vec::new();
-    for c in commands {
-        match &c.value {
-            Canon::SetToolCentrePoint { active, .. } => on = *active,
-            Canon::StraightFeed(m) | Canon::StraightTraverse(m) if on => {
+/// The ticks of a Canon stream, one command at a time: TCP's state is kept between commands.
+pub struct Ticks<'a> {
+    kinematics: Option<&'a FiveAxis>,
+    on: bool,
+}
+
+impl<'a> Ticks<'a> {
+    /// Ticks for a machine with these kinematics (none without).
+    pub fn new(kinematics: Option<&'a FiveAxis>) -> Self {
+        Ticks {
+            kinematics,
+            on: false,
+        }
+    }
+
+    /// Calls `tick(tip, end)` for each tick of `cmd`.
+    pub fn of(&mut self, cmd: &Canon, mut tick: impl FnMut([f64; 3], [f64; 3])) {
+        let Some(kin) = self.kinematics else {
+            return;
+        };
+        match cmd {
+            Canon::SetToolCentrePoint { active, .. } => self.on = *active,
+            Canon::StraightFeed(m) | Canon::StraightTraverse(m) if self.on => {
                 let (s, e) = (m.start.to_array(), m.end.to_array());
                 for k in 0..=4 {
                     let f = f64::from(k) / 4.0;
                     let p = Pose::from_array(std::array::from_fn(|i| s[i] + (e[i] - s[i]) * f));
                     let t = kin.tool_vector(&p);
                     let tip = p.xyz();
-                    out.push([tip, std::array::from_fn(|i| tip[i] + TICK_MM * t[i])]);
+                    tick(tip, std::array::from_fn(|i| tip[i] + TICK_MM * t[i]));
                 }
             }
             _ => {}
         }
+    }
+}
+
+/// The ticks of a whole stream (empty without kinematics or without tool-centre-point control).
+#[cfg(test)]
+fn ticks(commands: &[Spanned<Canon>], machine: Option<&FiveAxis>) -> Vec<[[f64; 3]; 2]> {
+    let mut ticks = Ticks::new(machine);
+    let mut out = Vec::new();
+    for c in commands {
+        ticks.of(&c.value, |a, b| out.push([a, b]));
     }
     out
 }

@@ -125,9 +125,16 @@ fn plot_writes_four_views() {
         assert!(svg.contains(&format!("data-view=\"{view}\"")), "{view}");
     }
     // The G18 arc is an SVG elliptical-arc command (radius 30 mm at the sheet scale) in the XZ view.
+    let xz = &svg[svg.find("data-view=\"xz\"").unwrap()..];
+    let scale: f64 = {
+        let s = &xz[xz.find("data-scale=\"").unwrap() + 12..];
+        s[..s.find('"').unwrap()].parse().unwrap()
+    };
+    let r = format!("{:.2}", 30.0 * scale);
+    let r = r.trim_end_matches('0').trim_end_matches('.');
     assert!(
-        svg.contains("A112.43 112.43 0 0 1"),
-        "the G18 arc must be drawn as a true arc"
+        xz.contains(&format!("A{r} {r} 0 0 1")),
+        "the G18 arc must be drawn as a true arc of {r} px"
     );
 }
 

@@ -576,9 +576,9 @@ fn plot_draws_tool_axis_ticks_under_traori() {
         .unwrap();
     assert!(status.success());
     let svg = std::fs::read_to_string(&out).unwrap();
-    // One tool-axis path per view (four views); the ticks' geometry is unit-tested in
-    // `tool_axis.rs` (the last one from (0, 0, −100) to (−9.659258, 0, −97.411810)).
-    assert_eq!(svg.matches("class=\"tool-axis\"").count(), 4, "{svg}");
+    // One tool-axis path per view (four views) and the legend's sample; the ticks' geometry is
+    // unit-tested in `tool_axis.rs` (the last one from (0, 0, −100) to (−9.659258, 0, −97.411810)).
+    assert_eq!(svg.matches("class=\"tool-axis\"").count(), 4 + 1, "{svg}");
     // Without the 5-axis machine there is no tick (and TRAORI is refused: 654).
     let plain = dir.join("plain.svg");
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_stanok"))

@@ -284,10 +284,11 @@ fn files_of_the_wrong_kind_are_refused() {
     assert_eq!(code, 1);
     assert!(err.contains("mixed.toml:4:1"), "{err}");
     assert!(err.contains("only [[tool]] sections, not `g28`"), "{err}");
+    // A file that is not there is a usage error (2), like a missing program.
     let (code, _, err) = stanok(&["machine", "show", "--tools", "/nonexistent/t.tbl"]);
-    assert_eq!(code, 1);
+    assert_eq!(code, 2);
     assert!(
-        err.contains("cannot read tool table /nonexistent/t.tbl"),
+        err.contains("--tools /nonexistent/t.tbl: no such file"),
         "{err}"
     );
 }

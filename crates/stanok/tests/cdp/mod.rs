@@ -1,7 +1,7 @@
 //! A minimal Chrome DevTools Protocol client for the panel's browser tests: launches headless
 //! Chromium, attaches to one page over the DevTools WebSocket (`tungstenite`, blocking) and offers
-//! navigate / evaluate / wait / screenshot. Why not a driver crate: README, "Operator panel",
-//! browser tests (compile time on two cores; we need five calls).
+//! navigate / evaluate / wait / screenshot. Why not a driver crate: ARCHITECTURE.md's decisions,
+//! "Panel browser tests" (compile time on two cores; we need five calls).
 //!
 //! Skip rule: without `/usr/bin/chromium` (or `STANOK_CHROMIUM`) the tests print a loud notice and
 //! pass, unless `STANOK_REQUIRE_BROWSER=1` (set by `.ci/run`), which makes them fail instead.

@@ -18,6 +18,46 @@ pub fn stanok(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// Runs `stanok` with `args`, extra environment variables (`NO_COLOR` and `CLICOLOR_FORCE` are
+/// removed first unless given), standard input `stdin` and working directory `cwd`.
+pub fn stanok_with(
+    args: &[&str],
+    env: &[(&str, &str)],
+    stdin: Option<&str>,
+    cwd: Option<&std::path::Path>,
+) -> (i32, String, String) {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_stanok"));
+    cmd.args(args)
+        .env_remove("NO_COLOR")
+        .env_remove("CLICOLOR_FORCE")
+        .stdin(if stdin.is_some() {
+            Stdio::piped()
+        } else {
+            Stdio::null()
+        })
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    if let Some(dir) = cwd {
+        cmd.current_dir(dir);
+    }
+    let mut child = cmd.spawn().expect("run stanok");
+    if let Some(text) = stdin {
+        let mut pipe = child.stdin.take().unwrap();
+        pipe.write_all(text.as_bytes()).unwrap();
+    }
+    let out = child.wait_with_output().expect("wait for stanok");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// A file of `../shared/corpus`, read in place.
 pub fn corpus(path: &str) -> String {
     PathBuf::from(concat!(

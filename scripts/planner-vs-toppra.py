@@ -5,7 +5,7 @@ For each reference path this script
   1. writes the path as points (x,y,z in mm) and runs Stanok's planner on it
      (`planner_time` example of stanok-motion: the built-in mill, 1 ms servo period);
   2. computes the time-optimal time of the same path under the same limits with toppra
-     (https://github.com/hungpham2511/toppra, `python3 -m pip install toppra`):
+     (the `toppra` Python package, `python3 -m pip install toppra`):
      per-axis velocity 10 000 mm/min and acceleration 1000 mm/s^2, and the path feed F as a
      velocity limit on a fourth pseudo-joint equal to the arc length (so ds/dt <= F).
 

@@ -79,22 +79,31 @@ pub struct Helix {
     pub turns: u32,
 }
 
-/// The arc in its own cylindrical frame (all that the methods need).
-struct Frame {
-    centre: Vec3,
+/// The arc in its own cylindrical frame (module doc: p(θ) = C + â·h(θ) + r(θ)·(û cos θ + v̂ sin θ)),
+/// for callers that evaluate it themselves (the motion planner's exact arcs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HelixFrame {
+    /// A point on the axis, mm.
+    pub centre: Vec3,
     /// Unit axis â.
-    a: Vec3,
+    pub a: Vec3,
     /// Unit radial direction of the start, û.
-    u: Vec3,
+    pub u: Vec3,
     /// â × û.
-    v: Vec3,
-    r_s: f64,
-    r_e: f64,
-    h_s: f64,
-    h_e: f64,
+    pub v: Vec3,
+    /// Radius at the start, mm.
+    pub r_s: f64,
+    /// Radius at the end, mm.
+    pub r_e: f64,
+    /// Axial coordinate of the start, mm.
+    pub h_s: f64,
+    /// Axial coordinate of the end, mm.
+    pub h_e: f64,
     /// Total swept angle, radians, > 0.
-    sweep: f64,
+    pub sweep: f64,
 }
+
+type Frame = HelixFrame;
 
 impl Frame {
     /// The point at swept angle `theta` (radians from the start).
@@ -204,7 +213,8 @@ fn perpendicular(a: Vec3) -> Vec3 {
 }
 
 impl Helix {
-    fn frame(&self) -> Frame {
+    /// The arc's cylindrical frame (see [`HelixFrame`]).
+    pub fn frame(&self) -> HelixFrame {
         let a = normalize(self.axis).unwrap_or([0.0, 0.0, 1.0]);
         let ds = sub(self.start, self.centre);
         let de = sub(self.end, self.centre);

@@ -35,6 +35,6 @@ mod vec3;
 pub use akima::{bezier_point, hermite_bezier};
 pub use arc2d::{ccw_sweep, centre_from_radius, RadiusError};
 pub use bezier_split::{bezier_pieces, BezierPiece};
-pub use helix::Helix;
+pub use helix::{Helix, HelixFrame};
 pub use nurbs::{bezier_knots, distance_to_segment, Nurbs, NurbsError, MAX_DEGREE};
 pub use vec3::{add, cross, dot, norm, normalize, scale, sub, Vec3};

@@ -8,6 +8,7 @@
 //! rapid_rate = 10000.0          # mm/min, > 0
 //! max_feed = 5000.0             # mm/min, > 0
 //! arc_tolerance = 0.01          # mm, ≥ 0
+//! path_tolerance = 0.05         # mm, > 0, optional (G64 without a programmed tolerance)
 //! linuxcnc_units = "mm"         # optional, "mm" | "inch": units of LinuxCNC .tbl/.var files
 //! m_functions = "generic"       # optional, AxiOMA M-function profile: "generic" | "beavermill"
 //! [[axis]]                      # one table per axis, at least one
@@ -53,7 +54,8 @@ use toml::Spanned;
 
 mod sections;
 mod stored;
-use sections::{rate_table, validate_kinematics};
+pub use sections::PATH_TOLERANCE;
+use sections::{rate_table, tolerance, validate_kinematics};
 pub use stored::{
     offsets_from_toml_str, perm_from_toml_str, tools_from_toml_str, PermParameters, StoredOffsets,
 };
@@ -76,6 +78,9 @@ pub struct MachineData {
     /// How far the end of a programmed arc may miss the circle, mm (AxiOMA 621/622/623; spec
     /// axioma-2 §2.3.8).
     pub arc_tolerance: f64,
+    /// The path tolerance of continuous-path mode without a programmed one (AxiOMA G64, whose
+    /// tolerance is machine data; RS274/NGC G64 without P; the lab controls), mm.
+    pub path_tolerance: f64,
     /// The axes, in file order.
     pub axes: Vec<AxisData>,
     /// Length unit of the LinuxCNC tool tables (`.tbl`) and parameter files (`.var`) this machine
@@ -203,6 +208,7 @@ struct RawFile {
     rapid_rate: Option<Spanned<f64>>,
     max_feed: Option<Spanned<f64>>,
     arc_tolerance: Option<Spanned<f64>>,
+    path_tolerance: Option<Spanned<f64>>,
     linuxcnc_units: Option<Spanned<String>>,
     m_functions: Option<Spanned<String>>,
     feed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
@@ -386,6 +392,7 @@ impl RawFile {
             ("rapid_rate", at(&self.rapid_rate)),
             ("max_feed", at(&self.max_feed)),
             ("arc_tolerance", at(&self.arc_tolerance)),
+            ("path_tolerance", at(&self.path_tolerance)),
             ("linuxcnc_units", at(&self.linuxcnc_units)),
             ("m_functions", at(&self.m_functions)),
             ("feed_table", at(&self.feed_table)),
@@ -477,14 +484,14 @@ impl RawFile {
             "max_feed",
             "mm/min",
         )?;
-        let arc_tolerance = required(self.arc_tolerance.clone(), "arc_tolerance")?;
-        let tol = *arc_tolerance.get_ref();
-        if !(tol.is_finite() && tol >= 0.0) {
-            return Err((
-                format!("arc_tolerance must be zero or a positive number of mm, not {tol}"),
-                arc_tolerance.span(),
-            ));
-        }
+        let arc = required(self.arc_tolerance.clone(), "arc_tolerance")?;
+        let tol = tolerance(&arc, "arc_tolerance", 0.0)?;
+        let path_tolerance = self
+            .path_tolerance
+            .as_ref()
+            .map_or(Ok(PATH_TOLERANCE), |t| {
+                tolerance(t, "path_tolerance", f64::MIN_POSITIVE)
+            })?;
         let linuxcnc_units = units(&self.linuxcnc_units)?;
         let m_functions = match &self.m_functions {
             None => "generic".to_string(),
@@ -533,6 +540,7 @@ impl RawFile {
             rapid_rate,
             max_feed,
             arc_tolerance: tol,
+            path_tolerance,
             axes,
             linuxcnc_units,
             control: ControlData::default(),
@@ -677,6 +685,7 @@ impl MachineData {
             rapid_rate: 10_000.0,
             max_feed: 5_000.0,
             arc_tolerance: 0.01,
+            path_tolerance: PATH_TOLERANCE,
             axes: vec![axis('X', 500.0), axis('Y', 500.0), axis('Z', 300.0)],
             linuxcnc_units: LengthUnits::Millimetres,
             control: ControlData::default(),
@@ -707,6 +716,7 @@ impl MachineData {
             rapid_rate: 8_000.0,
             max_feed: 3_000.0,
             arc_tolerance: 0.01,
+            path_tolerance: PATH_TOLERANCE,
             axes: vec![
                 axis('X', -300.0, 300.0, true),
                 axis('Z', -1000.0, 500.0, false),
@@ -748,6 +758,7 @@ impl MachineData {
         let _ = writeln!(out, "rapid_rate = {}", toml_float(self.rapid_rate));
         let _ = writeln!(out, "max_feed = {}", toml_float(self.max_feed));
         let _ = writeln!(out, "arc_tolerance = {}", toml_float(self.arc_tolerance));
+        let _ = writeln!(out, "path_tolerance = {}", toml_float(self.path_tolerance));
         let units = match self.linuxcnc_units {
             LengthUnits::Millimetres => "mm",
             LengthUnits::Inches => "inch",

@@ -109,6 +109,22 @@ fn validation_errors_point_at_the_value() {
     assert!(d.message.contains("max_jerk"), "{d}");
     let d = err(&GOOD.replace("arc_tolerance = 0.002", "arc_tolerance = nan"));
     assert!(d.message.contains("arc_tolerance"), "{d}");
+    // path_tolerance: optional (0.05), a positive number of mm.
+    let good = MachineData::from_toml_str(GOOD, "m.toml").unwrap();
+    assert_eq!(good.path_tolerance, 0.05);
+    let with = GOOD.replace(
+        "arc_tolerance = 0.002",
+        "arc_tolerance = 0.002\npath_tolerance = 0.01",
+    );
+    let m = MachineData::from_toml_str(&with, "m.toml").unwrap();
+    assert_eq!(m.path_tolerance, 0.01);
+    assert_eq!(MachineData::from_toml_str(&m.to_toml(), "m.toml"), Ok(m));
+    let d = err(&with.replace("path_tolerance = 0.01", "path_tolerance = 0"));
+    assert!(
+        d.message.contains("path_tolerance must be a positive"),
+        "{d}"
+    );
+    assert_eq!(d.span.line, 6);
     let d = err("name = \"m\"\nrapid_rate = 1.0\nmax_feed = 1.0\narc_tolerance = 0.0\naxis = []\n");
     assert!(d.message.contains("at least one"), "{d}");
     assert_eq!(d.span.line, 5);

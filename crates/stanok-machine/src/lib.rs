@@ -36,6 +36,9 @@ pub use data::{
     MachineData, PermParameters, StoredOffsets, BAD_DATA, BUILTIN_FIVE_AXIS, BUILTIN_MACHINES,
 };
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
-pub use sim_motion::{AxisMotion, FeedHoldReport, SetpointSink, SimOptions, SpindleRange};
+pub use sim_motion::{
+    AxisMotion, BlockTime, ContourError, ContourErrors, FeedHoldReport, SetpointSink, SimOptions,
+    SpindleRange,
+};
 pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;

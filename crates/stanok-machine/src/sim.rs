@@ -124,6 +124,16 @@ pub struct RunReport {
     pub axes: Vec<AxisMotion>,
     /// Largest bound of the distance from the programmed path of any planned piece, mm.
     pub max_path_deviation_mm: f64,
+    /// The contour error measured on the trace: the largest distance of a setpoint from the
+    /// programmed path, at junctions and elsewhere, with where it occurred.
+    pub contour_error: crate::sim_motion::ContourErrors,
+    /// Per executed block (the first 100 000): planned and nominal time and the limit that set
+    /// its speed.
+    pub block_times: Vec<crate::sim_motion::BlockTime>,
+    /// More blocks ran than `block_times` lists.
+    pub block_times_truncated: bool,
+    /// The ten blocks that lose the most time against nominal, most first.
+    pub slowest_blocks: Vec<crate::sim_motion::BlockTime>,
     /// Limit, travel and tolerance violations of the setpoints (the first 100 or so); must be empty.
     pub violations: Vec<LoggedEvent>,
     /// How many violations in all.
@@ -230,6 +240,10 @@ impl SimMachine {
             feed_override_percent: options.feed_override * 100.0,
             axes: Vec::new(),
             max_path_deviation_mm: 0.0,
+            contour_error: Default::default(),
+            block_times: Vec::new(),
+            block_times_truncated: false,
+            slowest_blocks: Vec::new(),
             violations: Vec::new(),
             violation_count: 0,
             spindles: Vec::new(),

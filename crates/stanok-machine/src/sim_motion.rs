@@ -96,6 +96,58 @@ pub struct SpindleRange {
     pub max_rpm: f64,
 }
 
+/// The largest distance of a setpoint from the programmed path in one class of setpoints, measured
+/// on the trace (`stanok_motion::contour`).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ContourError {
+    /// Distance, mm (X Y Z; the tool tip under tool-centre-point control).
+    pub max_mm: f64,
+    /// Machine time of that setpoint, s.
+    pub t_s: f64,
+    /// Source line of its block.
+    pub line: u32,
+}
+
+/// The measured contour error, split into the junction blends between programmed segments and
+/// everything else (lines, arcs, splines; at most 1 µm on splines, rounding on lines and arcs).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct ContourErrors {
+    /// On junction blends (within the path tolerance in force).
+    pub junctions: ContourError,
+    /// Everywhere else.
+    pub elsewhere: ContourError,
+}
+
+/// One block's planned and nominal time and the limit that set its speed
+/// (`stanok_motion::timing`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BlockTime {
+    /// Source line.
+    pub line: u32,
+    /// Planned (executed) time, s.
+    pub planned_s: f64,
+    /// Length / programmed feed (rapid rate) at 100 %, dwells at their time, s.
+    pub nominal_s: f64,
+    /// Path length, mm (0 for a dwell): length / planned time is the block's mean speed.
+    pub length_mm: f64,
+    /// What set its speed for most of its time: "programmed feed", "axis velocity", "axis
+    /// acceleration", "jerk", "curvature", "blend tolerance", "exact stop", "look-ahead window",
+    /// "override" or "dwell".
+    pub limit: &'static str,
+}
+
+impl From<&stanok_motion::timing::BlockTime> for BlockTime {
+    fn from(b: &stanok_motion::timing::BlockTime) -> Self {
+        BlockTime {
+            line: b.line,
+            planned_s: b.planned_s,
+            nominal_s: b.nominal_s,
+            length_mm: b.length_mm,
+            limit: b.limit.name(),
+        }
+    }
+}
+
 /// The operator's feed hold in a run.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FeedHoldReport {
@@ -168,6 +220,7 @@ impl MotionRun {
         config.rapid_override = options.rapid_override;
         config.lookahead = options.lookahead;
         config.kinematics = machine.five_axis();
+        config.default_tolerance = machine.path_tolerance;
         config.forced_profile = options.profile;
         let config = config.sanitised();
         let mut stage = MotionStage::new(&config);
@@ -271,6 +324,20 @@ impl MotionRun {
             .collect();
         let stats = self.stage.stats();
         r.max_path_deviation_mm = stats.max_deviation;
+        let contour = self.stage.contour();
+        let max = |m: &stanok_motion::contour::ContourMax| ContourError {
+            max_mm: m.distance,
+            t_s: m.t,
+            line: m.line,
+        };
+        r.contour_error = ContourErrors {
+            junctions: max(&contour.junctions),
+            elsewhere: max(&contour.elsewhere),
+        };
+        let timer = self.stage.block_times();
+        r.block_times = timer.blocks.iter().map(BlockTime::from).collect();
+        r.block_times_truncated = timer.truncated;
+        r.slowest_blocks = timer.slowest.iter().map(BlockTime::from).collect();
         r.axes = (0..9)
             .filter_map(|i| {
                 let (axis, ..) = c.travel[i]?;

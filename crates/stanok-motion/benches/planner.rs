@@ -102,11 +102,12 @@ fn interpolate(c: &mut Criterion) {
         ("sample_clothoid_soft", AccelerationProfile::Soft, true),
     ] {
         let all = pieces(profile);
-        let piece = *all
+        let piece = all
             .iter()
             .find(|p| {
                 matches!(p.piece.shape, Shape::Clothoid(_)) == want_blend && p.piece.length > 0.0
             })
+            .cloned()
             .expect("piece");
         let prof = Profile::of(&piece);
         let d = prof.duration();

@@ -9,8 +9,9 @@
 //! * feed mode and spindle synchronisation (`SetFeedMode`, `StartSpindleSync` → feed = pitch ×
 //!   spindle rpm; `SetSpindleSpeed` of spindle 0),
 //! * whether the feed override applies (`SetFeedOverrideEnabled`; never in spindle sync),
-//! * the speeds of spindles 0–3 (`SetSpindleSpeed`, and G96's `SetSurfaceSpeedLaw`): stamped on
-//!   every segment so that each setpoint reports the speeds at its position; under G96 a feed per
+//! * the speeds of spindles 0–3 (`SetSpindleSpeed`, and G96's `SetSurfaceSpeedLaw`) and how they
+//!   turn (`StartSpindle` M3 +1 / M4 −1, `StopSpindle` M5, M19 and program end 0): stamped on every
+//!   segment so that each setpoint reports the signed speed at its position; under G96 a feed per
 //!   revolution (of the main spindle) is cut into pieces that follow its law ([`crate::css`]).
 //!
 //! ## Speeds
@@ -57,6 +58,8 @@ pub struct CanonAdapter {
     feed_mode: FeedMode,
     /// Last `SetSpindleSpeed` of spindles 0–3, rev/min.
     spindle_rpm: [f64; 4],
+    /// How spindles 0–3 turn: +1 M3, −1 M4, 0 stopped.
+    spindle_dir: [f64; 4],
     spindle_pitch: Option<f64>,
     override_enabled: bool,
     /// The machine's kinematics with the active tool, while tool-centre-point control is on.
@@ -94,6 +97,7 @@ impl CanonAdapter {
             profile: AccelerationProfile::Brisk,
             feed_mode: FeedMode::UnitsPerMinute,
             spindle_rpm: [0.0; 4],
+            spindle_dir: [0.0; 4],
             spindle_pitch: None,
             override_enabled: true,
             tcp: None,
@@ -200,10 +204,13 @@ impl CanonAdapter {
 
     /// The spindles' speeds as segments carry them.
     fn spindles(&self) -> Spindles {
-        Spindles(std::array::from_fn(|i| match self.surface_speed[i] {
-            Some(law) => SpindleSpeed::Surface(law),
-            None => SpindleSpeed::Constant(self.spindle_rpm[i]),
-        }))
+        Spindles(
+            std::array::from_fn(|i| match self.surface_speed[i] {
+                Some(law) => SpindleSpeed::Surface(law),
+                None => SpindleSpeed::Constant(self.spindle_rpm[i]),
+            }),
+            self.spindle_dir,
+        )
     }
 
     /// Emits a feed segment; under G96 with a feed per revolution, as the pieces of
@@ -424,14 +431,33 @@ impl CanonAdapter {
                 self.spindle_pitch = None;
             }
             Canon::SetFeedOverrideEnabled { enabled } => self.override_enabled = *enabled,
+            Canon::StartSpindle { spindle, direction } if *spindle < 4 => {
+                self.spindle_dir[*spindle as usize] = match direction {
+                    stanok_canon::SpindleDirection::Clockwise => 1.0,
+                    stanok_canon::SpindleDirection::CounterClockwise => -1.0,
+                }
+            }
+            Canon::StopSpindle { spindle } if *spindle < 4 => {
+                self.spindle_dir[*spindle as usize] = 0.0
+            }
+            Canon::ProgramEnd => {
+                // M2/M30 stop the spindles (RS274/NGC §4.5, AxiOMA M30).
+                self.spindle_dir = [0.0; 4];
+                stop(out)
+            }
+            Canon::OrientSpindle { spindle, .. } => {
+                // M19 turns the spindle to an angle: it no longer turns at speed.
+                if let Some(d) = self.spindle_dir.get_mut(*spindle as usize) {
+                    *d = 0.0;
+                }
+                stop(out)
+            }
             Canon::ProgramStop { .. }
             | Canon::ChangeTool { .. }
             | Canon::ChangeSpindleTool { .. }
             | Canon::StartToolChange
-            | Canon::ProgramEnd
             | Canon::PalletShuttle
-            | Canon::WaitInput { .. }
-            | Canon::OrientSpindle { .. } => stop(out),
+            | Canon::WaitInput { .. } => stop(out),
             _ => {}
         }
     }

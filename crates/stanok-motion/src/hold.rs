@@ -265,7 +265,7 @@ impl Default for FeedHold {
 fn run_from(piece: &PlannedPiece, s0: f64, v_in: f64) -> Phase {
     let pc = &piece.piece;
     let rest = (pc.length - s0).max(0.0);
-    let mut rest_piece = *pc;
+    let mut rest_piece = pc.clone();
     rest_piece.length = rest;
     let v_exit = piece.v_exit.min(reach(v_in, &rest_piece));
     let profile = if pc.soft {

@@ -51,9 +51,16 @@ pub struct Setpoint {
     pub soft: bool,
     /// Source line of the piece.
     pub line: u32,
+    /// The programmed segment the piece belongs to (the stage's running number, see
+    /// [`crate::path::PathBuilder::next_seq`]).
+    pub seq: u64,
+    /// The piece is a blend joining two programmed segments (a junction).
+    pub junction: bool,
     /// Commanded speed of each spindle (0 = main) at this instant, rev/min (under G96 the law
-    /// evaluated at `position`).
+    /// evaluated at `position`; times the spindle override), whether it turns or not.
     pub spindle_rpm: [f64; 4],
+    /// How each spindle turns: +1 clockwise (M3), −1 counter-clockwise (M4), 0 stopped.
+    pub spindle_dir: [i8; 4],
 }
 
 /// The time law of one piece.
@@ -138,7 +145,10 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
         jerk: [0.0; 9],
         soft: pc.soft,
         line: pc.line,
+        seq: pc.seq,
+        junction: pc.junction,
         spindle_rpm: [0.0; 4],
+        spindle_dir: pc.spindles.directions(),
     };
     let pt = pt.unwrap_or_else(|| {
         let mut end = pc.shape.at(pc.length);
@@ -157,6 +167,20 @@ pub fn sample(piece: &PlannedPiece, k: Kinematics, t: f64) -> Setpoint {
     sp
 }
 
+/// How a piece ran: its time and what its setpoints were doing (for the report's limiting factor,
+/// [`crate::timing`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PieceRun {
+    /// Time from the piece's start to its end (to the next grid instant after a stop), s.
+    pub duration: f64,
+    /// Setpoints at constant path speed.
+    pub cruising: u64,
+    /// Setpoints speeding up or slowing down (and the wait for the grid at a stop).
+    pub ramping: u64,
+    /// Setpoints standing in a feed hold or a zero-override stall.
+    pub standing: u64,
+}
+
 /// Samples released pieces on the servo grid (module doc).
 #[derive(Debug, Clone)]
 pub struct Interpolator {
@@ -165,6 +189,7 @@ pub struct Interpolator {
     piece_start: f64,
     end: Point9,
     line: u32,
+    seq: u64,
     spindles: Spindles,
     hold: FeedHold,
     switch: Option<Arc<HoldSwitch>>,
@@ -183,6 +208,7 @@ impl Interpolator {
             piece_start: 0.0,
             end: at,
             line: 0,
+            seq: 0,
             spindles: Spindles::default(),
             hold: FeedHold::default(),
             switch: None,
@@ -295,7 +321,7 @@ impl Interpolator {
                 // catches up with the new plan.
                 let cap = pc.programmed_speed(&wanted);
                 piece.piece.set_limits(cap, 0.0, planner.axes());
-                let mut rest = piece.piece;
+                let mut rest = piece.piece.clone();
                 rest.length = (rest.length - k.s).max(0.0);
                 piece.v_exit = planner.replan_overrides(wanted, &rest, 0.0);
                 None
@@ -317,7 +343,7 @@ impl Interpolator {
         let cap = piece.piece.programmed_speed(&wanted);
         piece.piece.set_limits(cap, v, planner.axes());
         let rest = (piece.piece.length - s).max(0.0);
-        let mut rest_piece = piece.piece;
+        let mut rest_piece = piece.piece.clone();
         rest_piece.length = rest;
         let e = planner.replan_overrides(wanted, &rest_piece, v);
         piece.v_exit = e;
@@ -337,9 +363,11 @@ impl Interpolator {
         mut piece: PlannedPiece,
         planner: &mut Planner,
         out: &mut impl FnMut(&Setpoint),
-    ) {
+    ) -> PieceRun {
+        let started = self.piece_start;
+        let mut run = PieceRun::default();
         if self.stalled_for_good {
-            return;
+            return run;
         }
         let mut phase = self.hold.first_phase(&piece);
         let mut phase_start = self.piece_start;
@@ -347,7 +375,6 @@ impl Interpolator {
             let duration = phase.duration();
             let mut phase_end = phase_start + duration;
             let stall = phase.stalls_at(&piece);
-
             let last = phase.is_last(&piece) && stall.is_none();
             if let (Phase::Stall { .. }, false) =
                 (phase, self.overrides.can_change(planner.overrides()))
@@ -356,9 +383,11 @@ impl Interpolator {
                 self.stalled_for_good = true;
                 self.end = piece.piece.shape.at(phase.at(0.0).s).position;
                 self.line = piece.piece.line;
+                self.seq = piece.piece.seq;
                 self.spindles = piece.piece.spindles;
                 self.piece_start = self.tick as f64 * self.period;
-                return;
+                run.duration = self.piece_start - started;
+                return run;
             }
             if last && phase.exit_speed(&piece) == 0.0 {
                 // A stop: the machine stands at the exact end until the next servo instant, so
@@ -397,6 +426,11 @@ impl Interpolator {
                 if let Some(next) = self.hold.trigger(t, &phase, k, &piece) {
                     switched = Some((next, t));
                     break;
+                }
+                match phase {
+                    Phase::Stall { .. } | Phase::Stand { .. } => run.standing += 1,
+                    _ if k.a == 0.0 && k.v > 0.0 => run.cruising += 1,
+                    _ => run.ramping += 1,
                 }
                 let mut sp = sample(&piece, k, t);
                 sp.soft &= phase.is_smooth();
@@ -437,7 +471,10 @@ impl Interpolator {
         }
         self.end = piece.piece.end;
         self.line = piece.piece.line;
+        self.seq = piece.piece.seq;
         self.spindles = piece.piece.spindles;
+        run.duration = self.piece_start - started;
+        run
     }
 
     /// The last setpoint: at the end point, at rest, on the first grid instant at or after the
@@ -455,7 +492,10 @@ impl Interpolator {
             jerk: [0.0; 9],
             soft: false,
             line: self.line,
+            seq: self.seq,
+            junction: false,
             spindle_rpm: self.spindles.rpm_at(&self.end),
+            spindle_dir: self.spindles.directions(),
         });
         self.tick += 1;
         t

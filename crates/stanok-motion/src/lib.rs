@@ -28,7 +28,9 @@
 
 pub mod adapter;
 pub mod clothoid;
+pub mod contour;
 pub mod css;
+pub mod curve;
 pub mod hold;
 pub mod interpolator;
 pub mod limits;
@@ -43,6 +45,7 @@ pub mod profile_trapezoid;
 pub mod segment;
 pub mod stage;
 pub mod tcp;
+pub mod timing;
 
 pub use interpolator::Setpoint;
 pub use limits::{AxisLimit, MotionConfig};

@@ -6,11 +6,14 @@
 //! continuous too.
 
 use crate::clothoid::Clothoid;
+use crate::curve::{bounded_limits, Blend, HelixCurve};
 use crate::limits::AxisLimit;
 use crate::segment::{Point9, SpeedClass, Spindles};
 
-/// The geometry of a piece, parameterised by arc length s ∈ [0, length].
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The geometry of a piece, parameterised by s ∈ [0, length] (the arc length, except on a
+/// spiral, where it is proportional to the swept angle, and on a smooth blend: see
+/// [`crate::curve`]; the derivatives of [`PathPoint`] are along s either way).
+#[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
     /// p(s) = start + s·dir, `dir` a unit vector.
     Line {
@@ -32,6 +35,15 @@ pub enum Shape {
     },
     /// A SOFT corner blend: two clothoid halves, curvature 0 → 2φ/ℓ → 0 (see [`crate::clothoid`]).
     Clothoid(Clothoid),
+    /// A programmed arc, exact ([`crate::curve`]): θ = `theta` + s/ρ.
+    Helix {
+        /// The arc.
+        curve: HelixCurve,
+        /// Its angle at the piece's start.
+        theta: f64,
+    },
+    /// A smooth blend at a junction with an arc, or a SOFT curvature step ([`crate::curve`]).
+    Blend(std::sync::Arc<Blend>),
     /// All axes stand still at `at` for `seconds` (a G4 dwell), length 0.
     Dwell {
         /// Where the machine stands.
@@ -95,6 +107,20 @@ impl Shape {
                 p.curvature = q.curvature;
                 p.third = q.third;
             }
+            Shape::Helix { curve, theta } => {
+                let q = curve.at(theta + s / curve.rho);
+                p.position = q.p;
+                p.tangent = q.d1;
+                p.curvature = q.d2;
+                p.third = q.d3;
+            }
+            Shape::Blend(b) => {
+                let q = b.at(s);
+                p.position = q.p;
+                p.tangent = q.d1;
+                p.curvature = q.d2;
+                p.third = q.d3;
+            }
             Shape::Dwell { at, .. } => p.position = *at,
         }
         p
@@ -156,7 +182,7 @@ pub struct ProgrammedSpeed {
 }
 
 /// One piece of path with its speed limits (all in path units: unit/s, unit/s², unit/s³).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Piece {
     /// Geometry.
     pub shape: Shape,
@@ -182,8 +208,16 @@ pub struct Piece {
     pub soft: bool,
     /// The piece starts from standstill (an exact stop before it).
     pub entry_stop: bool,
+    /// It starts or ends at a stop of its path mode (G60/G61, an exact-path corner), not a
+    /// forced one (program start and end, M0, tool change…): for the report's limiting factor.
+    pub exact_stop: bool,
     /// Source line.
     pub line: u32,
+    /// The programmed segment it belongs to (the stage's running number; a blend belongs to the
+    /// segment it leads into).
+    pub seq: u64,
+    /// A blend joining two programmed segments (a junction), as opposed to a piece of one.
+    pub junction: bool,
     /// The spindles' speeds on this piece (evaluated per setpoint under G96).
     pub spindles: Spindles,
     /// Upper bound of the distance of any point of the piece from the programmed path, unit.
@@ -213,9 +247,9 @@ impl Piece {
         if let Shape::Dwell { .. } = self.shape {
             return;
         }
-        let (v, a, j) = shape_limits(&self.shape, cap, axes);
+        let (v, a, j) = shape_limits(&self.shape, self.length, self.soft, cap, axes);
         let (a, j) = if floor > v {
-            let (_, a, j) = shape_limits(&self.shape, floor, axes);
+            let (_, a, j) = shape_limits(&self.shape, self.length, self.soft, floor, axes);
             (a, j)
         } else {
             (a, j)
@@ -237,8 +271,15 @@ pub fn cap_acceleration(a_max: f64, j_max: f64, cap: f64) -> (f64, f64) {
     }
 }
 
-/// The limits (v, a, j) of a shape run at programmed speed `speed` (module functions below).
-pub fn shape_limits(shape: &Shape, speed: f64, axes: &[AxisLimit; 9]) -> (f64, f64, f64) {
+/// The limits (v, a, j) of a shape `length` long run at programmed speed `speed` (module
+/// functions below, [`bounded_limits`]).
+pub fn shape_limits(
+    shape: &Shape,
+    length: f64,
+    soft: bool,
+    speed: f64,
+    axes: &[AxisLimit; 9],
+) -> (f64, f64, f64) {
     match shape {
         Shape::Line { dir, .. } => line_limits(dir, speed, axes),
         Shape::Arc { e1, e2, radius, .. } => arc_limits(e1, e2, *radius, speed, false, axes),
@@ -253,6 +294,13 @@ pub fn shape_limits(shape: &Shape, speed: f64, axes: &[AxisLimit; 9]) -> (f64, f
                 axes,
             )
         }
+        Shape::Helix { curve, theta } => bounded_limits(
+            &curve.bounds(*theta, theta + length / curve.rho),
+            speed,
+            soft,
+            axes,
+        ),
+        Shape::Blend(b) => bounded_limits(&b.bounds, speed * b.speed_scale, soft, axes),
         Shape::Dwell { .. } => (0.0, 0.0, 0.0),
     }
 }

@@ -71,7 +71,7 @@ use crate::{profile_scurve, profile_trapezoid};
 use std::collections::VecDeque;
 
 /// A piece with its final boundary speeds.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct PlannedPiece {
     /// The piece.
     pub piece: Piece,
@@ -79,9 +79,12 @@ pub struct PlannedPiece {
     pub v_entry: f64,
     /// Speed at its end.
     pub v_exit: f64,
+    /// Released while the window was full, with an exit speed set by the window's end (it had to
+    /// be able to stop there): the look-ahead window limited it.
+    pub lookahead: bool,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Entry {
     piece: Piece,
     entry: f64,
@@ -89,6 +92,9 @@ struct Entry {
     /// The lowest entry the machine can still reach (0 unless an override was lowered while the
     /// machine ran faster than the new speeds allow: see "Overrides" in the module doc).
     entry_min: f64,
+    /// The entry was set by the reverse pass from the window's end (as far as the last pass
+    /// went): a longer window could raise it.
+    tail_bound: bool,
 }
 
 /// The highest speed one can reach from `v` over the piece (or slow down from to `v`).
@@ -271,6 +277,7 @@ impl Planner {
             entry: 0.0,
             entry_max,
             entry_min: 0.0,
+            tail_bound: false,
         });
         self.replan();
     }
@@ -282,14 +289,17 @@ impl Planner {
         if self.final_count == 0 && self.window.len() <= self.capacity {
             return None;
         }
+        let by_capacity = self.final_count == 0;
         let front = self.window.pop_front()?;
         self.final_count = self.final_count.saturating_sub(1);
         let v_exit = self.window.front().map_or(0.0, |e| e.entry);
+        let lookahead = by_capacity && self.window.front().is_some_and(|e| e.tail_bound);
         self.planned = self.planned.saturating_sub(1);
         Some(PlannedPiece {
             piece: front.piece,
             v_entry: front.entry,
             v_exit,
+            lookahead,
         })
     }
 
@@ -409,15 +419,16 @@ impl Planner {
         let mut next_entry = 0.0;
         let first = self.planned + 1;
         let mut k = n - 1;
+        let mut bound = true;
         while k >= first {
             let e = &mut w[k];
-            let v = e
-                .entry_max
-                .min(reach(next_entry, &e.piece))
-                .max(e.entry_min);
+            let reached = reach(next_entry, &e.piece);
+            let v = e.entry_max.min(reached).max(e.entry_min);
             if v == e.entry && k < n - 1 {
                 break;
             }
+            bound &= reached < e.entry_max;
+            e.tail_bound = bound;
             e.entry = v;
             next_entry = v;
             k -= 1;

@@ -56,15 +56,26 @@ impl SpindleSpeed {
     }
 }
 
-/// The speeds of the four spindles (0 = main) while a segment runs.
+/// The speeds of the four spindles (0 = main) while a segment runs, and how each turns: +1 M3
+/// (clockwise), −1 M4, 0 stopped (M5, and at power-on).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Spindles(pub [SpindleSpeed; 4]);
+pub struct Spindles(pub [SpindleSpeed; 4], pub [f64; 4]);
 
 impl Spindles {
-    /// Rev/min of every spindle with the tool at `p`.
+    /// Commanded rev/min of every spindle with the tool at `p` (whether it turns or not).
     #[inline]
     pub fn rpm_at(&self, p: &Point9) -> [f64; 4] {
         std::array::from_fn(|i| self.0[i].rpm_at(p))
+    }
+
+    /// How every spindle turns: +1 M3, −1 M4, 0 stopped.
+    #[inline]
+    pub fn directions(&self) -> [i8; 4] {
+        self.1.map(|d| match d.partial_cmp(&0.0) {
+            Some(std::cmp::Ordering::Greater) => 1,
+            Some(std::cmp::Ordering::Less) => -1,
+            _ => 0,
+        })
     }
 }
 
@@ -83,8 +94,9 @@ pub enum SpeedClass {
     Fixed,
 }
 
-/// Chord tolerance of spline tessellation, mm.
-pub const SPLINE_CHORD_TOLERANCE: f64 = 1e-3;
+/// Chord tolerance of spline tessellation, mm: half of the 1 µm a spline's setpoints keep from its
+/// curve (the other half goes to the blends at the chords' vertices, see [`crate::path`]).
+pub const SPLINE_CHORD_TOLERANCE: f64 = 0.5e-3;
 
 /// One programmed motion block, ready for planning.
 #[derive(Debug, Clone, PartialEq)]

@@ -14,12 +14,14 @@
 //! joints → pose by the forward kinematics when it goes on, pose → joints when it goes off.
 
 use crate::adapter::CanonAdapter;
+use crate::contour::{ContourMonitor, Reference, SPLINE_REFERENCE_TOLERANCE};
 use crate::interpolator::{Interpolator, Setpoint};
 use crate::limits::MotionConfig;
 use crate::path::PathBuilder;
 use crate::planner::Planner;
-use crate::segment::{PlannerInput, Point9};
+use crate::segment::{PlannerInput, Point9, SegmentGeometry};
 use crate::tcp::TcpMap;
+use crate::timing::{BlockTimer, PieceInfo};
 use stanok_canon::Canon;
 use stanok_kin::Kinematics;
 
@@ -51,16 +53,28 @@ pub struct MotionStage {
     inputs: Vec<PlannerInput>,
     /// The override factors last set through the stage's setters.
     wanted: Option<crate::piece::Overrides>,
+    /// The contour measurement (see [`crate::contour`]).
+    contour: ContourMonitor,
+    /// The blocks' times and limits (see [`crate::timing`]).
+    timer: BlockTimer,
+    /// The reference points of the spline command being adapted (a fine tessellation of its
+    /// curve), for the contour measurement of its segments.
+    spline_reference: Option<std::sync::Arc<Vec<[f64; 3]>>>,
 }
 
 /// The sink as the machine sees it: setpoints through the kin stage when one is active.
+/// Every setpoint is measured against the programmed path first (in pose space under TCP).
 fn mapped<'a>(
     tcp: &'a Option<TcpMap>,
+    contour: &'a mut ContourMonitor,
     out: &'a mut impl FnMut(&Setpoint),
 ) -> impl FnMut(&Setpoint) + 'a {
-    move |sp: &Setpoint| match tcp {
-        Some(map) => out(&map.joints(sp)),
-        None => out(sp),
+    move |sp: &Setpoint| {
+        contour.observe(&sp.position, sp.seq, sp.junction, sp.t, sp.line);
+        match tcp {
+            Some(map) => out(&map.joints(sp)),
+            None => out(sp),
+        }
     }
 }
 
@@ -71,6 +85,7 @@ fn run_ready(
     planner: &mut Planner,
     interpolator: &mut Interpolator,
     stats: &mut StageStats,
+    timer: &mut BlockTimer,
     out: &mut impl FnMut(&Setpoint),
 ) {
     while let Some(pp) = planner.pop_ready() {
@@ -84,7 +99,9 @@ fn run_ready(
         {
             stats.tolerance_violations += 1;
         }
-        interpolator.push(pp, planner, out);
+        let info = PieceInfo::of(&pp, &planner.overrides());
+        let run = interpolator.push(pp, planner, out);
+        timer.piece(&info, &run);
     }
 }
 
@@ -102,6 +119,9 @@ impl MotionStage {
             finished: None,
             tcp: None,
             wanted: None,
+            contour: ContourMonitor::default(),
+            timer: BlockTimer::default(),
+            spline_reference: None,
         }
     }
 
@@ -184,20 +204,55 @@ impl MotionStage {
         self.interpolator.period()
     }
 
+    /// The blocks' planned and nominal times and limits so far (see [`crate::timing`]); the block
+    /// being run is added by [`MotionStage::finish`].
+    pub fn block_times(&self) -> &BlockTimer {
+        &self.timer
+    }
+
+    /// The contour error measured so far (see [`crate::contour`]).
+    pub fn contour(&self) -> &ContourMonitor {
+        &self.contour
+    }
+
     /// Feeds a planner input directly (tests and benchmarks: no Canon needed).
     pub fn push_input(&mut self, input: PlannerInput, out: &mut impl FnMut(&Setpoint)) {
+        // A segment that does not move (a compensation corner of radius 0) makes no piece: it is
+        // not a side of any junction either.
+        let moves = |seg: &crate::segment::PathSegment| match &seg.geometry {
+            SegmentGeometry::Arc(h) => {
+                h.length() > 0.0 || (3..9).any(|i| seg.start[i] != seg.end[i])
+            }
+            _ => seg.start != seg.end,
+        };
+        if let Some(seg) = match &input {
+            PlannerInput::Segment(seg) if moves(seg) => Some(seg),
+            _ => None,
+        } {
+            let reference = match &seg.geometry {
+                SegmentGeometry::Line => crate::contour::line_reference(&seg.start, &seg.end),
+                SegmentGeometry::Arc(h) => Reference::Arc(h.frame()),
+                SegmentGeometry::Polyline(p) => Reference::Polyline(match &self.spline_reference {
+                    Some(r) => r.clone(),
+                    None => std::sync::Arc::new(p.iter().map(|q| [q[0], q[1], q[2]]).collect()),
+                }),
+            };
+            self.contour.register(self.builder.next_seq(), reference);
+        }
         let Self {
             builder,
             planner,
             interpolator,
             stats,
             tcp,
+            contour,
+            timer,
             ..
         } = self;
-        let out = &mut mapped(tcp, out);
+        let out = &mut mapped(tcp, contour, out);
         builder.push(input, &mut |piece| {
             planner.push_piece(piece);
-            run_ready(planner, interpolator, stats, out);
+            run_ready(planner, interpolator, stats, timer, out);
         });
     }
 
@@ -210,12 +265,14 @@ impl MotionStage {
             interpolator,
             stats,
             tcp,
+            contour,
+            timer,
             ..
         } = self;
-        let out = &mut mapped(tcp, out);
+        let out = &mut mapped(tcp, contour, out);
         builder.set_position(at, &mut |piece| {
             planner.push_piece(piece);
-            run_ready(planner, interpolator, stats, out);
+            run_ready(planner, interpolator, stats, timer, out);
         });
         interpolator.set_position(at);
     }
@@ -229,9 +286,13 @@ impl MotionStage {
         let mut inputs = std::mem::take(&mut self.inputs);
         self.adapter
             .adapt(cmd, line, &mut |input| inputs.push(input));
+        if let Canon::SplineFeed(sp) = cmd {
+            self.spline_reference = Some(std::sync::Arc::new(spline_points(sp)));
+        }
         for input in inputs.drain(..) {
             self.push_input(input, out);
         }
+        self.spline_reference = None;
         self.inputs = inputs;
         if let Canon::SetToolCentrePoint { .. } = cmd {
             self.switch_tcp(out);
@@ -271,15 +332,17 @@ impl MotionStage {
             interpolator,
             stats,
             tcp,
+            contour,
+            timer,
             ..
         } = self;
-        let out = &mut mapped(tcp, out);
+        let out = &mut mapped(tcp, contour, out);
         builder.flush(&mut |piece| {
             planner.push_piece(piece);
-            run_ready(planner, interpolator, stats, out);
+            run_ready(planner, interpolator, stats, timer, out);
         });
         planner.finish_window();
-        run_ready(planner, interpolator, stats, out);
+        run_ready(planner, interpolator, stats, timer, out);
     }
 
     /// The program is over: runs everything and emits the final setpoint. Returns the trace
@@ -289,8 +352,22 @@ impl MotionStage {
             return t;
         }
         self.drain(out);
-        let t = self.interpolator.finish(&mut mapped(&self.tcp, out));
+        self.timer.close();
+        let t = self
+            .interpolator
+            .finish(&mut mapped(&self.tcp, &mut self.contour, out));
         self.finished = Some(t);
         t
     }
+}
+
+/// A spline's curve as points within [`SPLINE_REFERENCE_TOLERANCE`], from its start to its end.
+fn spline_points(sp: &stanok_canon::SplineMove) -> Vec<[f64; 3]> {
+    let curve = stanok_geom::Nurbs::new(sp.degree, &sp.control_points, &sp.weights, &sp.knots);
+    let mut points = vec![sp.start.xyz()];
+    if curve.validate().is_ok() {
+        curve.tessellate(SPLINE_REFERENCE_TOLERANCE, &mut points);
+    }
+    points.push(sp.end.xyz());
+    points
 }

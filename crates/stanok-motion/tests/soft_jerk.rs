@@ -298,9 +298,10 @@ fn soft_arcs_cost_a_stated_factor() {
 
 /// The invariant behind the finite-difference jerk: a SOFT path has no curvature step at any join.
 /// Over a CAM-style path and a helix (as pieces, before planning): every piece starts where the
-/// previous one ended (to 1e-12 mm; in SOFT bit for bit where a line meets a clothoid), with the same tangent (1e-12) and the same
-/// curvature vector (1e-9 /mm, both zero: lines and clothoid ends); SOFT corners are clothoids
-/// and BRISK corners still circular arcs.
+/// previous one ended (to 1e-12 mm; in SOFT bit for bit where a line meets a blend), with the
+/// same tangent (1e-12) and, in SOFT, the same curvature vector (1e-9 /mm: zero where lines meet
+/// clothoids; the helix's own where it meets its smooth blends); SOFT corners between lines are
+/// clothoids, BRISK ones circular arcs, and the helix is one exact piece either way.
 #[test]
 fn soft_pieces_join_with_continuous_curvature() {
     use stanok_motion::path::PathBuilder;
@@ -369,6 +370,11 @@ fn soft_pieces_join_with_continuous_curvature() {
             .filter(|x| !matches!(x.shape, Shape::Line { .. }))
             .count();
         assert!(blends > 200, "{blends} blends");
+        let helices = pieces
+            .iter()
+            .filter(|x| matches!(x.shape, Shape::Helix { .. }))
+            .count();
+        assert_eq!(helices, 1);
         for w in pieces.windows(2) {
             let (a, b) = (&w[0], &w[1]);
             match (profile, &b.shape) {
@@ -390,7 +396,10 @@ fn soft_pieces_join_with_continuous_curvature() {
                 if !b.entry_stop {
                     assert!((end.tangent[i] - start.tangent[i]).abs() < 1e-12);
                     if profile == SOFT {
-                        assert!(end.curvature[i].abs() < 1e-9 && start.curvature[i].abs() < 1e-9);
+                        assert!(
+                            (end.curvature[i] - start.curvature[i]).abs() < 1e-9,
+                            "{a:?} {b:?}"
+                        );
                     }
                 }
             }

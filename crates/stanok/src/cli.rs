@@ -98,6 +98,15 @@ impl From<DialectArg> for stanok_syntax::Dialect {
     }
 }
 
+/// What `plot --color` colours the path by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PlotColor {
+    /// Each source line's mean path speed (length / planned time), in six bands.
+    Speed,
+    /// The limit that set each line's speed (programmed feed, axis velocity, …).
+    Limit,
+}
+
 /// `--dialect`, on every verb that reads a program.
 #[derive(Debug, Clone, Copy, Args)]
 pub struct DialectOption {
@@ -256,6 +265,11 @@ pub enum Command {
         /// Picture size in px.
         #[arg(long, value_name = "WxH", default_value = "1200x900", value_parser = parse_size)]
         size: (u32, u32),
+        /// Colour the path by block, with a key: `speed` (each line's mean path speed) or
+        /// `limit` (what set its speed, as `run` reports it). Runs the motion on the machine.
+        /// (Diagnostics' colours: `stanok --color WHEN plot …`.)
+        #[arg(long, value_enum, value_name = "BY")]
+        color: Option<PlotColor>,
         #[command(flatten)]
         machine: MachineArgs,
         #[command(flatten)]

@@ -159,9 +159,10 @@ pub struct MotionArgs {
     /// Servo (interpolation) period in milliseconds (0.01 … 1000).
     #[arg(long, value_name = "MS", default_value_t = 1.0)]
     pub servo_period: f64,
-    /// Write the servo-rate setpoints to a CSV file: `t,X,Y,Z[,A,B,C…],S` (time in s, the machine's
-    /// axes in mm and degrees, S the main spindle's commanded speed in rev/min), one line per servo
-    /// period.
+    /// Write the servo-rate setpoints to a CSV file, one line per servo period, columns
+    /// `t,X,Y,Z[,A,B,C…],S,line`: time (s), the machine's axes (mm, degrees), the main spindle's
+    /// commanded speed (rev/min; M3 positive, M4 negative, 0 when stopped) and the source line of
+    /// the block being executed.
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
     /// Feed override in percent (more than 0, at most 200).

@@ -206,6 +206,11 @@ pub fn text(m: &MachineData, sources: &Sources) -> String {
     let _ = writeln!(s, "Arcs        tolerance {} mm", num(m.arc_tolerance));
     let _ = writeln!(
         s,
+        "Path        tolerance {} mm (G64 without a programmed one)",
+        num(m.path_tolerance)
+    );
+    let _ = writeln!(
+        s,
         "LinuxCNC    .tbl/.var files in {}",
         units_name(m.linuxcnc_units)
     );
@@ -319,6 +324,7 @@ struct JsonMachine<'a> {
     rapid_rate: f64,
     max_feed: f64,
     arc_tolerance: f64,
+    path_tolerance: f64,
     linuxcnc_units: &'static str,
     m_functions: &'a str,
     feed_table: &'a BTreeMap<u32, f64>,
@@ -375,6 +381,7 @@ pub fn json(m: &MachineData, sources: &Sources) -> String {
             rapid_rate: m.rapid_rate,
             max_feed: m.max_feed,
             arc_tolerance: m.arc_tolerance,
+            path_tolerance: m.path_tolerance,
             linuxcnc_units: units_name(m.linuxcnc_units),
             m_functions: &m.m_functions,
             feed_table: &m.feed_table,

@@ -24,6 +24,7 @@ mod machine_list;
 mod machine_show;
 mod perm;
 mod plot;
+mod plot_colour;
 mod program;
 mod progress;
 mod report;
@@ -130,6 +131,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output,
             view,
             size,
+            color,
             machine,
             program,
         } => plot::plot(
@@ -138,6 +140,7 @@ fn run(cli: Cli) -> Result<ExitCode, String> {
             output.as_deref(),
             view,
             size,
+            color,
             &machine,
             &program,
         ),

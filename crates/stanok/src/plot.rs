@@ -9,9 +9,11 @@
 //!
 //! The picture's format comes from the output's extension: `.svg`, `.png` (rendered by resvg), or
 //! `-` for SVG on standard output; without `-o`, the program's name with `.svg`. Lathes (a
-//! transverse axis and no Y) and the lathe dialects get the lathe's ZX view.
+//! transverse axis and no Y) and the lathe dialects get the lathe's ZX view. `--color speed|limit`
+//! runs the program on the machine once more and colours each line by its mean speed or by the
+//! limit that set its speed (`plot_colour.rs`).
 
-use crate::cli::ViewArg;
+use crate::cli::{PlotColor, ViewArg};
 use crate::cli_args::{MachineArgs, ProgramArgs};
 use crate::source::Program;
 use crate::tool_axis::Ticks;
@@ -99,6 +101,7 @@ pub fn plot(
     output: Option<&Path>,
     view: Option<ViewArg>,
     size: (u32, u32),
+    color: Option<PlotColor>,
     machine_args: &MachineArgs,
     args: &ProgramArgs,
 ) -> Result<ExitCode, String> {
@@ -169,6 +172,17 @@ pub fn plot(
         extent.union(&reference_extent);
     }
 
+    // `--color`: the program run on the machine for its block times (a pass of its own).
+    let colouring = match color {
+        Some(by) => {
+            let Ok(interp) = run(&machine) else {
+                return Ok(program::usage_error());
+            };
+            Some(crate::plot_colour::colouring(interp, &machine, by))
+        }
+        None => None,
+    };
+
     // Pass 2: the drawing.
     let title = program
         .file_name()
@@ -179,6 +193,10 @@ pub fn plot(
         height: size.1,
         view,
         lathe,
+        legend: colouring
+            .as_ref()
+            .map(|c| c.legend.clone())
+            .unwrap_or_default(),
         ..Default::default()
     };
     let mut sheet = Sheet::new(&options, &extent);
@@ -197,7 +215,10 @@ pub fn plot(
     };
     let mut ticks = Ticks::new(kinematics.as_ref());
     for cmd in interp.map_while(Result::ok) {
-        sheet.draw(&cmd.value);
+        let colour = colouring
+            .as_ref()
+            .and_then(|c| c.line_colour.get(&cmd.span.line).copied());
+        sheet.draw_styled(&cmd.value, colour);
         ticks.of(&cmd.value, |a, b| sheet.draw_tick(a, b));
     }
     let svg = sheet.finish();

@@ -135,12 +135,46 @@ pub fn text(name: &str, dialect: Dialect, r: &RunReport, failure: Option<&Diagno
             }
         );
     }
+    let c = &r.contour_error;
+    let _ = writeln!(
+        s,
+        "Contour     {:.6} mm at junctions (line {}, t = {:.3} s), {:.6} mm elsewhere (line {}, t = {:.3} s): the largest distance of a setpoint from the programmed path",
+        c.junctions.max_mm,
+        c.junctions.line,
+        c.junctions.t_s,
+        c.elsewhere.max_mm,
+        c.elsewhere.line,
+        c.elsewhere.t_s
+    );
+    if r.slowest_blocks
+        .iter()
+        .any(|b| b.planned_s - b.nominal_s > 5e-4)
+    {
+        let _ = writeln!(
+            s,
+            "Slowest     blocks that lose the most time against nominal (planned − nominal, the limit that set their speed)"
+        );
+        for b in r
+            .slowest_blocks
+            .iter()
+            .filter(|b| b.planned_s - b.nominal_s > 5e-4)
+        {
+            let _ = writeln!(
+                s,
+                "  line {:>5}  {:.3} s planned, {:.3} s nominal, +{:.3} s  {}",
+                b.line,
+                b.planned_s,
+                b.nominal_s,
+                b.planned_s - b.nominal_s,
+                b.limit
+            );
+        }
+    }
     if r.violation_count == 0 {
         let _ = writeln!(
             s,
-            "Limits      ok: no velocity, acceleration, {}travel or path-tolerance violation (path deviation ≤ {:.4} mm)",
+            "Limits      ok: no velocity, acceleration, {}travel or path-tolerance violation",
             if soft { "jerk, " } else { "" },
-            r.max_path_deviation_mm
         );
     } else {
         let _ = writeln!(s, "Limits      {} VIOLATION(S)", r.violation_count);

@@ -1,7 +1,9 @@
 //! `stanok run --trace FILE`: the servo-rate setpoints as CSV, streamed to the file.
 //!
-//! Header `t,X,Y,Z[,A,B,C,U,V,W]` with the machine's axes in X Y Z A B C U V W order; one line per
-//! setpoint: time in seconds, positions in mm or degrees, six decimals (1 ns / 1 µdeg). Nothing is
+//! Header `t,X,Y,Z[,A,B,C,U,V,W],S,line` with the machine's axes in X Y Z A B C U V W order; one
+//! line per setpoint: time in seconds, positions in mm or degrees, six decimals (1 ns / 1 µdeg);
+//! S the main spindle's speed in rev/min, signed by its direction (M3 +, M4 −, 0 after M5);
+//! `line` the source line of the block being executed. Nothing is
 //! kept in memory: each line goes through a `BufWriter`. The first write error is kept and reported
 //! by [`TraceWriter::close`]; writing stops after it.
 
@@ -40,7 +42,7 @@ impl TraceWriter {
             header.push(',');
             header.push(stanok_canon::AXIS_LETTERS[i]);
         }
-        header.push_str(",S\n");
+        header.push_str(",S,line\n");
         let error = out.write_all(header.as_bytes()).err();
         Ok(TraceWriter {
             path: path.to_path_buf(),
@@ -58,7 +60,8 @@ impl TraceWriter {
         for &i in axes.iter() {
             result = result.and_then(|_| write!(out, ",{:.6}", sp.position[i]));
         }
-        result = result.and_then(|_| write!(out, ",{:.3}", sp.spindle_rpm[0]));
+        let s = sp.spindle_rpm[0] * f64::from(sp.spindle_dir[0]);
+        result = result.and_then(|_| write!(out, ",{:.3},{}", s, sp.line));
         if let Err(e) = result.and_then(|_| out.write_all(b"\n")) {
             *error = Some(e);
         }

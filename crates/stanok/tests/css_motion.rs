@@ -41,7 +41,7 @@ fn trace(file: &str) -> Vec<[f64; 4]> {
     assert_eq!(code, 0, "{stdout}\n{stderr}");
     let text = std::fs::read_to_string(&out).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,X,Z,S"));
+    assert_eq!(lines.next(), Some("t,X,Z,S,line"));
     lines
         .map(|l| {
             let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();

@@ -1,10 +1,31 @@
 //! Checks of machine-data sections that refer to the rest of the file: `[kinematics]` against the
-//! `[[axis]]` list, and the AxiOMA rate tables `[feed_table]` / `[speed_table]`.
+//! `[[axis]]` list, and the AxiOMA rate tables `[feed_table]` / `[speed_table]`; and of the
+//! tolerances.
 
 use super::{AxisData, Invalid};
 use stanok_kin::KinematicsData;
 use std::collections::BTreeMap;
 use toml::Spanned;
+
+/// `path_tolerance` when the file has none, mm: G64 without P runs within 0.05 mm.
+pub const PATH_TOLERANCE: f64 = 0.05;
+
+/// A tolerance key (`arc_tolerance`, `path_tolerance`): a finite number of mm, at least `min`.
+pub(super) fn tolerance(value: &Spanned<f64>, key: &str, min: f64) -> Result<f64, Invalid> {
+    let t = *value.get_ref();
+    if t.is_finite() && t >= min {
+        return Ok(t);
+    }
+    let what = if min > 0.0 {
+        "a positive"
+    } else {
+        "zero or a positive"
+    };
+    Err((
+        format!("{key} must be {what} number of mm, not {t}"),
+        value.span(),
+    ))
+}
 
 /// The `[kinematics]` section checked against the machine type and the `[[axis]]` list: every
 /// rotary orientation axis must be an axis of the machine, and takes its travel limits and

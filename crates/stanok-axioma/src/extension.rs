@@ -54,6 +54,10 @@ pub struct AxiomaMachineParams {
     pub start_exact_stop: bool,
     /// Channel parameter "type of acceleration": SOFT (true) or BRISK (false, default) at start-up.
     pub start_soft: bool,
+    /// 3D compensation: allow direct rotary axes and angles/vectors to alternate along one
+    /// compensated contour, as the corner fragments of §13.5.2–§13.7.3 do although §13.2.3
+    /// forbids it (spec A-14). Default false: `axioma::cut3d-ori-method-change`.
+    pub cut3d_mixed_orientation: bool,
 }
 
 impl Default for AxiomaMachineParams {
@@ -83,6 +87,7 @@ impl Default for AxiomaMachineParams {
             cspline_window: 8,
             start_exact_stop: false,
             start_soft: false,
+            cut3d_mixed_orientation: false,
         }
     }
 }
@@ -137,6 +142,8 @@ impl AxiomaMachineParams {
 pub struct Extension {
     /// Cutter radius compensation (G40/G41/G42/G143/G144).
     pub comp: Comp,
+    /// 3D tool radius compensation (CUT3D*, G41/G42/G40 under a 3D mode).
+    pub comp3d: super::comp3d::Comp3d,
     /// The active canned cycle and its parameters.
     pub cycle: CycleState,
     /// Commands released from `held` so far (slot base).
@@ -176,6 +183,18 @@ fn chain(prev: &mut Option<stanok_canon::Pose>, c: &mut Spanned<Canon>) {
 }
 
 impl Extension {
+    /// End of the program (M02/M30 or the end of the text): the spline pieces still in the
+    /// contour go to 3D compensation, whose look-ahead then ends its path.
+    pub fn comp3d_finish(&mut self, warnings: &mut Vec<Diagnostic>) -> Result<(), Diagnostic> {
+        let span = self
+            .comp3d
+            .first_unresolved_slot()
+            .map(|_| stanok_canon::Span::default())
+            .unwrap_or_default();
+        self.comp3d
+            .flush_spline_and_end(&mut self.spline, warnings, span)
+    }
+
     /// Moves every held command that no unresolved motion precedes into `queue`, with the
     /// resolved compensated motions inserted at their slots.
     pub fn release(
@@ -184,19 +203,21 @@ impl Extension {
         queue: &mut VecDeque<Spanned<Canon>>,
     ) {
         // The first slot a later block may still fill: compensation's or the spline's.
-        let unresolved = match (
+        let unresolved = [
             self.comp.first_unresolved_slot(),
             self.spline.first_unresolved_slot(),
-        ) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        };
+            self.comp3d.first_unresolved_slot(),
+        ]
+        .into_iter()
+        .flatten()
+        .min();
         let limit = match unresolved {
             Some(slot) => (slot.saturating_sub(self.held_base) as usize).min(held.len()),
             None => held.len(),
         };
         let mut resolved = self.comp.take_ready();
         resolved.extend(self.spline.take_ready());
+        resolved.extend(self.comp3d.take_ready());
         // Stable: motions of one slot keep their order (compensation and splines never share
         // a slot: a spline is refused under compensation).
         resolved.sort_by_key(|(slot, _)| *slot);
@@ -238,6 +259,7 @@ impl Extension {
     ) -> Result<(), Diagnostic> {
         self.comp.flush_at_end(warnings)?;
         self.spline.finish(params.cspline_window, reported_spline)?;
+        self.comp3d_finish(warnings)?;
         self.release(held, queue);
         Ok(())
     }

@@ -23,6 +23,7 @@
 mod arc_rules;
 mod chain;
 mod codes;
+pub mod comp3d;
 pub mod cutter_comp;
 pub mod cycles;
 mod extension;
@@ -121,6 +122,8 @@ pub(crate) struct ExtraWords {
     /// `N1=`/`H1=`: the M905 depth (A15).
     pub(crate) m905_depth: Option<Val>,
     pub(crate) ori_words: orientation::OriWords,
+    /// 3D compensation's words: normals A4=…C5=, ISD=.
+    pub(crate) words3: comp3d::Words3,
 }
 
 /// What the modal step found: the interpolation code (or G75) and the dwell.
@@ -140,6 +143,8 @@ pub(crate) struct Aux {
 pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     use steps::*;
     technology::power_on(cx);
+    // Where this block's commands start: 3D compensation takes the block's motions from here.
+    let block_start = cx.out.queue.len();
     let mut x = ExtraWords::default();
     read_keywords(cx, &mut x)?;
     read_indexed(cx, &mut x)?;
@@ -163,6 +168,7 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     dwell_or_motion(cx, &actions, &x, &modal, parameter_block, comp_active)?;
     cx.check_all_used()?;
     technology::refresh(cx);
+    comp3d::after_block(cx, block_start)?;
     // 7. Postfix M functions; program control last.
     postfix_aux(cx, &mut aux)
 }

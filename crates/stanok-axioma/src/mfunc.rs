@@ -310,6 +310,9 @@ fn program_end(cx: &mut Ctx<'_>, f: &MFunction, at: ColSpan) -> Result<(), Diagn
     }
     let end_span = cx.block.span();
     cx.fe.ext.comp.end_of_program(end_span, cx.warnings)?;
+    let ext = &mut cx.fe.ext;
+    ext.comp3d
+        .flush_spline_and_end(&mut ext.spline, cx.warnings, end_span)?;
     cx.out.push(Canon::ProgramEnd);
     Ok(())
 }

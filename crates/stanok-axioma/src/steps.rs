@@ -5,7 +5,7 @@ use super::*;
 
 /// Keywords, in the written order.
 pub(crate) fn read_keywords(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), Diagnostic> {
-    let (cr, tech, sw) = (&mut x.cr, &mut x.tech, &mut x.sw);
+    let (cr, tech, sw, x_words3) = (&mut x.cr, &mut x.tech, &mut x.sw, &mut x.words3);
     for i in 0..cx.words.keywords.len() {
         let (kw, index, val, span) = cx.words.keywords[i];
         match kw {
@@ -25,7 +25,10 @@ pub(crate) fn read_keywords(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), 
             Keyword::Aspline => sw.keyword = Some((SplineKind::Akima, span)),
             Keyword::Cspline => sw.keyword = Some((SplineKind::Cubic, span)),
             Keyword::Bspline => sw.keyword = Some((SplineKind::Nurbs, span)),
-            Keyword::Splbreak => sw.splbreak = true,
+            Keyword::Splbreak => {
+                comp3d::forbidden(cx, "SPLBREAK", span)?;
+                sw.splbreak = true
+            }
             Keyword::Pw | Keyword::Pl | Keyword::Sd => {
                 let Some(v) = val else {
                     return Err(cx.err("interp::missing-value", "the word has no value", span));
@@ -43,34 +46,40 @@ pub(crate) fn read_keywords(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), 
             | Keyword::OriAxes
             | Keyword::OriVect
             | Keyword::OriWks
-            | Keyword::OriMks => orientation::keyword(cx, kw, span)?,
-            Keyword::Cut2df => {}
+            | Keyword::OriMks => {
+                comp3d::forbidden(cx, cx.block.slice(span), span)?;
+                orientation::keyword(cx, kw, span)?
+            }
+            Keyword::Cut2df
+            | Keyword::Cut3dc
+            | Keyword::Cut3dcc
+            | Keyword::Cut3dccd
+            | Keyword::Cut3df
+            | Keyword::Cut3dfs
+            | Keyword::Cut3dff => {
+                comp3d::mode_word(cx, kw, span)?;
+            }
+            Keyword::Isd => {
+                let Some(v) = val else {
+                    return Err(cx.err("interp::missing-value", "ISD= has no value", span));
+                };
+                x_words3.isd = Some(v);
+            }
             Keyword::Cr => {
                 *cr = val;
                 if cr.is_none() {
                     return Err(cx.err("interp::missing-value", "CR= has no value", span));
                 }
             }
-            Keyword::Cut3dc
-            | Keyword::Cut3dcc
-            | Keyword::Cut3dccd
-            | Keyword::Cut3df
-            | Keyword::Cut3dfs
-            | Keyword::Cut3dff
-            | Keyword::Lead
-            | Keyword::Tilt => {
-                return Err(unsupported(
-                    cx,
-                    cx.block.slice(span),
-                    "5-axis kinematics and 3D compensation",
-                    span,
-                ))
+            Keyword::Lead | Keyword::Tilt => {
+                // The manual names LEAD and TILT but describes them nowhere (spec axioma-4 §1.2).
+                return Err(unsupported(cx, cx.block.slice(span), "LEAD/TILT", span));
             }
             _ => {
                 return Err(unsupported(
                     cx,
                     cx.block.slice(span),
-                    "5-axis kinematics and 3D compensation",
+                    "keywords of other controls",
                     span,
                 ))
             }
@@ -83,7 +92,7 @@ pub(crate) fn read_keywords(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), 
 /// the others come with later issues.
 pub(crate) fn read_indexed(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), Diagnostic> {
     for &(letter, index, val) in &cx.words.indexed {
-        if x.ori_words.take(letter, index, val) {
+        if x.ori_words.take(letter, index, val) || x.words3.take(letter, index, val) {
             continue;
         }
         match letter {
@@ -101,7 +110,7 @@ pub(crate) fn read_indexed(cx: &mut Ctx<'_>, x: &mut ExtraWords) -> Result<(), D
                 return Err(unsupported(
                     cx,
                     &format!("{}{}=", letter as char, index),
-                    "5-axis kinematics and 3D compensation (orientation words)",
+                    "extended addresses",
                     val.span,
                 ))
             }
@@ -209,6 +218,11 @@ pub(crate) fn modal_codes(
                 cx.fe.ext.probe.g75 = true;
             }
             GAction::Dwell => dwell = Some(span),
+            GAction::Plane(_) | GAction::Workpiece(_) | GAction::LengthComp(_)
+                if cx.fe.ext.comp3d.in_contour() =>
+            {
+                return Err(comp3d::forbidden(cx, &g_name(_code), span).unwrap_err());
+            }
             GAction::Plane(p) if cx.st.plane != p => {
                 if comp_active {
                     return Err(forbidden_under_comp(
@@ -264,6 +278,20 @@ pub(crate) fn modal_codes(
             }
             GAction::Css(on) => technology::css_mode(cx, on),
             GAction::Retract(initial) => cx.st.retract_to_initial = initial,
+            GAction::Radius(code) if cx.fe.ext.comp3d.claims(code) => {
+                comp3d::select(cx, code, span)?
+            }
+            GAction::Radius(code) if cx.fe.ext.comp3d.phase != comp3d::Phase::Off => {
+                return Err(comp3d::forbidden(cx, &g_name(code), span)
+                    .err()
+                    .unwrap_or_else(|| {
+                        cx.err(
+                            "axioma::cut3d-forbidden",
+                            format!("{} while 3D compensation is on", g_name(code)),
+                            span,
+                        )
+                    }));
+            }
             GAction::Radius(code) => Comp::select(cx, code, span)?,
             GAction::CycleCancel => cx.fe.ext.cycle.active = None,
             GAction::Cycle(kind) => cycles::activate(cx, kind),
@@ -442,6 +470,15 @@ pub(crate) fn prefix_aux(
     let table = &cx.fe.params.m_table;
     let mut ms: Vec<(MFunction, ColSpan)> = Vec::with_capacity(cx.words.m.len());
     for &(number, span) in &cx.words.m {
+        // §13.2.3: no M function inside a 3D-compensated contour; the program end ends it.
+        if !m_function(table, number).is_some_and(|f| {
+            matches!(
+                f.kind,
+                MKind::ProgramEnd | MKind::ProgramEndToWaitingPosition
+            )
+        }) {
+            comp3d::forbidden(cx, &format!("M{number}"), span)?;
+        }
         let Some(f) = m_function(table, number) else {
             return Err(cx.err(
                 "axioma::unknown-m-function",
@@ -603,7 +640,9 @@ pub(crate) fn dwell_or_motion(
             || (cx.fe.ext.m.batch_probe
                 && cx.st.motion == MotionMode::Linear
                 && !cx.fe.modes.polar.on);
-        if orientation::check(cx, &x.ori_words)? {
+        let generalized = orientation::check(cx, &x.ori_words)?;
+        comp3d::before_motion(cx, &x.words3, generalized)?;
+        if generalized {
             orientation::motion(cx, at, &x.ori_words)?;
         } else if cx.fe.ext.spline.kind.is_some() {
             splines::point(cx, at, &x.sw)?;

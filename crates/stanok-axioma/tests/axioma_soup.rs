@@ -1,5 +1,5 @@
 //! Random AxiOMA programs built from the vocabulary of the compensation, cycle, spline,
-//! technology and M-function issues — G41/G42/G143/G144 with G40, canned cycles, ASPLINE/CSPLINE/
+//! technology and M-function issues — G41/G42/G143/G144 with G40, CUT3D* with normals and ISD, canned cycles, ASPLINE/CSPLINE/
 //! BSPLINE, G75, G110/G111, G96/G97, frames, polar moves — with random (often wrong) values:
 //! * the interpreter never panics and always stops (an error is fine; a panic or hang is not);
 //! * every motion it emits starts where the previous one ended and every coordinate is finite.
@@ -63,12 +63,18 @@ fn block(kind: usize, v: &[f64; 4]) -> String {
         29 => "BRISK G64".to_string(),
         30 => "M905 N1=4".to_string(),
         31 => format!("G91 G01 X{a:.2} Y{b:.2}\nG90"),
+        // 3D compensation (issue 23): modes, normals, ISD, arcs and splines inside the contour.
+        33 => format!("CUT3DC G41 G01 X{a:.2} Y{b:.2} ISD={c:.2}"),
+        34 => format!("CUT3DF G42 X{a:.2} Y{b:.2} A4={:.2} C4=1 A5={:.2} B5={c:.2} C5=0.5", d / 40.0, c / 40.0),
+        35 => format!("CUT3DCC G41 X{a:.2} Z{:.2} B4={:.2} C4=1", c / 4.0, d / 50.0),
+        36 => format!("CUT2DF\nCUT3DFS\nX{a:.2} Y{b:.2} ISD={d:.2}"),
+        37 => format!("CUT3DCCD G42 X{a:.2} Y{b:.2}\nG03 X{c:.2} Y{d:.2} CR={:.2}\nG01 X{:.2}", c.abs() + 50.0, a + 1.0),
         _ => format!("G04 X{:.2}", c.abs() / 10.0),
     }
 }
 
 fn program() -> impl Strategy<Value = String> {
-    prop::collection::vec((0usize..33, prop::array::uniform4(-40.0f64..40.0)), 1..30).prop_map(
+    prop::collection::vec((0usize..38, prop::array::uniform4(-40.0f64..40.0)), 1..30).prop_map(
         |blocks| {
             let mut text = String::from("G17 G90 G71 G40 G94 F1000\nT1 M06 D1\nM03 S1000\n");
             for (kind, v) in blocks {

@@ -15,6 +15,8 @@
 //!
 //! Cutter compensation: planar lines and arcs with offsets and intersections ([`offset2d`]);
 //! whole open chains offset with their corners resolved ([`chain2d`], the lathe cycles' allowance).
+//! 3D compensation (AxiOMA CUT3D*): cutter offsets, corner types and projected crossings
+//! ([`offset3d`]).
 //! AxiOMA ASPLINE / CSPLINE: the Akima ([`akima`]) and C² cubic ([`cubic_spline`]) splines
 //! through points, both as Hermite segments in cubic Bézier form.
 #![deny(missing_docs)]
@@ -27,6 +29,7 @@ pub mod cubic_spline;
 mod helix;
 mod nurbs;
 pub mod offset2d;
+pub mod offset3d;
 mod vec3;
 
 pub use akima::{bezier_point, hermite_bezier};

@@ -172,4 +172,3 @@ pub fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
     // 7. Postfix M functions; program control last.
     postfix_aux(cx, &mut aux)
 }
-

@@ -32,8 +32,8 @@ pub mod linuxcnc;
 mod sim;
 mod sim_motion;
 pub mod time_bound;
-mod travel;
 mod tool_body;
+mod travel;
 
 pub use control_write::perm_to_toml;
 pub use data::{

@@ -392,7 +392,7 @@ pub(crate) fn frames_and_offsets(cx: &mut Ctx<'_>, actions: &Actions) -> Result<
             )
         })
         .count();
-    frames::block_rules(cx, &actions)?;
+    frames::block_rules(cx, actions)?;
     if frame_functions > 1 {
         let (_, _, span) = actions[actions.len() - 1];
         return Err(cx.err(

@@ -519,7 +519,16 @@ impl Interpolator {
                     && self.hold.is_idle()
                     && !self.overrides.can_change(planner.overrides())
                 {
+                    let before = self.tick;
                     self.skip_within(&phase, phase_start, phase_end, straight, t);
+                    // The instants skipped are steady ones of this sample's kind: the block's
+                    // timing counts them as if they had been sampled.
+                    let skipped = self.tick.saturating_sub(before);
+                    match phase {
+                        Phase::Stall { .. } | Phase::Stand { .. } => run.standing += skipped,
+                        _ if k.a == 0.0 && k.v > 0.0 => run.cruising += skipped,
+                        _ => run.ramping += skipped,
+                    }
                 }
             }
             match switched {

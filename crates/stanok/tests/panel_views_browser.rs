@@ -214,11 +214,16 @@ fn the_readme_picture_shows_demo_plate_in_its_helical_bore() {
     std::fs::write(&tools, "T1 P1 Z50 D10 ;10 mm end mill\n").unwrap();
     let tools_arg = tools.display().to_string();
     let panel = Panel::start("readme", &["--time-scale", "4", "--tools", &tools_arg]);
-    std::fs::copy(
-        repo("examples/demo-plate.nc"),
-        panel.programs.join("demo-plate.nc"),
-    )
-    .unwrap();
+    // The demo selects no tool (the built-in mill keeps no tool table): for the picture the
+    // 10 mm end mill of its comment is loaded from the table given to the panel.
+    let demo = std::fs::read_to_string(repo("examples/demo-plate.nc")).unwrap();
+    let demo = demo.replacen(
+        "; a 10 mm end mill is in the spindle (the built-in mill keeps no tool table)",
+        "T1 D1 M6 ; the 10 mm end mill",
+        1,
+    );
+    assert!(demo.contains("T1 D1 M6"), "the demo's tool comment moved");
+    std::fs::write(panel.programs.join("demo-plate.nc"), demo).unwrap();
     let Some(mut b) = open(&panel, "readme") else {
         return;
     };

@@ -191,6 +191,9 @@ fn planner(machine: &MachineData, cancel: &Cancel, deadline: Instant) -> Planner
     let options = SimOptions {
         lookahead: crate::machine::SERVE_LOOKAHEAD,
         servo_period_s: 0.004,
+        // The preview has its own wall-time budget and extrapolates past it (module doc): the
+        // simulated-time bound of a run would only cut the estimate short.
+        max_machine_time_s: f64::INFINITY,
         ..SimOptions::default()
     };
     let mut sim = SimMachine::with_options(without_travel(machine), options);

@@ -20,6 +20,7 @@ mod canon;
 mod diag;
 pub mod linuxcnc;
 pub mod linuxcnc_trace;
+mod quantities;
 pub mod setup;
 mod span;
 

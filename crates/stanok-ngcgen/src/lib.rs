@@ -28,6 +28,7 @@ mod flow;
 mod invalid;
 pub mod rng;
 mod sections;
+mod state_sections;
 mod surface;
 
 use rng::Rng;

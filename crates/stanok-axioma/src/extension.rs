@@ -186,11 +186,8 @@ impl Extension {
     /// End of the program (M02/M30 or the end of the text): the spline pieces still in the
     /// contour go to 3D compensation, whose look-ahead then ends its path.
     pub fn comp3d_finish(&mut self, warnings: &mut Vec<Diagnostic>) -> Result<(), Diagnostic> {
-        let span = self
-            .comp3d
-            .first_unresolved_slot()
-            .map(|_| stanok_canon::Span::default())
-            .unwrap_or_default();
+        // The end of the text has no block: the warning names the last compensated block.
+        let span = self.comp3d.last_span;
         self.comp3d
             .flush_spline_and_end(&mut self.spline, warnings, span)
     }

@@ -324,3 +324,36 @@ fn cut3dfs_in_the_three_planes() {
         "{entry:?}"
     );
 }
+
+/// Fuzz finding (CI, 2026-11-27): a fragment that ends without M30 under CUT3DC warned with no
+/// line (the end of the text has no block). The warning names the last compensated block.
+#[test]
+fn cut3d_active_at_the_end_of_the_text_names_the_last_compensated_block() {
+    let text = "N1 T1 M6 F1800\nN2 TRAORI\nN30 CUT3DC G41\nN40 G01 X20 Y50\nN50 X60\n";
+    let mut o = InterpOptions::new(Dialect::Axioma);
+    o.five_axis = Some(stanok_kin::from_fat("C,0,0,0,B,0,0,0").unwrap());
+    o.control.tools.tools.insert(
+        1,
+        Tool {
+            number: 1,
+            edges: vec![ToolEdge {
+                radius: 5.0,
+                ..Default::default()
+            }],
+            ..Default::default()
+        },
+    );
+    let mut interp = Interpreter::from_text(text, o);
+    for item in interp.by_ref() {
+        if let Err(d) = item {
+            panic!("{d:?}");
+        }
+    }
+    let warnings = interp.take_warnings();
+    let w = warnings
+        .iter()
+        .find(|w| w.code.to_string().contains("cut3d-active-at-end"))
+        .expect("the end-of-text warning");
+    assert_eq!(w.span.line, 5, "{w:?}");
+    assert!(w.span.column >= 1, "{w:?}");
+}

@@ -77,6 +77,9 @@ pub struct Comp3d {
     ready: Vec<(u64, Spanned<Canon>)>,
     /// This block's normals (start, end) and ISD (old, new), set before its motion.
     block: Option<([Vec3; 2], [f64; 2])>,
+    /// The block of the last element given to the engine: where a fragment that ends without
+    /// M30 is reported (the end of the text has no block of its own).
+    pub last_span: stanok_canon::Span,
 }
 
 impl Default for Comp3d {
@@ -92,6 +95,7 @@ impl Default for Comp3d {
             engine: None,
             ready: Vec::new(),
             block: None,
+            last_span: stanok_canon::Span::default(),
         }
     }
 }
@@ -208,6 +212,7 @@ impl Comp3d {
                 };
                 if let Some(e) = self.engine.as_mut() {
                     e.push(elem).map_err(|f| engine::diagnostic(f, span))?;
+                    self.last_span = span;
                 }
             }
         }
@@ -655,6 +660,7 @@ fn hand_over(
     let c3 = &mut cx.fe.ext.comp3d;
     if let Some(e) = c3.engine.as_mut() {
         e.push(elem).map_err(|f| engine::diagnostic(f, span))?;
+        c3.last_span = span;
     }
     if kind == Kind::Exit {
         c3.collect();

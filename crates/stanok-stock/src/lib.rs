@@ -11,5 +11,6 @@ pub mod report;
 pub mod sim;
 pub mod spec;
 pub mod sweep;
+mod tilted;
 pub mod tool;
 mod vec3;

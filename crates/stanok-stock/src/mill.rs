@@ -12,7 +12,9 @@
 //! 1. The cutter's footprint: the XY box of its primitives at both ends of the sweep.
 //! 2. Culling: with a vertical axis, each row of lines is clipped to the chord of the capsule of
 //!    the tool's widest radius around the tip's path (a diagonal move touches a band, not its
-//!    box); a line whose top is below the swept cutter's lowest point is skipped. The grid is tiled
+//!    box); a line whose top is below the swept cutter's lowest point is skipped. With a tilted
+//!    axis each primitive is clipped to its own band and skipped on the lines where its lowest
+//!    possible point is above the material (`tilted.rs`, which states both bounds). The grid is tiled
 //!    ([`TILE`]² lines); each tile keeps an upper bound of its highest material point (recomputed
 //!    after a cut touched it), which culls the bodies' checks of step 4. A footprint of at least
 //!    [`PARALLEL_LINES`] lines is cut by two threads (`rayon::join`), each on its own half of the
@@ -28,7 +30,8 @@
 //!    above the stock's initial top is skipped without looking at a line.
 
 use crate::dexel::{Dexel, DexelGrid, Span};
-use crate::sweep::{chord, chord_vertical, Prim, Sweep};
+use crate::sweep::{chord_vertical, Prim, Sweep};
+use crate::tilted::TiltedPrim;
 use crate::tool::MillTool;
 use crate::vec3::{add, scale, V3};
 
@@ -78,6 +81,26 @@ struct GridGeometry {
     tiles0: usize,
 }
 
+impl GridGeometry {
+    /// The lines of a row whose centres lie in `[xa, xb]`, within `within`.
+    #[inline]
+    fn index_range(
+        &self,
+        xa: f64,
+        xb: f64,
+        within: std::ops::Range<usize>,
+    ) -> std::ops::Range<usize> {
+        let a = ((xa - self.origin[0]) / self.cell[0] - 0.5)
+            .ceil()
+            .max(within.start as f64);
+        let b = (((xb - self.origin[0]) / self.cell[0] - 0.5).floor() + 1.0).min(within.end as f64);
+        if a >= b || a.is_nan() || b.is_nan() {
+            return 0..0;
+        }
+        a as usize..b as usize
+    }
+}
+
 /// Whole tile rows of the grid, from line row `j0`: what one thread may change.
 struct Band<'a> {
     lines: &'a mut [Dexel],
@@ -112,6 +135,8 @@ struct CutterPass<'a> {
     lows: &'a [f64],
     sw: &'a Sweep,
     vertical: bool,
+    /// The primitives prepared for a tilted axis (`tilted.rs`), else empty.
+    tilted: &'a [TiltedPrim],
     z_low: f64,
     radius: f64,
     ir: std::ops::Range<usize>,
@@ -128,6 +153,8 @@ impl CutterPass<'_> {
         let g = self.grid;
         let area = g.cell[0] * g.cell[1];
         let (p0, d) = (self.sw.p0, self.sw.d);
+        // Per row, the lines each tilted primitive's band covers.
+        let mut prim_ir: Vec<std::ops::Range<usize>> = vec![0..0; self.tilted.len()];
         for j in rows {
             let y = g.origin[1] + (j as f64 + 0.5) * g.cell[1];
             // A vertical tool covers the disk of its widest radius around the tip's path.
@@ -140,17 +167,28 @@ impl CutterPass<'_> {
                 ) else {
                     continue;
                 };
-                let a = ((xa - g.origin[0]) / g.cell[0] - 0.5)
-                    .ceil()
-                    .max(self.ir.start as f64);
-                let b =
-                    (((xb - g.origin[0]) / g.cell[0] - 0.5).floor() + 1.0).min(self.ir.end as f64);
-                if a >= b || a.is_nan() || b.is_nan() {
+                let r = g.index_range(xa, xb, self.ir.clone());
+                if r.is_empty() {
                     continue;
                 }
-                a as usize..b as usize
+                r
             } else {
-                self.ir.clone()
+                // A tilted tool: each primitive's band, and the lines of any of them.
+                let (mut a, mut b) = (usize::MAX, 0);
+                for (k, tp) in self.tilted.iter().enumerate() {
+                    prim_ir[k] = match tp.x_range(y) {
+                        Some((xa, xb)) => g.index_range(xa, xb, self.ir.clone()),
+                        None => 0..0,
+                    };
+                    if !prim_ir[k].is_empty() {
+                        a = a.min(prim_ir[k].start);
+                        b = b.max(prim_ir[k].end);
+                    }
+                }
+                if a >= b {
+                    continue;
+                }
+                a..b
             };
             let row = (j - band.j0) * g.n0;
             for i in ir {
@@ -164,12 +202,23 @@ impl CutterPass<'_> {
                 // not means everything above the lower ones is air: cut to the top.
                 let mut range: Option<(f64, f64)> = None;
                 let mut open_top = false;
-                for (p, &low) in self.prims.iter().zip(self.lows) {
-                    if low > top {
-                        open_top = self.vertical;
-                        break;
-                    }
-                    if let Some((a, b)) = MillModel::chord_at(p, self.sw, self.vertical, c) {
+                for (k, (p, &low)) in self.prims.iter().zip(self.lows).enumerate() {
+                    let chord = if self.vertical {
+                        if low > top {
+                            open_top = true;
+                            break;
+                        }
+                        chord_vertical(p, self.sw, c[0], c[1])
+                    } else {
+                        // Tilted: outside its band or above the material, a primitive cuts
+                        // nothing the others do not (tilted.rs).
+                        let tp = &self.tilted[k];
+                        if low > top || !prim_ir[k].contains(&i) || tp.bound.at(c) > top {
+                            continue;
+                        }
+                        tp.chord(c)
+                    };
+                    if let Some((a, b)) = chord {
                         range = Some(range.map_or((a, b), |(x, y)| (x.min(a), y.max(b))));
                     }
                 }
@@ -362,16 +411,6 @@ impl MillModel {
         }
     }
 
-    /// The z chord of a line at `c` with a primitive swept (fast path for a vertical axis).
-    #[inline]
-    fn chord_at(p: &Prim, sw: &Sweep, vertical: bool, c: [f64; 2]) -> Option<(f64, f64)> {
-        if vertical {
-            chord_vertical(p, sw, c[0], c[1])
-        } else {
-            chord(p, sw, [c[0], c[1], 0.0], [0.0, 0.0, 1.0])
-        }
-    }
-
     /// Cuts with `tool` swept along `sw` and checks its other bodies (module doc).
     pub fn apply(&mut self, tool: &MillTool, sw: &Sweep) -> SweepHits {
         let vertical = sw.axis[0].abs() < 1e-12 && sw.axis[1].abs() < 1e-12 && sw.axis[2] > 0.0;
@@ -400,11 +439,17 @@ impl MillModel {
             let jr = self.grid.index_range(1, lo[1], hi[1]);
             let ir = self.grid.index_range(0, lo[0], hi[0]);
             if !(jr.is_empty() || ir.is_empty()) {
+                let tilted: Vec<TiltedPrim> = if vertical {
+                    Vec::new()
+                } else {
+                    tool.cutter.iter().map(|p| TiltedPrim::new(p, sw)).collect()
+                };
                 let cut = CutterPass {
                     prims: &tool.cutter,
                     lows: &lows,
                     sw,
                     vertical,
+                    tilted: &tilted,
                     z_low,
                     radius: tool.cutter.iter().map(Prim::max_radius).fold(0.0, f64::max),
                     ir,
@@ -447,12 +492,21 @@ impl MillModel {
                     continue;
                 }
                 let (lo, hi) = prim_box(p, sw);
+                let tp = (!vertical).then(|| TiltedPrim::new(p, sw));
                 self.for_lines(lo, hi, z_low, |grid, idx, c| {
                     let line = &grid.lines[idx];
-                    if line.top().is_none_or(|top| (top as f64) < z_low) {
+                    let Some(top) = line.top().map(f64::from) else {
+                        return false;
+                    };
+                    if top < z_low {
                         return false;
                     }
-                    if let Some((a, b)) = Self::chord_at(p, sw, vertical, c) {
+                    let chord = match &tp {
+                        None => chord_vertical(p, sw, c[0], c[1]),
+                        Some(tp) if tp.bound.at(c) > top => None,
+                        Some(tp) => tp.chord(c),
+                    };
+                    if let Some((a, b)) = chord {
                         *depth = depth.max(line.overlap(a, b));
                     }
                     false
@@ -469,7 +523,7 @@ impl MillModel {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::tool::{resolve, ToolShape};
     use stanok_canon::setup::{CutterShape, Tool, ToolBody, ToolEdge, ToolTable};

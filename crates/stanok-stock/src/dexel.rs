@@ -215,6 +215,31 @@ impl DexelGrid {
             .then(|| j as usize * self.n[0] + i as usize)
     }
 
+    /// Every `stride`-th line of a grid (the one at the centre of each block of stride² lines).
+    pub fn coarse(&self, stride: usize) -> DexelGrid {
+        let s = stride.max(1);
+        if s == 1 {
+            return self.clone();
+        }
+        let n = [self.n[0].div_ceil(s), self.n[1].div_ceil(s)];
+        let mut out = DexelGrid {
+            origin: self.origin,
+            cell: [self.cell[0] * s as f64, self.cell[1] * s as f64],
+            n,
+            lines: Vec::with_capacity(n[0] * n[1]),
+        };
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let (si, sj) = (
+                    (i * s + s / 2).min(self.n[0] - 1),
+                    (j * s + s / 2).min(self.n[1] - 1),
+                );
+                out.lines.push(self.lines[sj * self.n[0] + si].clone());
+            }
+        }
+        out
+    }
+
     /// Bytes the grid holds (lines and their extra intervals).
     pub fn memory_bytes(&self) -> usize {
         self.lines.len() * std::mem::size_of::<Dexel>()

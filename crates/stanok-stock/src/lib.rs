@@ -2,6 +2,7 @@
 #![deny(missing_docs)]
 
 pub mod dexel;
+pub mod field;
 pub mod lathe;
 pub mod mesh;
 mod mesh_merge;

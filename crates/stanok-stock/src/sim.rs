@@ -34,7 +34,6 @@
 //! look-ahead window), per-block totals (one entry per source line that cut) and at most
 //! [`MAX_COLLISIONS`] collision records.
 
-use crate::dexel::DexelGrid;
 use crate::lathe::LatheModel;
 use crate::mesh::{grid_from_triangles, read_stl, Mesh};
 use crate::mill::{prim_lowest, MillModel};
@@ -748,9 +747,25 @@ impl StockSim {
     /// > 1 samples every stride-th line for a lighter mesh.
     pub fn mesh(&self, stride: usize) -> Option<Mesh> {
         match self.model.as_ref()? {
-            Model::Mill(m) => Some(Mesh::from_grid(&coarse(&m.grid, stride))),
+            Model::Mill(m) => Some(Mesh::from_grid(&m.grid.coarse(stride))),
             Model::Lathe(l) => Some(l.mesh((256 / stride.max(1)).max(16))),
         }
+    }
+
+    /// Cuts the open chain now (a live view that shows the stock mid-move): a straight chain cut
+    /// in two sweeps removes the same volume as in one, the next setpoint starts a new chain.
+    pub fn cut_pending(&mut self) {
+        self.flush();
+    }
+
+    /// Material removed so far by the sweeps done, mm³.
+    pub fn removed_mm3(&self) -> f64 {
+        self.per_tool.values().map(|t| t.volume).sum()
+    }
+
+    /// Volume of the stock as it was made, mm³ (0 before the first motion).
+    pub fn initial_volume_mm3(&self) -> f64 {
+        self.initial_volume
     }
 
     /// Stock-frame coordinates of a machine point.
@@ -762,29 +777,4 @@ impl StockSim {
     pub fn to_machine(&self, q: [f64; 3]) -> [f64; 3] {
         self.placement.to_machine(q)
     }
-}
-
-/// Every `stride`-th line of a grid (the one at the centre of each block of stride² lines).
-fn coarse(grid: &DexelGrid, stride: usize) -> DexelGrid {
-    let s = stride.max(1);
-    if s == 1 {
-        return grid.clone();
-    }
-    let n = [grid.n[0].div_ceil(s), grid.n[1].div_ceil(s)];
-    let mut out = DexelGrid {
-        origin: grid.origin,
-        cell: [grid.cell[0] * s as f64, grid.cell[1] * s as f64],
-        n,
-        lines: Vec::with_capacity(n[0] * n[1]),
-    };
-    for j in 0..n[1] {
-        for i in 0..n[0] {
-            let (si, sj) = (
-                (i * s + s / 2).min(grid.n[0] - 1),
-                (j * s + s / 2).min(grid.n[1] - 1),
-            );
-            out.lines.push(grid.lines[sj * grid.n[0] + si].clone());
-        }
-    }
-    out
 }

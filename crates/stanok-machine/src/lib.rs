@@ -44,7 +44,7 @@ pub use data::{
 pub use sim::{BoundingBox, LoggedEvent, RunReport, SimMachine};
 pub use sim_motion::{
     AxisMotion, BlockTime, ContourError, ContourErrors, FeedHoldReport, SetpointSink, SimOptions,
-    SpindleRange,
+    SpindleRange, StockObserver,
 };
 pub use stanok_motion::overrides::{OverrideChange, OverrideKind, OverrideSwitch};
 pub use stanok_motion::Setpoint;

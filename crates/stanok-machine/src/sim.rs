@@ -278,6 +278,13 @@ impl SimMachine {
         self.motion.set_stock(stock);
     }
 
+    /// Hands the stock simulation to `o` after every setpoint it took (a live view samples it
+    /// there, at its own rate: the call is on the servo path, so it must be cheap when it does
+    /// not sample).
+    pub fn set_stock_observer(&mut self, o: crate::sim_motion::StockObserver) {
+        self.motion.set_stock_observer(o);
+    }
+
     /// The stock simulation, if there is one (its mesh, its collisions so far).
     pub fn stock(&self) -> Option<&stanok_stock::sim::StockSim> {
         self.motion.stock()

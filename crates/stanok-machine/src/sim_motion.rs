@@ -24,6 +24,10 @@ use stanok_stock::sim::StockSim;
 /// Receives every setpoint (e.g. a trace writer).
 pub type SetpointSink = Box<dyn FnMut(&Setpoint)>;
 
+/// Sees the stock simulation after every setpoint it took (the panel's live stock view); it may
+/// cut what is pending (`StockSim::cut_pending`) before it looks.
+pub type StockObserver = Box<dyn FnMut(&mut StockSim)>;
+
 /// How the simulated machine runs the motion.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SimOptions {
@@ -184,6 +188,7 @@ struct SetpointChecks {
     spindle_rpm_range: [Option<(f64, f64)>; 4],
     /// The stock-removal simulation, when the run has a stock.
     stock: Option<StockSim>,
+    stock_observer: Option<StockObserver>,
 }
 
 impl SetpointChecks {
@@ -199,6 +204,9 @@ impl SetpointChecks {
         track_spindles(&mut self.spindle_rpm_range, &sp.spindle_rpm);
         if let Some(s) = self.stock.as_mut() {
             s.setpoint(sp);
+            if let Some(o) = self.stock_observer.as_mut() {
+                o(s);
+            }
         }
         if let Some(o) = self.observer.as_mut() {
             o(sp);
@@ -250,6 +258,7 @@ impl MotionRun {
                 travel_violation_count: 0,
                 spindle_rpm_range: [None; 4],
                 stock: None,
+                stock_observer: None,
             },
             limits,
             feed_override: config.feed_override,
@@ -278,6 +287,10 @@ impl MotionRun {
 
     pub(crate) fn set_stock(&mut self, stock: StockSim) {
         self.checks.stock = Some(stock);
+    }
+
+    pub(crate) fn set_stock_observer(&mut self, o: StockObserver) {
+        self.checks.stock_observer = Some(o);
     }
 
     pub(crate) fn stock(&self) -> Option<&StockSim> {

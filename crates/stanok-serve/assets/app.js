@@ -84,6 +84,8 @@ function askConfirm(text) {
 async function loadProgram(fromFile) {
   const body = { name: programName(), dialect: dialectChoice() };
   if (!fromFile) body.text = editor.text();
+  const stock = $("stock").value.trim();
+  if (stock) body.stock = stock;
   let r = await api("POST", "/api/load", body);
   if (r.status === 409 && r.data && r.data.confirm === "stop") {
     const yes = await askConfirm(`${r.data.running} is in progress. Stop it and load ${body.name}?`);
@@ -242,7 +244,12 @@ function connect() {
   const proto = location.protocol === "https:" ? "wss:" : "ws:";
   const ws = new WebSocket(`${proto}//${location.host}/ws${token ? "?token=" + encodeURIComponent(token) : ""}`);
   ws.onopen = () => { $("connection").textContent = "online"; $("connection").className = "badge"; };
-  ws.onmessage = e => show(JSON.parse(e.data));
+  ws.onmessage = e => {
+    const m = JSON.parse(e.data);
+    // The stock's live messages (stock.rs) come between the status frames.
+    if ("stock" in m) { panel.stock = m.stock; if (panel.view.setStock) panel.view.setStock(m.stock); }
+    else show(m);
+  };
   ws.onclose = () => {
     $("connection").textContent = "offline"; $("connection").className = "badge off";
     setTimeout(connect, 1000);

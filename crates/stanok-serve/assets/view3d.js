@@ -13,7 +13,10 @@
 //   ticks    tool-axis ticks of a 5-axis program under tool-centre-point control;
 //   executed the path the machine has run (blue), from the status positions;
 //   tool     a cylinder of the tool's diameter and length from the tool table (a cone on a lathe),
-//            its tip at the tool position, along the tool axis.
+//            its tip at the tool position, along the tool axis;
+//   stock    the stock as the run cuts it (setStock: a height field of at most 128² cells, or a
+//            lathe's revolved profile, a few times a second) and its collisions as red points
+//            labelled with their lines.
 // Camera: orthographic. Mill: orbit (azimuth, elevation) about a target, Z up. Lathe: fixed view,
 // Z to the right and X up (looking along −Y), pan and zoom only. Rendering is on demand.
 "use strict";
@@ -35,7 +38,7 @@ class View3D {
     this.azimuth = -Math.PI / 4; this.elevation = 35.264 * Math.PI / 180;
     this.layers = {};
     for (const name of ["grid", "travel", "extents", "path", "programmed", "marks", "ticks",
-                        "executed", "tool", "extra"]) {
+                        "executed", "tool", "stock", "extra"]) {
       const g = new THREE.Group(); g.name = name; this.scene.add(g); this.layers[name] = g;
     }
     this.scene.add(new THREE.AmbientLight(0xffffff, 0.7));
@@ -325,6 +328,111 @@ class View3D {
     this.render();
   }
 
+  // --- the stock ---------------------------------------------------------------------------
+
+  // A live message of the stock (stock.rs): heights base64 u16 LE, 65535 = no material; null =
+  // no stock. A height field keeps its geometry while its size stays, only the heights change.
+  setStock(st) {
+    const T = this.T;
+    this.stockUpdates = (this.stockUpdates || 0) + 1;
+    this.stockInfo = st;
+    if (!st) { this.clear("stock"); this.stockMesh = null; this.stockKey = null; this.dropLabels("stock"); this.render(); return; }
+    const bin = atob(st.heights), q = new Uint16Array(bin.length >> 1);
+    for (let i = 0; i < q.length; i++) q[i] = bin.charCodeAt(2 * i) | (bin.charCodeAt(2 * i + 1) << 8);
+    const [lo, hi] = st.range, h = v => v === 65535 ? null : lo + (hi - lo) * v / 65534;
+    const key = `${st.kind}:${st.n[0]}x${st.n[1]}:${st.origin}:${st.cell}:${st.range}:${st.offset}:${st.rotation_deg}`;
+    if (st.kind === "mill") {
+      const [nx, ny] = st.n;
+      if (key !== this.stockKey) {
+        this.clear("stock");
+        // (nx × ny) top vertices at the cell centres and as many at the bottom for the walls.
+        const pos = new Float32Array(nx * ny * 2 * 3), idx = [];
+        for (let j = 0; j < ny; j++) for (let i = 0; i < nx; i++) {
+          const k = j * nx + i, x = st.origin[0] + (i + 0.5) * st.cell[0], y = st.origin[1] + (j + 0.5) * st.cell[1];
+          pos.set([x, y, hi], k * 3); pos.set([x, y, lo], (nx * ny + k) * 3);
+        }
+        for (let j = 0; j + 1 < ny; j++) for (let i = 0; i + 1 < nx; i++) {
+          const a = j * nx + i, b = a + 1, c = a + nx, d = c + 1;
+          idx.push(a, b, d, a, d, c);
+        }
+        const B = nx * ny, wall = (a, b) => idx.push(a, B + a, B + b, a, B + b, b);
+        for (let i = 0; i + 1 < nx; i++) { wall(i + 1, i); wall((ny - 1) * nx + i, (ny - 1) * nx + i + 1); }
+        for (let j = 0; j + 1 < ny; j++) { wall(j * nx, (j + 1) * nx); wall((j + 1) * nx + nx - 1, j * nx + nx - 1); }
+        const geo = new T.BufferGeometry();
+        geo.setAttribute("position", new T.BufferAttribute(pos, 3));
+        geo.setAttribute("color", new T.BufferAttribute(new Float32Array(nx * ny * 2 * 3).fill(0.62), 3));
+        geo.setIndex(idx);
+        // Drawn over the grid lines that lie in its top (Z 0).
+        const mat = new T.MeshLambertMaterial({ vertexColors: true, side: T.DoubleSide,
+          polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4 });
+        this.stockMesh = new T.Mesh(geo, mat);
+        this.stockMesh.name = "stock-mesh";
+        this.stockMesh.position.set(...st.offset);
+        this.stockMesh.rotation.z = st.rotation_deg * Math.PI / 180;
+        this.layers.stock.add(this.stockMesh);
+        this.stockKey = key;
+      }
+      const attr = this.stockMesh.geometry.getAttribute("position");
+      const col = this.stockMesh.geometry.getAttribute("color");
+      // A cell without material is drawn at the stock's bottom (a hole through). The raw top is
+      // steel grey; a cut surface is tan, darker the deeper it is.
+      for (let k = 0; k < nx * ny; k++) {
+        const z = h(q[k]), at = z === null ? lo : z;
+        attr.array[k * 3 + 2] = at;
+        const d = q[k] >= 65534 ? -1 : (hi - at) / Math.max(hi - lo, 1e-9);
+        col.array.set(d < 0 ? [0.62, 0.68, 0.74] : [0.93 - 0.45 * d, 0.76 - 0.45 * d, 0.46 - 0.3 * d], k * 3);
+      }
+      attr.needsUpdate = true; col.needsUpdate = true;
+      this.stockMesh.geometry.computeVertexNormals();
+      this.stockMesh.geometry.computeBoundingSphere();
+    } else {
+      // A lathe: the outer radius along Z revolved about the spindle axis.
+      this.clear("stock");
+      const pts = [new T.Vector2(0, st.z0)];
+      for (let k = 0; k < st.n[0]; k++) {
+        const r = h(q[k]) || 0, z0 = st.z0 + k * st.cell[0];
+        pts.push(new T.Vector2(r, z0), new T.Vector2(r, z0 + st.cell[0]));
+      }
+      pts.push(new T.Vector2(0, st.z0 + st.n[0] * st.cell[0]));
+      const mesh = new T.Mesh(new T.LatheGeometry(pts, 48), new T.MeshLambertMaterial({ color: 0x9fb4c7, side: T.DoubleSide }));
+      // LatheGeometry turns about its Y axis: Y → Z.
+      mesh.rotation.x = Math.PI / 2;
+      mesh.position.set(st.offset[0] + st.origin[0], st.offset[1] + st.origin[1], st.offset[2]);
+      mesh.name = "stock-mesh";
+      this.layers.stock.add(mesh);
+      this.stockMesh = mesh;
+      this.stockKey = key;
+    }
+    // Collisions: red points at their positions, labelled with their lines.
+    const old = this.layers.stock.getObjectByName("stock-collisions");
+    if (old) { this.layers.stock.remove(old); old.geometry.dispose(); old.material.dispose(); }
+    this.dropLabels("stock");
+    const cs = st.collisions || [];
+    if (cs.length) {
+      const geo = new T.BufferGeometry();
+      geo.setAttribute("position", new T.Float32BufferAttribute(cs.flatMap(c => c.position), 3));
+      const pts = new T.Points(geo, new T.PointsMaterial({ color: 0xe03131, size: 12, sizeAttenuation: false, depthTest: false }));
+      pts.name = "stock-collisions"; pts.renderOrder = 11;
+      this.layers.stock.add(pts);
+      cs.slice(0, 30).forEach(c => this.label(`line ${c.line} ${c.kind.replace(/_/g, " ")}`, c.position, "stock", "violation"));
+    }
+    this.render();
+  }
+
+  // The stock's top at machine (x, y) as the last message drew it (null: no material or no
+  // stock): what the tests read.
+  stockZ(x, y) {
+    const st = this.stockInfo;
+    if (!st || st.kind !== "mill") return null;
+    const a = -st.rotation_deg * Math.PI / 180, dx = x - st.offset[0], dy = y - st.offset[1];
+    const qx = Math.cos(a) * dx - Math.sin(a) * dy, qy = Math.sin(a) * dx + Math.cos(a) * dy;
+    const i = Math.floor((qx - st.origin[0]) / st.cell[0]), j = Math.floor((qy - st.origin[1]) / st.cell[1]);
+    if (i < 0 || j < 0 || i >= st.n[0] || j >= st.n[1]) return null;
+    const k = j * st.n[0] + i, bin = atob(st.heights);
+    const v = bin.charCodeAt(2 * k) | (bin.charCodeAt(2 * k + 1) << 8);
+    return v === 65535 ? null : st.range[0] + (st.range[1] - st.range[0]) * v / 65534 + st.offset[2];
+  }
+
   // --- camera ------------------------------------------------------------------------------
 
   iso() { if (!this.lathe) { this.azimuth = -Math.PI / 4; this.elevation = 35.264 * Math.PI / 180; } this.render(); }
@@ -398,6 +506,12 @@ class View3D {
       pathVertices: count(this.layers.path), programmedVertices: count(this.layers.programmed),
       violations: count(this.layers.marks), ticks: count(this.layers.ticks) / 2,
       executed: this.execN, travelBox: this.layers.travel.children.length > 0,
+      stock: this.stockInfo ? {
+        updates: this.stockUpdates, kind: this.stockInfo.kind, n: this.stockInfo.n,
+        removed_mm3: this.stockInfo.removed_mm3, initial_mm3: this.stockInfo.initial_mm3,
+        done: this.stockInfo.done, collisions: (this.stockInfo.collisions || []).length,
+        vertices: this.stockMesh ? this.stockMesh.geometry.getAttribute("position").count : 0,
+      } : null,
       extents: this.extents, tool: this.toolSize,
       labels: this.labels.map(l => l.el.textContent),
       toolAxis: this.tool ? [0, 1, 0].map((_, i) => new this.T.Vector3(0, 1, 0).applyQuaternion(this.tool.quaternion).toArray()[i]) : null,

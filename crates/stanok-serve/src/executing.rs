@@ -84,6 +84,9 @@ pub struct SnapshotRing {
     entries: VecDeque<(u32, Arc<Snapshot>)>,
     next_tag: u32,
     latest: Option<Arc<Snapshot>>,
+    /// (first tag, line) at every change of line, the last [`RING_CAPACITY`]: the source line of
+    /// a tag that has already executed (the stock's collisions come a few blocks late).
+    lines: VecDeque<(u32, u32)>,
 }
 
 impl Default for SnapshotRing {
@@ -92,6 +95,7 @@ impl Default for SnapshotRing {
             entries: VecDeque::new(),
             next_tag: 1,
             latest: None,
+            lines: VecDeque::new(),
         }
     }
 }
@@ -108,6 +112,12 @@ impl SnapshotRing {
     pub fn push(&mut self, snapshot: Snapshot) -> u32 {
         let tag = self.next_tag;
         self.next_tag = self.next_tag.wrapping_add(1);
+        if self.lines.back().is_none_or(|&(_, l)| l != snapshot.line) {
+            if self.lines.len() >= RING_CAPACITY {
+                self.lines.pop_front();
+            }
+            self.lines.push_back((tag, snapshot.line));
+        }
         let shared = match &self.latest {
             Some(prev) if prev.line == snapshot.line && prev.same_modes(&snapshot) => prev.clone(),
             _ => Arc::new(snapshot),
@@ -134,6 +144,13 @@ impl SnapshotRing {
             Some((t, s)) if *t == tag => Some(s.clone()),
             _ => None,
         }
+    }
+
+    /// The source line of the command with `tag`, executed or not, while it is among the last
+    /// [`RING_CAPACITY`] changes of line.
+    pub fn line_of(&self, tag: u32) -> Option<u32> {
+        let k = self.lines.partition_point(|&(t, _)| !before(tag, t));
+        (k > 0).then(|| self.lines[k - 1].1)
     }
 
     /// The snapshot after the last command pushed (everything has run when the machine is at rest
@@ -186,6 +203,22 @@ mod tests {
         assert!(ring.executing(b).is_none());
         assert_eq!(ring.latest().unwrap().line, 3);
         assert_eq!(ring.len(), 1);
+    }
+
+    #[test]
+    fn the_line_of_an_executed_tag_is_still_known() {
+        let mut ring = SnapshotRing::new();
+        let a = ring.push(snap(1, 100.0));
+        let b = ring.push(snap(2, 200.0));
+        let b2 = ring.push(snap(2, 250.0));
+        let c = ring.push(snap(7, 300.0));
+        ring.executing(c);
+        assert!(ring.executing(b).is_none());
+        assert_eq!(
+            [a, b, b2, c].map(|t| ring.line_of(t)),
+            [Some(1), Some(2), Some(2), Some(7)]
+        );
+        assert_eq!(ring.line_of(0), None);
     }
 
     #[test]

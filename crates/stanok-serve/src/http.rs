@@ -221,14 +221,27 @@ async fn websocket(State(app): State<AppState>, ws: WebSocketUpgrade) -> Respons
     ws.on_upgrade(move |socket| stream_status(app, socket))
 }
 
-/// Sends the latest status ~30 times a second while it changes. One frame in flight per client:
+/// Sends the latest status ~30 times a second while it changes, and the stock's latest live
+/// message when there is a new one (`stock.rs`). One frame in flight per client:
 /// a slow client skips snapshots, it never queues them (module doc of `machine.rs`).
 async fn stream_status(app: AppState, mut socket: WebSocket) {
     let mut tick = tokio::time::interval(Duration::from_millis(1000 / UPDATES_PER_SECOND));
     tick.set_missed_tick_behavior(tokio::time::MissedTickBehavior::Skip);
     let mut last_seq = u64::MAX;
+    // The stock's live messages (`stock.rs`): the latest when it changed, already bounded in
+    // size and rate by the machine thread that made it.
+    let mut last_stock = 0u64;
     loop {
         tick.tick().await;
+        let (stock_seq, stock) = app.machine.stock.latest();
+        if stock_seq != last_stock {
+            last_stock = stock_seq;
+            if let Some(text) = stock {
+                if socket.send(Message::Text((&*text).into())).await.is_err() {
+                    break;
+                }
+            }
+        }
         let text = {
             let s = app.machine.status();
             if s.seq == last_seq {

@@ -88,6 +88,9 @@ pub(crate) struct ProgramText {
     /// Load: stop a program in progress first.
     #[serde(default)]
     stop: bool,
+    /// Load: the stock to cut (`stock.rs`; the `--stock` syntax), else the machine data's.
+    #[serde(default)]
+    stock: Option<String>,
 }
 
 /// The diagnostic of a job that gave no result.
@@ -134,6 +137,7 @@ pub struct Loaded {
     estimated_s: f64,
     preview: Option<Arc<Preview>>,
     lines: usize,
+    stock: Option<stanok_stock::spec::StockShape>,
 }
 
 /// The loaded program as the page gets it (text only when small, module doc).
@@ -147,6 +151,7 @@ fn loaded_json(l: &Loaded) -> Value {
         "bytes": l.text.len(),
         "diagnostics": l.alarms,
         "preview": l.preview.as_deref(),
+        "stock": l.stock.is_some(),
     })
 }
 
@@ -235,6 +240,10 @@ pub(crate) async fn load_program(
             "the machine is moving (jog, reference return or MDI): wait for it",
         );
     }
+    let stock = match crate::stock::resolve(&app.options.machine, p.stock.as_deref()) {
+        Ok(s) => s,
+        Err(e) => return error(StatusCode::BAD_REQUEST, e),
+    };
     let text: Arc<str> = match p.text {
         Some(t) => t.into(),
         None => match read_large(&app, &p.name) {
@@ -278,6 +287,7 @@ pub(crate) async fn load_program(
         estimated_s: preview.as_ref().map_or(0.0, |v| v.cycle_time_s),
         preview: preview.clone(),
         lines,
+        stock,
     };
     let body = loaded_json(&loaded);
     *app.loaded.lock().unwrap_or_else(|e| e.into_inner()) = Some(loaded);
@@ -288,6 +298,7 @@ pub(crate) async fn load_program(
         .cloned()
         .collect();
     let start = preview.as_ref().and_then(|v| v.start.clone());
+    shared.stock.clear();
     shared.publish(|s| {
         reset_to_start(s, start.as_ref());
         s.program = p.name.clone();
@@ -408,6 +419,7 @@ pub(crate) async fn cycle_start(State(app): State<AppState>, body: axum::body::B
         search_line: req.search_line,
         mark_line: req.mark_line,
         estimated_s: loaded.estimated_s,
+        stock: loaded.stock,
     })));
     Json(json!({ "action": "start" })).into_response()
 }

@@ -46,6 +46,7 @@ pub mod paced;
 pub mod run;
 pub mod search;
 pub mod state;
+pub mod stock;
 
 use files::ProgramDir;
 use jobs::{JobLimits, Jobs};

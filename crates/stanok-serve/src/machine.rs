@@ -400,6 +400,8 @@ pub struct Job {
     pub mark_line: Option<u32>,
     /// Planned cycle time (from the check), s.
     pub estimated_s: f64,
+    /// The stock to cut (`stock.rs`), if any.
+    pub stock: Option<stanok_stock::spec::StockShape>,
 }
 
 /// The machine between actions (module doc).
@@ -421,6 +423,8 @@ pub struct Shared {
     status: Mutex<Status>,
     events: Mutex<Sender<Event>>,
     context: Mutex<MachineContext>,
+    /// The latest live message of the stock (`stock.rs`).
+    pub stock: crate::stock::StockSlot,
 }
 
 impl Shared {
@@ -551,6 +555,7 @@ pub fn spawn(config: MachineConfig) -> Arc<Shared> {
         status: Mutex::new(Status::new(axes)),
         events: Mutex::new(tx),
         context: Mutex::new(context.clone()),
+        stock: Default::default(),
     });
     let thread_shared = shared.clone();
     std::thread::Builder::new()

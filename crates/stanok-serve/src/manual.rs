@@ -400,6 +400,7 @@ fn run_mdi(
         search: None,
         mark_line: None,
         state: machine_state.clone(),
+        stock: None,
     };
     let out = drive(config, shared, rx, here, &mut interp, dialect, setup);
     let mut warnings: Vec<Alarm> = interp.take_warnings().iter().map(Alarm::of).collect();

@@ -89,6 +89,8 @@ pub(crate) struct RunSetup {
     /// The machine state before the first command (a program: power-on; an MDI block: what the
     /// previous block left). Its position is replaced by where the machine stands.
     pub state: MachineState,
+    /// The stock simulation to run beside (`stock.rs`).
+    pub stock: Option<stanok_stock::sim::StockSim>,
 }
 
 /// The machine's side of one run: the simulated machine, the state read off the accepted
@@ -177,7 +179,11 @@ pub(crate) fn drive<R: BufRead + Seek>(
     mut setup: RunSetup,
 ) -> Outcome {
     let controls = &shared.controls;
-    let (sim, tracker) = paced_machine(config, shared, here.position, Mode::Program);
+    let (mut sim, tracker) = paced_machine(config, shared, here.position, Mode::Program);
+    if let Some(stock) = setup.stock.take() {
+        sim.set_stock(stock);
+        sim.set_stock_observer(crate::stock::observer(shared.clone(), tracker.ring.clone()));
+    }
     let mut state = std::mem::take(&mut setup.state);
     state.position = here.position;
     let mut m = Machine {
@@ -325,6 +331,20 @@ pub(crate) fn drive<R: BufRead + Seek>(
             None
         }
     };
+    // The stock as the run left it (finished: everything cut; stopped: up to the stop).
+    if let Some(stock) = m.sim.stock() {
+        let ring = &m.tracker.ring;
+        if let Some(text) = crate::stock::message(stock, true, ring) {
+            shared.stock.put(text);
+        }
+        let listed = shared
+            .status()
+            .alarms
+            .iter()
+            .filter(|a| a.code.starts_with("stock::"))
+            .count();
+        crate::stock::publish_alarms(shared, stock, listed, ring);
+    }
     controls.hold.set(false);
     here.position = match &report {
         Some(r) if finite9(&r.final_position.to_array()) => r.final_position.to_array(),
@@ -376,10 +396,22 @@ pub(crate) fn run_program(
     let opts = interp_options(&config.machine, job.dialect, &config.subroutine_path, here);
     let source = CancelReader::new(job.text.clone(), shared.controls.stop.clone());
     let mut interp = Interpreter::new(source, opts);
+    shared.stock.clear();
+    let stock = job.stock.clone().and_then(|shape| {
+        let lathe = crate::check::lathe_view(&config.machine, job.dialect);
+        match crate::stock::build(&config.machine, shape, lathe, &here.control.tools) {
+            Ok(s) => Some(s),
+            Err(e) => {
+                shared.publish(|s| s.alarms.push(Alarm::panel("serve::stock", 0, e)));
+                None
+            }
+        }
+    });
     let setup = RunSetup {
         search: job.search_line.map(BlockSearch::new),
         mark_line: job.mark_line,
         state: MachineState::default(),
+        stock,
     };
     let out = drive(config, shared, rx, here, &mut interp, job.dialect, setup);
     let not_reached_line = job

@@ -162,4 +162,17 @@ mod tests {
         assert_eq!(f.heights[124], TOP);
         assert!(f.heights.len() * 2 <= 128 * 128 * 2);
     }
+
+    #[test]
+    fn a_lathe_field_is_the_outer_radius_of_its_rows() {
+        // Ø50 × 80 bar at 0.1 mm: 800 rows, all of them within 128².
+        let l = LatheModel::new_cylinder([0.0, 0.0], [-80.0, 0.0], 50.0, 0.0, 0.1);
+        let f = lathe_field(&l, 128);
+        assert_eq!((f.kind, f.n), ("lathe", [800, 1]));
+        assert_eq!(f.range, [0.0, 25.0]);
+        assert!(f.heights.iter().all(|&h| h == TOP));
+        assert!((f.z0 + 80.0).abs() < 1e-9 && (f.cell[0] - 0.1).abs() < 1e-9);
+        // A bound of 8² rows samples every 13th.
+        assert_eq!(lathe_field(&l, 8).n, [62, 1]);
+    }
 }

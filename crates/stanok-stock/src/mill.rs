@@ -411,6 +411,17 @@ impl MillModel {
         }
     }
 
+    /// An upper bound of the material's top over the lines `ir` × `jr` (the tiles' bounds).
+    fn top_over(&self, ir: &std::ops::Range<usize>, jr: &std::ops::Range<usize>) -> f64 {
+        let mut top = f32::NEG_INFINITY;
+        for tj in jr.start / TILE..=(jr.end - 1) / TILE {
+            for ti in ir.start / TILE..=(ir.end - 1) / TILE {
+                top = top.max(self.tile_top[tj * self.tiles[0] + ti]);
+            }
+        }
+        top as f64
+    }
+
     /// Cuts with `tool` swept along `sw` and checks its other bodies (module doc).
     pub fn apply(&mut self, tool: &MillTool, sw: &Sweep) -> SweepHits {
         let vertical = sw.axis[0].abs() < 1e-12 && sw.axis[1].abs() < 1e-12 && sw.axis[2] > 0.0;
@@ -442,7 +453,14 @@ impl MillModel {
                 let tilted: Vec<TiltedPrim> = if vertical {
                     Vec::new()
                 } else {
-                    tool.cutter.iter().map(|p| TiltedPrim::new(p, sw)).collect()
+                    // The highest material under the footprint (tile bounds only fall as the
+                    // stock is cut, so a stale one is still an upper bound): each primitive's
+                    // band is clipped to where its height bound is below it (tilted.rs).
+                    let z_top = self.top_over(&ir, &jr);
+                    tool.cutter
+                        .iter()
+                        .map(|p| TiltedPrim::new(p, sw).below(z_top))
+                        .collect()
                 };
                 let cut = CutterPass {
                     prims: &tool.cutter,

@@ -26,7 +26,11 @@
 //!    minimum is at t = 0 or 1. The result is `max(k1, k2 + cotθ·(c·â))`: one dot product per line.
 //!    A line whose material top is below it is skipped for that primitive: its chord lies above
 //!    the material, and since the cutter (a convex stack) meets a line in one interval, the other
-//!    primitives' chords still reach up to the top, so the cut is the same.
+//!    primitives' chords still reach up to the top, so the cut is the same. With the highest
+//!    material under the footprint known (the tiles' upper bounds, `mill.rs`), the same bound
+//!    clips the band of each row to a half-line before any line is visited, and drops a
+//!    primitive whose `k1` is above it for the whole sweep: the flutes of a leaning finishing
+//!    tool then visit no line at all.
 //! 3. **The sphere** is the same solid whatever the axis: a ball of radius r centred at
 //!    `tip + hc·a` is swept by the vertical fast path (`sweep::chord_vertical`) as a sphere at
 //!    height 0 over a vertical axis through that centre.
@@ -68,6 +72,8 @@ pub(crate) struct TiltedPrim {
     radius: f64,
     /// Module doc, item 2.
     pub(crate) bound: HeightBound,
+    /// The highest material under the footprint (∞: unknown); module doc, item 2.
+    z_top: f64,
 }
 
 impl TiltedPrim {
@@ -125,19 +131,42 @@ impl TiltedPrim {
             edges,
             radius,
             bound,
+            z_top: f64::INFINITY,
         }
     }
 
-    /// The x interval of row `y` the swept primitive can cover (module doc, item 1).
+    /// The same, knowing that no material under the footprint is higher than `z_top`: its band
+    /// is clipped to the lines where its height bound is below that (module doc, item 2).
+    pub(crate) fn below(mut self, z_top: f64) -> TiltedPrim {
+        self.z_top = z_top;
+        self
+    }
+
+    /// The x interval of row `y` the swept primitive can cover (module doc, item 1) and still
+    /// meet material below [`TiltedPrim::below`]'s height.
     #[inline]
     pub(crate) fn x_range(&self, y: f64) -> Option<(f64, f64)> {
+        let b = &self.bound;
+        if b.k1 > self.z_top {
+            return None;
+        }
         let mut out: Option<(f64, f64)> = None;
         for [p, q] in self.edges {
             if let Some((a, b)) = capsule_chord(p, q, self.radius, y) {
                 out = Some(out.map_or((a, b), |(x, z)| (x.min(a), z.max(b))));
             }
         }
-        out
+        let (mut lo, mut hi) = out?;
+        // k2 + dir·(x, y) ≤ z_top: a half-line in x (all or nothing when dir[0] = 0).
+        let rest = self.z_top - b.k2 - b.dir[1] * y;
+        if b.dir[0] > 1e-12 {
+            hi = hi.min(rest / b.dir[0]);
+        } else if b.dir[0] < -1e-12 {
+            lo = lo.max(rest / b.dir[0]);
+        } else if rest < 0.0 {
+            return None;
+        }
+        (lo <= hi).then_some((lo, hi))
     }
 
     /// The z chord of the vertical line through `c` with the swept primitive.

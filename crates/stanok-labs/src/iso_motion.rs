@@ -190,6 +190,36 @@ impl Exec<'_> {
             )
             .with_note("start and end cutter compensation with a G0 or G1 block"));
         }
+        // The start-up and exit blocks of radius compensation (§4.9 [doc]): the start-up block
+        // names its corrector with D and moves in the compensation plane; the G40 block holds at
+        // least one coordinate of the plane. Without them the control cannot build the offset
+        // path's first or last element.
+        let (pa, pb, _) = self.st.plane.axes();
+        let in_plane = programmed[pa].is_some() || programmed[pb].is_some();
+        if starts_comp && radius_d.is_none() {
+            return Err(err(
+                "lab::startup-without-d",
+                "the cutter compensation start-up block needs D with the radius corrector",
+                self.block.span,
+            )
+            .with_note("write G41/G42 followed by D<n> in the same block (§4.9)"));
+        }
+        if starts_comp && !in_plane {
+            return Err(err(
+                "lab::startup-without-plane-motion",
+                "the cutter compensation start-up block must move in the compensation plane",
+                self.block.span,
+            )
+            .with_note("give an end point in the plane chosen by G17/G18/G19 (§4.9)"));
+        }
+        if ends_comp && !in_plane {
+            return Err(err(
+                "lab::g40-without-plane-coordinate",
+                "the G40 block must contain a coordinate of the compensation plane",
+                self.block.span,
+            )
+            .with_note("the tool leaves the contour along this block's move in the plane (§4.9)"));
+        }
         let any_axis = programmed.iter().any(Option::is_some);
         // G91 full circle: centre words and no end point (`N51 G2 G91 I30`).
         let full_circle_g91 = circular

@@ -609,6 +609,22 @@ fn call_rules_are_enforced() {
     }
 }
 
+/// §4.10: the subprogram's last block holds M17 and no geometric or technological information.
+/// The call stops at that block with nothing of it executed (the move before it ran).
+#[test]
+fn the_m17_block_holds_no_move_or_feed() {
+    for (sub_end, word) in [("N2 X2. M17", "X"), ("N2 F200 M17", "F"), ("N2 M17 S300", "S")] {
+        let text = format!("N1 L0101\nN9 M2\nL0100\nN1 G1 X1. F100\n{sub_end}\n");
+        let r = gost_text(&text, [0.0; 3]);
+        assert_eq!(r.error_codes(), ["lab::m17-block"], "{text}");
+        assert_eq!(r.errors[0].span.line, 5, "{text}");
+        assert!(r.errors[0].message.ends_with(word), "{text}");
+        assert_eq!(r.moves().len(), 1, "only N1 of the subprogram ran: {text}");
+    }
+    let r = gost_text("N1 L0101\nN9 M2\nL0100\nN1 G1 X1. F100\nN2 M17\n", [0.0; 3]);
+    assert!(r.errors.is_empty(), "{:?}", r.errors);
+}
+
 #[test]
 fn recursion_is_bounded() {
     let r = gost_text("N1 L0101\nL0100\nN1 L0101\nN2 M17\n", [0.0; 3]);

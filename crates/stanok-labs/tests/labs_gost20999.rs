@@ -613,7 +613,11 @@ fn call_rules_are_enforced() {
 /// The call stops at that block with nothing of it executed (the move before it ran).
 #[test]
 fn the_m17_block_holds_no_move_or_feed() {
-    for (sub_end, word) in [("N2 X2. M17", "X"), ("N2 F200 M17", "F"), ("N2 M17 S300", "S")] {
+    for (sub_end, word) in [
+        ("N2 X2. M17", "X"),
+        ("N2 F200 M17", "F"),
+        ("N2 M17 S300", "S"),
+    ] {
         let text = format!("N1 L0101\nN9 M2\nL0100\nN1 G1 X1. F100\n{sub_end}\n");
         let r = gost_text(&text, [0.0; 3]);
         assert_eq!(r.error_codes(), ["lab::m17-block"], "{text}");

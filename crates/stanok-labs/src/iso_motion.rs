@@ -8,6 +8,12 @@ use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span};
 use stanok_syntax::labs::words::{Item, Word};
 use stanok_syntax::Dialect;
 
+/// GOST-20999: the largest move of one block, mm or degrees (§4.3).
+const MAX_MOVE: f64 = 9999.999;
+
+/// The axes of a `Pose` array, in order.
+const AXIS_NAMES: [char; 9] = ['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'];
+
 impl Exec<'_> {
     /// The work origin of `axis` (machine mm): the active G54/G55 offset plus the G92 shift.
     pub(super) fn origin(&self, axis: usize) -> f64 {
@@ -253,6 +259,23 @@ impl Exec<'_> {
             let c = correction(self.st, axis, self.opts);
             self.st.applied_correction[axis] = c;
             end[axis] = p + self.origin(axis) + c;
+        }
+        // GOST-20999 §4.3: "the largest move in one block is ±9999.999 mm (or degrees)" — the
+        // word format's reach, which an absolute end far from the start can exceed.
+        if self.dialect == Dialect::Gost20999 {
+            let start = self.st.position.to_array();
+            if let Some(axis) = (0..9).find(|&k| (end[k] - start[k]).abs() > MAX_MOVE + 1e-9) {
+                return Err(err(
+                    "lab::move-too-long",
+                    format!(
+                        "this block moves {} by {:.3}: more than ±{MAX_MOVE:.3}, the largest move of one block",
+                        AXIS_NAMES[axis],
+                        end[axis] - start[axis]
+                    ),
+                    self.block.span,
+                )
+                .with_note("split the move into blocks of at most 9999.999 each (§4.3)"));
+            }
         }
         let end = Pose::from_array(end);
         match self.st.motion {

@@ -629,6 +629,24 @@ fn the_m17_block_holds_no_move_or_feed() {
     assert!(r.errors.is_empty(), "{:?}", r.errors);
 }
 
+/// §4.3: the largest move in one block is ±9999.999 mm: an absolute end further than that from
+/// the start is refused at its block (nothing of it runs); 9999.999 itself moves.
+#[test]
+fn a_block_moves_at_most_9999_999() {
+    let r = gost_text(
+        "N1 G91 G1 X9999.999 F1000\nN2 X9999.\nN3 G90 X-9999.\n",
+        [0.0; 3],
+    );
+    assert_eq!(r.error_codes(), ["lab::move-too-long"]);
+    assert_eq!(r.errors[0].span.line, 3);
+    assert!(
+        r.errors[0].message.contains("-29997.999"),
+        "{}",
+        r.errors[0]
+    );
+    assert_eq!(r.moves().len(), 2, "N1 and N2 ran, N3 did not");
+}
+
 #[test]
 fn recursion_is_bounded() {
     let r = gost_text("N1 L0101\nL0100\nN1 L0101\nN2 M17\n", [0.0; 3]);

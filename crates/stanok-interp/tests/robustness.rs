@@ -444,3 +444,22 @@ fn lab_columns_count_characters_after_cyrillic() {
     assert_eq!(err.span.line, 1);
     assert_eq!(err.span.column, 8, "{err}");
 }
+
+/// Mutation campaign (session 3): `o9 while [1]` / `G1 X1` / `o9 endwhile` under G41 — moves
+/// without motion in the compensation plane, each held for the next element's corner and copied
+/// into every block's undo — took minutes (the square of the count). After
+/// `MAX_MOVES_OUT_OF_PLANE` such moves in a row, an error at the next one.
+#[test]
+fn moves_out_of_the_compensation_plane_are_bounded() {
+    let text = "G21 G90 G17\nG0 X50 Y50\nG41.1 D10\nG3 X70 Y50 I10 J0 F100\n\
+                G1 X1\no9 while [1]\nZ1\no9 endwhile\nM2\n";
+    let t0 = std::time::Instant::now();
+    let err = first_error(text, Dialect::Rs274ngc).expect("refused");
+    assert_eq!(err.code.to_string(), "rs274::comp-no-plane-motion", "{err}");
+    assert_eq!(err.span.line, 7, "{err}");
+    assert!(t0.elapsed().as_secs() < 60, "{:?}", t0.elapsed());
+    // A real retract-and-plunge sequence stays far below the bound.
+    let ok = "G21 G90 G17\nG0 X50 Y50\nG41.1 D10\nG3 X70 Y50 I10 J0 F100\n\
+              G1 X1\nZ5\nZ10\nZ5\nZ0\nG1 Y0\nG40 G0 X-10\nM2\n";
+    assert!(first_error(ok, Dialect::Rs274ngc).is_none());
+}

@@ -595,6 +595,9 @@ fn machine_loop(
                 } else {
                     crate::manual::execute(config, shared, rx, &mut here, &mut mdi, action)
                 };
+                // The stored data first, then the answer: a load right after an MDI block's
+                // answer must see what the block stored (it raced, and once saw the old data).
+                shared.set_context(&here);
                 let _ = reply.send(answer);
             }
         }

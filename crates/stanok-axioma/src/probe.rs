@@ -81,7 +81,7 @@ pub(super) fn probe_move(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnost
             law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: ProbeKind::Toward,
-        contact: trip,
+        contact: trip.map(Box::new),
     });
     let stop = trip.unwrap_or(end_m);
     cx.st.position = stop;

@@ -28,7 +28,7 @@ fn run(text: &str) -> (Vec<Canon>, Option<Diagnostic>) {
 
 /// The written form of a code × 10 (`G27`, `G1.5`).
 fn written(code: u32) -> String {
-    if code % 10 == 0 {
+    if code.is_multiple_of(10) {
         format!("G{}", code / 10)
     } else {
         format!("G{}.{}", code / 10, code % 10)
@@ -39,7 +39,7 @@ fn written(code: u32) -> String {
 fn sweep() -> impl Iterator<Item = u32> {
     (0..100)
         .map(|g| g * 10)
-        .chain((0..100).filter(|v| v % 10 != 0))
+        .chain((0..100).filter(|v: &u32| !v.is_multiple_of(10)))
 }
 
 #[test]

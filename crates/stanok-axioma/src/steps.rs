@@ -211,7 +211,10 @@ pub(crate) fn modal_codes(
         match a {
             GAction::Motion(m) => {
                 motion_code = Some((m, span));
-                cx.fe.probe.g75 = false;
+                // Tested first: a write journals the probe state, and G75 is rarely on.
+                if cx.fe.probe.g75 {
+                    cx.fe.probe.g75 = false;
+                }
             }
             GAction::Probe => {
                 motion_code = Some((MotionMode::Linear, span));

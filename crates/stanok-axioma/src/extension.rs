@@ -16,11 +16,9 @@
 //! holds with the look-ahead.
 
 use super::cutter_comp::Comp;
-use super::cycles::CycleState;
 use super::mtable::{MState, MTable};
-use super::probe::ProbeState;
 use super::splines::SplineState;
-use super::technology::{default_table, Technology};
+use super::technology::default_table;
 use stanok_canon::{Canon, Diagnostic, Span, Spanned};
 use std::collections::VecDeque;
 
@@ -144,18 +142,12 @@ pub struct Extension {
     pub comp: Comp,
     /// 3D tool radius compensation (CUT3D*, G41/G42/G40 under a 3D mode).
     pub comp3d: super::comp3d::Comp3d,
-    /// The active canned cycle and its parameters.
-    pub cycle: CycleState,
     /// Commands released from `held` so far (slot base).
     pub held_base: u64,
     /// The M vector and the states behind the M functions.
     pub m: MState,
-    /// G96/G97 per spindle.
-    pub tech: Technology,
     /// ASPLINE/CSPLINE/BSPLINE mode and the spline points not yet emitted.
     pub spline: SplineState,
-    /// G75 mode and the last probe latch.
-    pub probe: ProbeState,
     /// Where the last released motion ended (machine coordinates).
     pub released_end: Option<stanok_canon::Pose>,
     /// TRAORI and the orientation modes (spec axioma-4).
@@ -215,6 +207,20 @@ impl Extension {
         let mut resolved = self.comp.take_ready();
         resolved.extend(self.spline.take_ready());
         resolved.extend(self.comp3d.take_ready());
+        if resolved.is_empty() {
+            // Nothing to insert (a block without compensation or splines): the released part
+            // moves as it is, without the per-command merge below, whose `Peekable` writes a
+            // ~290-byte `Option` per command (callgrind, docs/performance.md).
+            let from = queue.len();
+            queue.extend(held.drain(..limit));
+            let mut prev = self.released_end;
+            for c in queue.range_mut(from..) {
+                chain(&mut prev, c);
+            }
+            self.released_end = prev;
+            self.held_base += limit as u64;
+            return;
+        }
         // Stable: motions of one slot keep their order (compensation and splines never share
         // a slot: a spline is refused under compensation).
         resolved.sort_by_key(|(slot, _)| *slot);

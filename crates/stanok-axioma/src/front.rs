@@ -12,10 +12,12 @@
 //! ```
 
 use crate::chain::AxiomaChain;
+use crate::cycles::CycleState;
 use crate::extension::{AxiomaMachineParams, Extension};
 use crate::hll::{self, Hll, HllStep, OwnerToken};
 use crate::modes::AxiomaModes;
-use crate::probe::ProbeLatch;
+use crate::probe::{ProbeLatch, ProbeState};
+use crate::technology::Technology;
 use stanok_canon::{Diagnostic, Pose};
 use stanok_interp_core::{
     Core, CoreOptions, FrontEnd, Hooks, Journalled, ModalState, Outcome, Parts, Read, Repeated,
@@ -31,8 +33,16 @@ pub struct AxiomaPart {
     pub chain: Journalled<AxiomaChain>,
     /// Polar programming, tool length compensation, edges, G28/G29, diameter axes (journalled).
     pub modes: Journalled<AxiomaModes>,
-    /// Compensation look-ahead, cycles, M functions, technology, splines, probe, orientation
-    /// (copied per block: restored from the copy if the block fails).
+    /// The active canned cycle and its Q parameters (journalled).
+    pub cycle: Journalled<CycleState>,
+    /// G96/G97 per spindle (journalled).
+    pub tech: Journalled<Technology>,
+    /// G75 mode and the last probe latch (journalled).
+    pub probe: Journalled<ProbeState>,
+    /// Compensation look-ahead, M functions, splines, orientation (copied per block: restored
+    /// from the copy if the block fails). The parts above are `Copy` and journalled instead: a
+    /// block copies them only when it writes them, which most blocks do not (the copy of 600
+    /// bytes per block was measured, docs/performance.md).
     pub ext: Extension,
     /// The machine parameters of the AxiOMA functions.
     pub params: AxiomaMachineParams,
@@ -112,6 +122,9 @@ impl Axioma {
             part: AxiomaPart {
                 chain: Journalled::default(),
                 modes: Journalled::default(),
+                cycle: Journalled::default(),
+                tech: Journalled::default(),
+                probe: Journalled::default(),
                 ext: Extension::default(),
                 params,
                 message: None,
@@ -147,7 +160,7 @@ impl Axioma {
 
     /// The result of the last G75 (or batch-mode) probe move.
     pub fn probe_latch(&self) -> Option<ProbeLatch> {
-        self.part.ext.probe.latch
+        self.part.probe.latch
     }
 
     /// A line once the program has HLL (or its first HLL line): statements, control flow and
@@ -209,6 +222,9 @@ impl FrontEnd for Axioma {
     fn begin<R: BufRead + Seek>(&mut self, _core: &Core<R>) -> Self::Undo {
         self.part.chain.begin_block();
         self.part.modes.begin_block();
+        self.part.cycle.begin_block();
+        self.part.tech.begin_block();
+        self.part.probe.begin_block();
         self.part.ext.clone()
     }
 
@@ -228,6 +244,9 @@ impl FrontEnd for Axioma {
     fn rollback<R: BufRead + Seek>(&mut self, undo: Self::Undo, core: &mut Core<R>) {
         self.part.chain.rollback();
         self.part.modes.rollback();
+        self.part.cycle.rollback();
+        self.part.tech.rollback();
+        self.part.probe.rollback();
         self.part.ext = undo;
         self.part.message = None;
         self.owner = None;

@@ -40,7 +40,7 @@ pub struct ProbeState {
 
 /// A monitored feed move to the block's end point (G75, or G01 in batch mode).
 pub(super) fn probe_move(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
-    if cx.st.feed_mode == FeedMode::InverseTime && cx.fe.ext.probe.g75 {
+    if cx.st.feed_mode == FeedMode::InverseTime && cx.fe.probe.g75 {
         return Err(cx.manual(617, "G93 (inverse time) is not allowed with G75", span));
     }
     let ijk = [b'I', b'J', b'K'].map(|l| cx.words.take(l).map(|v| v.v));
@@ -81,11 +81,11 @@ pub(super) fn probe_move(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnost
             law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: ProbeKind::Toward,
-        contact: trip,
+        contact: trip.map(Box::new),
     });
     let stop = trip.unwrap_or(end_m);
     cx.st.position = stop;
-    cx.fe.ext.probe.latch = Some(ProbeLatch {
+    cx.fe.probe.latch = Some(ProbeLatch {
         triggered: trip.is_some(),
         position: stop,
         ijk,

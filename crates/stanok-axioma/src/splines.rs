@@ -169,7 +169,7 @@ impl SplineState {
             feed,
             law: stanok_canon::FeedLaw::PerMinute,
         };
-        self.push(&b, Canon::SplineFeed(mv));
+        self.push(&b, Canon::SplineFeed(Box::new(mv)));
     }
 
     /// Emits every ASPLINE/CSPLINE segment whose shape is final (all of them if `ended`) and
@@ -380,7 +380,7 @@ impl SplineState {
                     feed,
                     law: stanok_canon::FeedLaw::PerMinute,
                 };
-                self.push(&owner, Canon::SplineFeed(mv));
+                self.push(&owner, Canon::SplineFeed(Box::new(mv)));
             } else {
                 end = end.with_xyz(prev.xyz());
                 let (a, b) = (prev.to_array(), end.to_array());

@@ -211,11 +211,14 @@ pub(crate) fn modal_codes(
         match a {
             GAction::Motion(m) => {
                 motion_code = Some((m, span));
-                cx.fe.ext.probe.g75 = false;
+                // Tested first: a write journals the probe state, and G75 is rarely on.
+                if cx.fe.probe.g75 {
+                    cx.fe.probe.g75 = false;
+                }
             }
             GAction::Probe => {
                 motion_code = Some((MotionMode::Linear, span));
-                cx.fe.ext.probe.g75 = true;
+                cx.fe.probe.g75 = true;
             }
             GAction::Dwell => dwell = Some(span),
             GAction::Plane(_) | GAction::Workpiece(_) | GAction::LengthComp(_)
@@ -293,7 +296,7 @@ pub(crate) fn modal_codes(
                     }));
             }
             GAction::Radius(code) => Comp::select(cx, code, span)?,
-            GAction::CycleCancel => cx.fe.ext.cycle.active = None,
+            GAction::CycleCancel => cx.fe.cycle.active = None,
             GAction::Cycle(kind) => cycles::activate(cx, kind),
             GAction::ZeroOffset(_)
             | GAction::Workpiece(_)
@@ -351,15 +354,16 @@ pub(crate) fn cycle_and_outputs(
     modal: &Modal,
     q_words: &[(u8, Val)],
 ) -> Result<Option<(bool, ColSpan)>, Diagnostic> {
-    if modal.motion_code.is_some() {
-        cx.fe.ext.cycle.active = None;
+    // Tested first: writing journals the cycle state (its Q words), and most blocks have none.
+    if modal.motion_code.is_some() && cx.fe.cycle.active.is_some() {
+        cx.fe.cycle.active = None;
     }
     let output = actions.iter().find_map(|&(a, _, span)| match a {
         GAction::Output(on) => Some((on, span)),
         _ => None,
     });
     if output.is_none() && !q_words.is_empty() {
-        if cx.fe.ext.cycle.active.is_none() {
+        if cx.fe.cycle.active.is_none() {
             let (i, v) = q_words[0];
             return Err(cx
                 .err(
@@ -609,7 +613,7 @@ pub(crate) fn dwell_or_motion(
         dwell_block(cx, span)?;
     } else if let (Some((_, span)), true) = (home, comp_active) {
         return Err(forbidden_under_comp(cx, "G28/G29", span));
-    } else if cx.fe.ext.cycle.active.is_some() && cx.has_axis_words() && !parameter_block {
+    } else if cx.fe.cycle.active.is_some() && cx.has_axis_words() && !parameter_block {
         if let Some((m, _)) = motion_code {
             cx.st.motion = m;
         }
@@ -636,7 +640,7 @@ pub(crate) fn dwell_or_motion(
             cx.st.motion = m;
         }
         let at = motion_code.map(|m| m.1).unwrap_or_else(|| cx.whole());
-        let monitored = cx.fe.ext.probe.g75
+        let monitored = cx.fe.probe.g75
             || (cx.fe.ext.m.batch_probe
                 && cx.st.motion == MotionMode::Linear
                 && !cx.fe.modes.polar.on);

@@ -163,7 +163,7 @@ pub(super) fn limits(cx: &mut Ctx<'_>, w: &TechWords) -> Result<(), Diagnostic> 
                 }
             }
         }
-        let sp = &mut cx.fe.ext.tech.spindles[s];
+        let sp = &mut cx.fe.tech.spindles[s];
         if let Some(v) = w.max_rpm[s] {
             sp.max_rpm = Some(v.v);
         }
@@ -191,7 +191,7 @@ pub(super) fn limits(cx: &mut Ctx<'_>, w: &TechWords) -> Result<(), Diagnostic> 
                     v.span,
                 ));
             }
-            cx.fe.ext.tech.spindles[s].reference_axis = v.v as u8;
+            cx.fe.tech.spindles[s].reference_axis = v.v as u8;
         }
     }
     Ok(())
@@ -199,7 +199,7 @@ pub(super) fn limits(cx: &mut Ctx<'_>, w: &TechWords) -> Result<(), Diagnostic> 
 
 /// G96 (true) / G97 (false).
 pub(super) fn css_mode(cx: &mut Ctx<'_>, on: bool) {
-    cx.fe.ext.tech.css = on;
+    cx.fe.tech.css = on;
 }
 
 /// An S word of spindle `spindle`: rev/min, or the cutting speed under G96.
@@ -208,12 +208,12 @@ pub(super) fn speed_word(cx: &mut Ctx<'_>, spindle: u8, v: Val) -> Result<(), Di
         return Err(cx.err("axioma::negative-speed", "negative spindle speed S", v.span));
     }
     let s = spindle as usize;
-    if cx.fe.ext.tech.css {
+    if cx.fe.tech.css {
         let factor = match cx.st.units {
             LengthUnits::Millimetres => 1000.0,
             LengthUnits::Inches => 304.8,
         };
-        let sp = &mut cx.fe.ext.tech.spindles[s];
+        let sp = &mut cx.fe.tech.spindles[s];
         sp.speed = Some(v.v);
         sp.mm_per_min = v.v * factor;
         refresh_spindle(cx, spindle);
@@ -243,7 +243,7 @@ pub fn css_rpm(
 
 fn refresh_spindle(cx: &mut Ctx<'_>, spindle: u8) {
     let s = spindle as usize;
-    let sp = cx.fe.ext.tech.spindles[s];
+    let sp = cx.fe.tech.spindles[s];
     if sp.speed.is_none() {
         return;
     }
@@ -260,12 +260,12 @@ fn refresh_spindle(cx: &mut Ctx<'_>, spindle: u8) {
 /// Under G96: every spindle with a cutting speed follows the tool's position (after the block's
 /// motion, and when G96 or a limit was programmed).
 pub(super) fn refresh(cx: &mut Ctx<'_>) {
-    if cx.fe.ext.tech.css {
+    if cx.fe.tech.css {
         for spindle in 0..4u8 {
             refresh_spindle(cx, spindle);
         }
     }
-    if cx.fe.ext.tech.css || cx.fe.ext.tech.laws.iter().any(Option::is_some) {
+    if cx.fe.tech.css || cx.fe.tech.laws.iter().any(Option::is_some) {
         publish_laws(cx);
     }
 }
@@ -274,8 +274,8 @@ pub(super) fn refresh(cx: &mut Ctx<'_>) {
 /// G97 or before a cutting speed was programmed for that spindle.
 fn publish_laws(cx: &mut Ctx<'_>) {
     for spindle in 0..4usize {
-        let sp = cx.fe.ext.tech.spindles[spindle];
-        let law = match (cx.fe.ext.tech.css, sp.speed) {
+        let sp = cx.fe.tech.spindles[spindle];
+        let law = match (cx.fe.tech.css, sp.speed) {
             (true, Some(_)) => {
                 let axis = (sp.reference_axis.max(1) - 1).min(8);
                 let mut zero = cx.st.program_position().to_array();
@@ -292,8 +292,8 @@ fn publish_laws(cx: &mut Ctx<'_>) {
             }
             _ => None,
         };
-        if law != cx.fe.ext.tech.laws[spindle] {
-            cx.fe.ext.tech.laws[spindle] = law;
+        if law != cx.fe.tech.laws[spindle] {
+            cx.fe.tech.laws[spindle] = law;
             cx.out.push(Canon::SetSurfaceSpeedLaw {
                 spindle: spindle as u8,
                 law,
@@ -304,7 +304,7 @@ fn publish_laws(cx: &mut Ctx<'_>) {
 
 /// G96 without a cutting speed for the main spindle and none before: error (PROPOSAL §3.6).
 pub(super) fn check_css_speed(cx: &Ctx<'_>, at: ColSpan) -> Result<(), Diagnostic> {
-    if cx.fe.ext.tech.spindles.iter().all(|s| s.speed.is_none()) {
+    if cx.fe.tech.spindles.iter().all(|s| s.speed.is_none()) {
         return Err(cx
             .err(
                 "axioma::css-without-speed",
@@ -339,10 +339,10 @@ pub(super) fn feed_length(start: &[f64; 9], end: &[f64; 9]) -> f64 {
 /// Before the first block: the start-up G60/G64 and BRISK/SOFT of the machine parameters, sent
 /// to the planner only where they differ from the power-on G64/BRISK every consumer assumes.
 pub(super) fn power_on(cx: &mut Ctx<'_>) {
-    if cx.fe.ext.tech.powered_on {
+    if cx.fe.tech.powered_on {
         return;
     }
-    cx.fe.ext.tech.powered_on = true;
+    cx.fe.tech.powered_on = true;
     let p = &cx.fe.params;
     let (exact, soft) = (p.start_exact_stop, p.start_soft);
     if exact {

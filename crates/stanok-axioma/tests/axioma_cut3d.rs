@@ -141,7 +141,7 @@ fn outer_corner_13_5_2_reorients_about_the_vertex_then_bypasses() {
     let arc = out
         .iter()
         .find_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(*a),
+            Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .expect("the bypass arc");

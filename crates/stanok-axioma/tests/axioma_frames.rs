@@ -693,11 +693,11 @@ fn unequal_scale_factors_use_the_larger_one_for_arcs() {
     let arcs: Vec<stanok_canon::ArcMove> = cmds
         .iter()
         .filter_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(*a),
+            Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .collect();
-    let a = arcs[0];
+    let a = arcs[0].clone();
     assert!((a.end.x - 20.0).abs() < TOL && (a.end.y - 10.0).abs() < TOL);
     let rs = (a.start.x - a.centre[0]).hypot(a.start.y - a.centre[1]);
     let re = (a.end.x - a.centre[0]).hypot(a.end.y - a.centre[1]);
@@ -712,7 +712,7 @@ fn unequal_scale_factors_use_the_larger_one_for_arcs() {
     );
     // Second arc: (10,10) → (20,10) programmed about (15,10), r = 5 → scaled ends (20,10) → (40,10),
     // radius 10: a half circle about (30,10).
-    let b = arcs[1];
+    let b = arcs[1].clone();
     assert!(
         (b.centre[0] - 30.0).abs() < 1e-9 && (b.centre[1] - 10.0).abs() < 1e-9,
         "{:?}",

@@ -30,7 +30,7 @@ fn motions(cmds: &[Spanned<Canon>]) -> Vec<Mv> {
                     n,
                     "probe",
                     motion.end.xyz(),
-                    contact.map(|p| p.xyz()),
+                    contact.as_ref().map(|p| p.xyz()),
                     motion.feed,
                 ),
                 _ => return None,

@@ -23,7 +23,7 @@ proptest! {
         let text = format!("G17 G90 G191 G71 F500\nN10 G0{} X{x:.6} Y{y:.6} CR={cr:.6}\nM30\n", if ccw { 3 } else { 2 });
         let (cmds, err) = run(&text, Dialect::Axioma);
         prop_assert!(err.is_none(), "{err:?}");
-        let a = cmds.iter().find_map(|c| match &c.value { Canon::ArcFeed(a) => Some(*a), _ => None }).unwrap();
+        let a = cmds.iter().find_map(|c| match &c.value { Canon::ArcFeed(a) => Some(a.clone()), _ => None }).unwrap();
         let h = Helix { start: a.start.xyz(), end: a.end.xyz(), centre: a.centre, axis: a.axis, turns: a.turns };
         prop_assert!((h.start_radius() - r).abs() < 1e-5, "start radius {} r {r}", h.start_radius());
         prop_assert!((h.end_radius() - r).abs() < 1e-5, "end radius {} r {r}", h.end_radius());

@@ -29,7 +29,7 @@ fn ok(text: &str) -> Vec<Spanned<Canon>> {
 fn splines(cmds: &[Spanned<Canon>]) -> Vec<(Option<u32>, SplineMove)> {
     cmds.iter()
         .filter_map(|c| match &c.value {
-            Canon::SplineFeed(s) => Some((c.block_number, s.clone())),
+            Canon::SplineFeed(s) => Some((c.block_number, (**s).clone())),
             _ => None,
         })
         .collect()

@@ -105,7 +105,7 @@ fn s9_1_2_g45_keeps_the_tool_along_z_in_g18() {
     let arc = cmds
         .iter()
         .find_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(*a),
+            Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .unwrap();

@@ -30,6 +30,8 @@
 //!   `(LCS,0)` cancels the frame. Decision (the spec proposes otherwise): the frame maps X Y Z
 //!   only while CVU=3 is on; under CVU=0 the words are the machine's linear axes.
 //!
+//! * The G codes, their groups and handlers: codes.rs (`code_table!`).
+//!
 //! * G02/G03 with R in the `(DPI,…)` plane: arc.rs.
 //!
 //! * Splines `(BSP …)`, G06 nodes, `(ESP)`: spline.rs.
@@ -40,6 +42,7 @@
 //! G60–G62, G20/G21, G72–G74, G81–G86, G89) are `balt::prohibited-in-cvu`.
 
 mod arc;
+pub mod codes;
 mod front;
 mod spline;
 
@@ -53,6 +56,7 @@ use stanok_interp_core::state;
 pub use front::{Balt, BaltPart};
 pub use spline::SplineBuffer;
 
+use crate::codes::Handler;
 use crate::ctx::Ctx;
 use crate::state::{DistanceMode, MotionMode};
 use stanok_canon::{Canon, Diagnostic, Pose};
@@ -228,35 +232,25 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             }
         }
     }
+    // G codes through the table (codes.rs), in written order.
     let gs = cx.words.g.clone();
     for &(code, span) in &gs {
-        let prohibited = matches!(
-            code,
-            400 | 410 | 420 | 600 | 610 | 620 | 200 | 210 | 720 | 730 | 740 | 810..=860 | 890
-        );
-        match code {
-            0 | 10 | 20 | 30 => {
+        match codes::g_code(code).map(|c| c.handler) {
+            Some(Handler::SetMotion(mode)) => {
                 cx.fe.modes.spline = false;
-                cx.st.motion = match code {
-                    0 => MotionMode::Rapid,
-                    10 => MotionMode::Linear,
-                    20 => MotionMode::ArcCw,
-                    _ => MotionMode::ArcCcw,
-                };
+                cx.st.motion = mode;
             }
-            60 => cx.fe.modes.spline = true,
-            900 => cx.st.distance = DistanceMode::Absolute,
-            910 => cx.st.distance = DistanceMode::Incremental,
-            // G27: used by the manual's programs, not defined there; no motion effect here.
-            270 => {}
-            _ if prohibited && cx.fe.modes.cvu => {
+            Some(Handler::SplineNodes) => cx.fe.modes.spline = true,
+            Some(Handler::SetDistance(mode)) => cx.st.distance = mode,
+            Some(Handler::NoEffect) => {}
+            Some(Handler::ProhibitedInCvu) if cx.fe.modes.cvu => {
                 return Err(cx.err(
                     "balt::prohibited-in-cvu",
                     format!("G{} is prohibited while CVU=1 is active", code / 10),
                     span,
                 ))
             }
-            _ => {
+            Some(Handler::ProhibitedInCvu) | None => {
                 return Err(cx.err(
                     "interp::unsupported",
                     format!(

@@ -178,7 +178,7 @@ fn flush(cx: &mut Ctx<'_>, end_tangent: Option<[f64; 3]>, _at: ColSpan) -> Resul
             span: node.span,
             block_number: node.number,
             label_digits: node.label_digits,
-            value: Canon::SplineFeed(SplineMove {
+            value: Canon::SplineFeed(Box::new(SplineMove {
                 start: poses[i],
                 end: poses[i + 1],
                 degree: 3,
@@ -188,7 +188,7 @@ fn flush(cx: &mut Ctx<'_>, end_tangent: Option<[f64; 3]>, _at: ColSpan) -> Resul
                 plane: cx.st.plane,
                 feed: node.feed,
                 law: stanok_canon::FeedLaw::PerMinute,
-            }),
+            })),
         });
     }
     // The definition stays open until (ESP); the nodes are out.

@@ -15,7 +15,7 @@ use serde::Serialize;
 pub use crate::quantities::*;
 
 /// A straight move.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LineMove {
     /// Where the move starts (the previous motion's end or the initial position).
     pub start: Pose,
@@ -34,7 +34,7 @@ impl LineMove {
     pub fn stopped_at(&self, stop: Option<Pose>) -> LineMove {
         LineMove {
             end: stop.unwrap_or(self.end),
-            ..*self
+            ..self.clone()
         }
     }
 }
@@ -48,7 +48,7 @@ impl LineMove {
 /// component of the motion along `axis`, and every axis other than X Y Z, moves linearly with the swept
 /// angle (helix). When the start and end radii differ (within the tolerance the interpreter accepted)
 /// the radius changes linearly with the angle, so that `end` is reached exactly (LinuxCNC's spiral).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ArcMove {
     /// Start pose.
     pub start: Pose,
@@ -164,6 +164,15 @@ pub enum OrientationInterpolation {
     Vector,
 }
 
+/// The largest a [`Canon`] may be, bytes. Every command of every program is moved through the
+/// interpreter's queue and the later stages by value, so its size is paid per block: the common
+/// variants (lines, arcs, `Init`) set it, and rare large payloads (a spline's vectors, the probe's
+/// contact, the G96 law in a feed law) are boxed to stay within it (docs/decisions.md, issue 26;
+/// docs/performance.md measures the cost per block).
+pub const CANON_MAX_BYTES: usize = 240;
+
+const _: () = assert!(std::mem::size_of::<Canon>() <= CANON_MAX_BYTES);
+
 /// One canonical machining command. Exhaustive on purpose: a new variant makes every consumer decide.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -189,8 +198,9 @@ pub enum Canon {
     StraightFeed(LineMove),
     /// G2/G3: arc or helix at the feed.
     ArcFeed(ArcMove),
-    /// G5/G5.1/G5.2 (LinuxCNC), ASPLINE/CSPLINE/BSPLINE (AxiOMA): a spline at the feed.
-    SplineFeed(SplineMove),
+    /// G5/G5.1/G5.2 (LinuxCNC), ASPLINE/CSPLINE/BSPLINE (AxiOMA): a spline at the feed (boxed:
+    /// rare and large, see [`CANON_MAX_BYTES`]).
+    SplineFeed(Box<SplineMove>),
     /// A probe move (G38.n, G75): straight towards `end` until the probe trips (or stops tripping).
     /// The machine answers with the trip point; the interpreter's later blocks read it.
     StraightProbe {
@@ -200,7 +210,8 @@ pub enum Canon {
         probe: ProbeKind,
         /// Where the probe changes state according to the probe surfaces the run was configured
         /// with (the same data the machine is given); None = it runs to the end without doing so.
-        contact: Option<Pose>,
+        /// Boxed: rare, and it would make every command 80 bytes larger ([`CANON_MAX_BYTES`]).
+        contact: Option<Box<Pose>>,
     },
     /// G33.1 (and G84/G74 in rigid mode): spindle-synchronised feed to `end`, spindle reversal,
     /// synchronised return to `start`. The pitch is the one of the `StartSpindleSync` before it,
@@ -509,7 +520,7 @@ impl Canon {
                 motion, contact, ..
             } => Some(Motion::Probe {
                 motion,
-                contact: *contact,
+                contact: contact.as_deref().copied(),
             }),
             Canon::RigidTap { start, end, .. } => Some(Motion::RigidTap {
                 start: *start,

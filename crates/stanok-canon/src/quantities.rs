@@ -196,7 +196,7 @@ pub enum FeedMode {
 /// `SetSpindleSpeed`, `SetSurfaceSpeedLaw`, `StartSpindleSync`/`StopSpindleSync`) and completes every
 /// motion with the law they put in force at its place in the stream; rapids carry the law in force
 /// too (their speed does not depend on it).
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub enum FeedLaw {
     /// G94: `feed` mm/min along the feed length.
     #[default]
@@ -215,8 +215,9 @@ pub enum FeedLaw {
     SurfaceSpeed {
         /// Feed per revolution, mm.
         mm_per_rev: f64,
-        /// The main spindle's constant-surface-speed law.
-        law: SurfaceSpeedLaw,
+        /// The main spindle's constant-surface-speed law (boxed: it is rare and 40 bytes, and
+        /// every motion of every program carries a `FeedLaw` — docs/decisions.md, issue 26).
+        law: Box<SurfaceSpeedLaw>,
     },
     /// Spindle-synchronised (G33, G33.1, G76, AxiOMA G276): `pitch` per revolution of the main
     /// spindle at `rpm`; the feed override does not apply.
@@ -231,7 +232,7 @@ pub enum FeedLaw {
 impl FeedLaw {
     /// The per-minute law (serialised moves leave it out).
     pub fn is_per_minute(&self) -> bool {
-        *self == FeedLaw::PerMinute
+        matches!(self, FeedLaw::PerMinute)
     }
 }
 

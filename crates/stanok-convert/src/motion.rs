@@ -42,7 +42,7 @@ impl Converter {
                 motion,
                 probe,
                 contact,
-            } => self.probe(src, motion, *probe, *contact),
+            } => self.probe(src, motion, *probe, contact.as_deref().copied()),
             Canon::RigidTap {
                 start, end, scale, ..
             } => self.rigid_tap(src, start, end, *scale),

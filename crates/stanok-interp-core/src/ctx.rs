@@ -69,7 +69,9 @@ impl<'a> Emitter<'a> {
         }
     }
 
-    /// Queues one command of the current block.
+    /// Queues one command of the current block. Inlined, so that the command is built where
+    /// the `Spanned` is and not copied into it (a copy of ~240 bytes per command, callgrind).
+    #[inline(always)]
     pub fn push(&mut self, value: Canon) {
         self.queue.push_back(Spanned {
             span: self.span,
@@ -284,16 +286,23 @@ impl<X: Hooks> Ctx<'_, X> {
     pub fn straight(&mut self, rapid: bool, end: Pose, feed: f64) {
         self.apply_pending_tlo();
         let end_m = self.st.frame.to_machine(&end);
-        let m = LineMove {
-            start: self.st.position,
-            end: end_m,
-            feed: if rapid { 0.0 } else { feed },
-            law: stanok_canon::FeedLaw::PerMinute,
-        };
+        // Each variant built in place (not a `LineMove` moved into one): a copy less per move.
+        let start = self.st.position;
+        let law = stanok_canon::FeedLaw::PerMinute;
         self.out.push(if rapid {
-            Canon::StraightTraverse(m)
+            Canon::StraightTraverse(LineMove {
+                start,
+                end: end_m,
+                feed: 0.0,
+                law,
+            })
         } else {
-            Canon::StraightFeed(m)
+            Canon::StraightFeed(LineMove {
+                start,
+                end: end_m,
+                feed,
+                law,
+            })
         });
         self.st.position = end_m;
     }

@@ -65,7 +65,7 @@ impl FeedLaws {
             FeedMode::UnitsPerRevolution => match self.surface {
                 Some(law) => FeedLaw::SurfaceSpeed {
                     mm_per_rev: self.feed,
-                    law,
+                    law: Box::new(law),
                 },
                 None => FeedLaw::PerRevolution {
                     mm_per_rev: self.feed,
@@ -164,7 +164,7 @@ mod tests {
             law_of(&mut l, &g96),
             FeedLaw::SurfaceSpeed {
                 mm_per_rev: 0.2,
-                law
+                law: Box::new(law)
             }
         );
         // A law of another spindle does not change the main spindle's.

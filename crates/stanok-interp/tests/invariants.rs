@@ -217,7 +217,7 @@ proptest! {
         let text = format!("G21 G17 F100\nG{} X{x:.6} Y{y:.6} R{}\nM2\n", if ccw { 3 } else { 2 }, if major { -r } else { r });
         let (cmds, err) = run(&text, Dialect::Rs274ngc);
         prop_assert!(err.is_none(), "{err:?}");
-        let arc = cmds.iter().find_map(|c| match &c.value { Canon::ArcFeed(a) => Some(*a), _ => None }).unwrap();
+        let arc = cmds.iter().find_map(|c| match &c.value { Canon::ArcFeed(a) => Some(a.clone()), _ => None }).unwrap();
         let rs = arc.centre[0].hypot(arc.centre[1]);
         let re = (arc.end.x - arc.centre[0]).hypot(arc.end.y - arc.centre[1]);
         prop_assert!((rs - r).abs() < 1e-4 && (re - r).abs() < 1e-4, "rs {rs} re {re} r {r}");

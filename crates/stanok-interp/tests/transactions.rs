@@ -223,6 +223,18 @@ fn axioma_compensation_look_ahead_and_splines() {
 }
 
 #[test]
+fn axioma_probe_mode_and_latch() {
+    // G75 and its latch are journalled (not copied with the Extension): a failing probe block
+    // after a probe move leaves the mode and the latch as they were.
+    axioma(
+        "G0 X0 Y0 Z10\nG75 G1 X5 Y0 Z0\n",
+        "G75 G1 X10 Y5 Z0 E5",
+        AXIOMA_UNUSED,
+    );
+    axioma("G75 G1 X5 Y0 Z0\n", "G1 X10 E5", AXIOMA_UNUSED);
+}
+
+#[test]
 fn axioma_high_level_language() {
     axioma("int aa = 1;\n", "X=aa++ Y=aa E5", AXIOMA_UNUSED);
 }

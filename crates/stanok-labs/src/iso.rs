@@ -22,6 +22,7 @@
 use super::iso_comp::{BlockComp, Comp};
 use super::iso_words::{code, dimension, err, number, Pending};
 use super::{Emit, LabState, Program, MAX_JUMPS};
+use crate::codes::{self, iso as iso_codes, iso::Handler};
 use crate::LabOptions;
 use stanok_canon::{
     AuxTiming, Canon, Diagnostic, PathMode, Plane, Span, Spanned, SpindleDirection,
@@ -52,6 +53,9 @@ pub(crate) struct IsoRun {
 }
 
 type StepResult = Result<(bool, Option<Emit>, u64), Diagnostic>;
+
+/// A row of the G code table (codes.rs).
+type IsoCode = stanok_interp_core::codes::Code<iso_codes::Group, Handler>;
 
 /// What follows a block.
 pub(super) enum Control {
@@ -240,7 +244,8 @@ pub(super) struct Gs {
     pub(super) incremental: Option<bool>,
     pub(super) work: Option<u8>,
     pub(super) comp: Option<i8>,
-    pub(super) one_shot: Option<(u8, Span)>,
+    /// G4, G28 or G92 (their table row) and where it was written.
+    pub(super) one_shot: Option<(IsoCode, Span)>,
     pub(super) g53: bool,
     pub(super) g9: bool,
     pub(super) lengths: bool,
@@ -334,10 +339,10 @@ impl Exec<'_> {
             self.m_function(&w, true)?;
         }
         // 5. The block's action.
-        match gs.one_shot {
-            Some((4, at)) => self.dwell(at)?,
-            Some((92, at)) => self.set_position(at)?,
-            Some((28, _)) => self.home()?,
+        match gs.one_shot.map(|(c, at)| (c.handler, at)) {
+            Some((Handler::Dwell, at)) => self.dwell(at)?,
+            Some((Handler::SetPosition, at)) => self.set_position(at)?,
+            Some((Handler::Home, _)) => self.home()?,
             _ => {
                 // G9 (§4.6): exact stop at the end of this block only.
                 let mark = self.out.cmds.len();
@@ -396,32 +401,37 @@ impl Exec<'_> {
                 None if self.dialect == Dialect::P2p32 => 0,
                 _ => code(&w, self.st)?,
             };
-            match g {
-                0..=3 => set(&mut gs.motion, g as u8, &w, "motion")?,
-                17 => set(&mut gs.plane, Plane::XY, &w, "plane")?,
-                18 => set(&mut gs.plane, Plane::ZX, &w, "plane")?,
-                19 => set(&mut gs.plane, Plane::YZ, &w, "plane")?,
-                90 => set(&mut gs.incremental, false, &w, "distance")?,
-                91 => set(&mut gs.incremental, true, &w, "distance")?,
-                54 => set(&mut gs.work, 1, &w, "work system")?,
-                55 => set(&mut gs.work, 2, &w, "work system")?,
-                40 => set(&mut gs.comp, 0, &w, "radius compensation")?,
-                41 => set(&mut gs.comp, 1, &w, "radius compensation")?,
-                42 => set(&mut gs.comp, -1, &w, "radius compensation")?,
-                43 | 44 | 49 => gs.lengths = true,
-                9 => gs.g9 = true,
-                53 => gs.g53 = true,
-                4 | 28 | 92 => {
+            let Some(c) = codes::lookup(g, iso_codes::g_code) else {
+                return Err(err(
+                    "lab::unknown-g",
+                    format!("G{g} is not a function of this control"),
+                    w.span,
+                ));
+            };
+            let what = c.group.name();
+            match c.handler {
+                Handler::SetMotion(m) => set(&mut gs.motion, m, &w, what)?,
+                Handler::SetPlane(p) => set(&mut gs.plane, p, &w, what)?,
+                Handler::SetIncremental(i) => set(&mut gs.incremental, i, &w, what)?,
+                Handler::SetWork(n) => set(&mut gs.work, n, &w, what)?,
+                Handler::SetRadiusComp(r) => set(&mut gs.comp, r, &w, what)?,
+                Handler::LengthBinding(_) => gs.lengths = true,
+                Handler::ExactStop => gs.g9 = true,
+                Handler::MachineCoordinates => gs.g53 = true,
+                Handler::Dwell | Handler::Home | Handler::SetPosition => {
                     if let Some((other, _)) = gs.one_shot {
                         return Err(err(
                             "lab::one-shot",
-                            format!("G{g} and G{other} in one block: two one-shot functions"),
+                            format!(
+                                "G{g} and {} in one block: two one-shot functions",
+                                other.name
+                            ),
                             w.span,
                         ));
                     }
-                    gs.one_shot = Some((g as u8, w.span));
+                    gs.one_shot = Some((c, w.span));
                 }
-                20 => {
+                Handler::CylinderSystem => {
                     // The part radius of the XA system is corrector 175 (§4.4): 0 is error 17.
                     if self.opts.labs.correctors.get(&175).copied().unwrap_or(0.0) == 0.0 {
                         return Err(Diagnostic::manual(
@@ -435,13 +445,6 @@ impl Exec<'_> {
                         "G20 (the XA coordinate system for compensation on a cylinder) is not supported",
                         w.span,
                     ));
-                }
-                _ => {
-                    return Err(err(
-                        "lab::unknown-g",
-                        format!("G{g} is not a function of this control"),
-                        w.span,
-                    ))
                 }
             }
         }

@@ -4,6 +4,7 @@
 use super::iso::{Exec, Gs};
 use super::iso_arcs::{arc, ArcInput};
 use super::iso_words::{axis_index, checked_dimension, code, correction, err, number, Pending};
+use crate::codes::{self, iso as iso_codes, iso::Handler};
 use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span};
 use stanok_syntax::labs::words::{Item, Word};
 use stanok_syntax::Dialect;
@@ -117,7 +118,12 @@ impl Exec<'_> {
             let mut after_g4x = false;
             let words: Vec<Word> = self.words().copied().collect();
             for w in &words {
-                if w.letter == 'G' && matches!(w.value.map(|_| code(w, self.st)), Some(Ok(41 | 42)))
+                let starts_radius_comp = |g| {
+                    codes::lookup(g, iso_codes::g_code)
+                        .is_some_and(|c| matches!(c.handler, Handler::SetRadiusComp(1 | -1)))
+                };
+                if w.letter == 'G'
+                    && matches!(w.value.map(|_| code(w, self.st)), Some(Ok(g)) if starts_radius_comp(g))
                 {
                     after_g4x = true;
                 } else if w.letter == 'D' && after_g4x {
@@ -148,10 +154,15 @@ impl Exec<'_> {
         for item in &self.block.items {
             let Item::Word(w) = item else { continue };
             match w.letter {
-                'G' => match w.value.map(|_| code(w, self.st)).transpose()? {
-                    Some(43) => pending.mode = Some(1),
-                    Some(44) => pending.mode = Some(-1),
-                    Some(49) => {
+                'G' => match w
+                    .value
+                    .map(|_| code(w, self.st))
+                    .transpose()?
+                    .and_then(|g| codes::lookup(g, iso_codes::g_code))
+                    .map(|c| c.handler)
+                {
+                    Some(Handler::LengthBinding(Some(mode))) => pending.mode = Some(mode),
+                    Some(Handler::LengthBinding(None)) => {
                         had_g49 = true;
                         self.st.axis_correction = [(0, None); 9];
                         pending = Pending::default();

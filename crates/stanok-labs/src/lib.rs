@@ -34,6 +34,7 @@
 //! GOST-20999's subprograms need random access by frame number): the one exception to the
 //! streaming invariant, bounded by [`MAX_PROGRAM_BYTES`].
 
+pub mod codes;
 mod iso;
 mod iso_arcs;
 mod iso_comp;

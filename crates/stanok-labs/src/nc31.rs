@@ -27,6 +27,7 @@ use super::nc31_moves::{
     arc_group, axis_target, feed_line, get, line_group, rounding_group, set, traverse,
 };
 use super::{Emit, LabState, Program, MAX_JUMPS};
+use crate::codes::{self, nc31 as nc31_codes, nc31::Handler};
 use crate::LabOptions;
 use stanok_canon::{Canon, Diagnostic, FeedMode, Span, SpindleDirection};
 use stanok_syntax::labs::nc31::{parse_line, Body, Chamfer, Line};
@@ -370,20 +371,22 @@ fn execute(
     }
     match b.address {
         b'X' | b'Z' => line_group(frames, st, out, warnings),
-        b'G' => match value_of(first)? {
-            2 | 3 => arc_group(frames, st, out, warnings, opts),
-            12 | 13 => rounding_group(frames, st, out, warnings, opts),
-            31 | 32 | 33 | 77 | 78 => Err(unsupported(
-                &format!("the canned cycle G{}", value_of(first)?),
-                first.span,
-            )),
-            25 => repeat_group(frames, ctl),
-            g => Err(Diagnostic::error(
-                "nc31::bad-group",
-                format!("G{g} does not start a group"),
-                first.span,
-            )),
-        },
+        b'G' => {
+            let g = value_of(first)?;
+            match codes::lookup(g, nc31_codes::g_code).map(|c| c.handler) {
+                Some(Handler::ArcGroup) => arc_group(frames, st, out, warnings, opts),
+                Some(Handler::RoundingGroup) => rounding_group(frames, st, out, warnings, opts),
+                Some(Handler::Unsupported) => {
+                    Err(unsupported(&format!("the canned cycle G{g}"), first.span))
+                }
+                Some(Handler::RepeatGroup) => repeat_group(frames, ctl),
+                Some(Handler::SetFeedUnit(_)) | None => Err(Diagnostic::error(
+                    "nc31::bad-group",
+                    format!("G{g} does not start a group"),
+                    first.span,
+                )),
+            }
+        }
         b'S' if b.rapid => Err(unsupported("the `~S` group", first.span)),
         a => Err(Diagnostic::error(
             "nc31::bad-group",
@@ -500,35 +503,32 @@ fn single(
                 feed_line(st, out, end, feed);
             }
         }
-        b'G' => match value_of(f)? {
-            94 => {
-                st.feed_mode = FeedMode::UnitsPerMinute;
-                out.push(Canon::SetFeedMode {
-                    mode: FeedMode::UnitsPerMinute,
-                });
+        b'G' => {
+            let g = value_of(f)?;
+            match codes::lookup(g, nc31_codes::g_code).map(|c| c.handler) {
+                Some(Handler::SetFeedUnit(mode)) => {
+                    st.feed_mode = mode;
+                    out.push(Canon::SetFeedMode { mode });
+                }
+                Some(Handler::ArcGroup | Handler::RoundingGroup) => {
+                    return Err(Diagnostic::error(
+                        "nc31::group-expected",
+                        format!("G{g} starts an arc group: G{g}*, X*, Z*, … (spec §2.6)"),
+                        f.span,
+                    ))
+                }
+                Some(Handler::RepeatGroup | Handler::Unsupported) => {
+                    return Err(unsupported(&format!("G{g}"), f.span))
+                }
+                None => {
+                    return Err(Diagnostic::error(
+                        "nc31::unknown-g",
+                        format!("G{g} is not an NC-31 function of the lab document"),
+                        f.span,
+                    ))
+                }
             }
-            95 => {
-                st.feed_mode = FeedMode::UnitsPerRevolution;
-                out.push(Canon::SetFeedMode {
-                    mode: FeedMode::UnitsPerRevolution,
-                });
-            }
-            g @ (2 | 3 | 12 | 13) => {
-                return Err(Diagnostic::error(
-                    "nc31::group-expected",
-                    format!("G{g} starts an arc group: G{g}*, X*, Z*, … (spec §2.6)"),
-                    f.span,
-                ))
-            }
-            g @ (25 | 31 | 32 | 33 | 77 | 78) => return Err(unsupported(&format!("G{g}"), f.span)),
-            g => {
-                return Err(Diagnostic::error(
-                    "nc31::unknown-g",
-                    format!("G{g} is not an NC-31 function of the lab document"),
-                    f.span,
-                ))
-            }
-        },
+        }
         b'F' => {
             let v = value_of(f)? as f64;
             if v <= 0.0 {

@@ -224,17 +224,17 @@ fn mc2101_circular_g19_start_minus_centre_unsigned() {
         .commands
         .iter()
         .filter_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some((c.block_number, *a)),
+            Canon::ArcFeed(a) => Some((c.block_number, a.clone())),
             _ => None,
         })
         .collect();
     assert_eq!(arcs.len(), 3);
     for (n, a, yz, centre, cw) in [
-        (21, arcs[0].1, (0.0, 130.0), (0.0, 0.0), true),
-        (22, arcs[1].1, (50.0, 120.0), (0.0, 0.0), true),
-        (23, arcs[2].1, (70.0, 100.0), (130.0, 180.0), false),
+        (21, arcs[0].1.clone(), (0.0, 130.0), (0.0, 0.0), true),
+        (22, arcs[1].1.clone(), (50.0, 120.0), (0.0, 0.0), true),
+        (23, arcs[2].1.clone(), (70.0, 100.0), (130.0, 180.0), false),
     ] {
-        assert_eq!(arcs.iter().find(|x| x.0 == Some(n)).map(|x| x.1), Some(a));
+        assert_eq!(arcs.iter().find(|x| x.0 == Some(n)).map(|x| &x.1), Some(&a));
         near(a.end.y, yz.0, TOL, &format!("N0{n} Y"));
         near(a.end.z, yz.1, TOL, &format!("N0{n} Z"));
         near(a.centre[1], centre.0, TOL, &format!("N0{n} centre Y"));

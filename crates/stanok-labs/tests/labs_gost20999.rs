@@ -24,7 +24,7 @@ fn gost_text(text: &str, p0: [f64; 3]) -> Run {
 
 fn arc_of(r: &Run, n: u32) -> stanok_canon::ArcMove {
     match r.motions_of(n).first() {
-        Some(Canon::ArcFeed(a)) => *a,
+        Some(Canon::ArcFeed(a)) => a.clone(),
         other => panic!("N{n}: arc expected, got {other:?}"),
     }
 }
@@ -503,7 +503,7 @@ fn check_rectangle(r: &Run, r1: f64, r2: f64, r3: f64, feed: f64) {
         .commands
         .iter()
         .filter_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(*a),
+            Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .collect();

@@ -397,7 +397,10 @@ impl SimMachine {
             // The probe stops where it makes (or loses) contact.
             Canon::StraightProbe {
                 motion, contact, ..
-            } => self.apply_line(&motion.stopped_at(*contact), LineKind::Feed),
+            } => self.apply_line(
+                &motion.stopped_at(contact.as_deref().copied()),
+                LineKind::Feed,
+            ),
             Canon::RigidTap { start, end, .. } => {
                 let down = LineMove {
                     start: *start,

@@ -76,7 +76,7 @@ impl TravelCheck {
             Canon::StraightTraverse(m) | Canon::StraightFeed(m) => self.check_line(m, span),
             Canon::StraightProbe {
                 motion, contact, ..
-            } => self.check_line(&motion.stopped_at(*contact), span),
+            } => self.check_line(&motion.stopped_at(contact.as_deref().copied()), span),
             Canon::RigidTap { start, end, .. } => {
                 self.check_move(start, end, &end.to_array(), &end.to_array(), span)
             }

@@ -570,7 +570,7 @@ pub(crate) fn skip(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     cx.out.push(Canon::StraightProbe {
         motion,
         probe: ProbeKind::Toward,
-        contact,
+        contact: contact.map(Box::new),
     });
     let stop = contact.unwrap_or(end_m);
     cx.st.position = stop;

@@ -9,7 +9,7 @@ fn arcs(r: &Run) -> Vec<stanok_canon::ArcMove> {
     r.canon
         .iter()
         .filter_map(|c| match &c.value {
-            Canon::ArcFeed(a) => Some(*a),
+            Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .collect()
@@ -272,7 +272,7 @@ fn skip_stops_at_the_probe_surface() {
         .canon
         .iter()
         .find_map(|c| match &c.value {
-            Canon::StraightProbe { contact, .. } => Some(*contact),
+            Canon::StraightProbe { contact, .. } => Some(contact.as_deref().copied()),
             _ => None,
         })
         .unwrap();

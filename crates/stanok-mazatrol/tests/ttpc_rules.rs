@@ -181,7 +181,7 @@ fn issue_22_item_12_r_in_ttpc() {
         r.canon
             .iter()
             .find_map(|c| match &c.value {
-                Canon::ArcFeed(a) => Some(*a),
+                Canon::ArcFeed(a) => Some(a.clone()),
                 _ => None,
             })
             .unwrap()

@@ -422,7 +422,7 @@ impl CanonAdapter {
             } => {
                 self.stop_on_mode_change(&motion.law, line, out);
                 stop(out);
-                out(self.line(&motion.stopped_at(*contact), false, line));
+                out(self.line(&motion.stopped_at(contact.as_deref().copied()), false, line));
                 stop(out);
             }
             Canon::RigidTap {
@@ -437,7 +437,7 @@ impl CanonAdapter {
                     start: *start,
                     end: *end,
                     feed: 0.0,
-                    law: *law,
+                    law: law.clone(),
                 };
                 out(self.line(&down, false, line));
                 stop(out);
@@ -446,7 +446,7 @@ impl CanonAdapter {
                         start: *end,
                         end: *start,
                         feed: 0.0,
-                        law: *law,
+                        law: law.clone(),
                     },
                     false,
                     line,

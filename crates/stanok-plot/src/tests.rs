@@ -375,7 +375,7 @@ fn nurbs_circle_program() -> Vec<Spanned<Canon>> {
     let c = |x: f64, y: f64| [50.0 + 20.0 * x, 50.0 + 20.0 * y, 0.0];
     vec![
         init(70.0, 50.0, 0.0),
-        at(Canon::SplineFeed(stanok_canon::SplineMove {
+        at(Canon::SplineFeed(Box::new(stanok_canon::SplineMove {
             start: p(70.0, 50.0, 0.0),
             end: p(70.0, 50.0, 0.0),
             degree: 2,
@@ -397,7 +397,7 @@ fn nurbs_circle_program() -> Vec<Spanned<Canon>> {
             plane: Plane::XY,
             feed: 1000.0,
             law: stanok_canon::FeedLaw::PerMinute,
-        })),
+        }))),
     ]
 }
 

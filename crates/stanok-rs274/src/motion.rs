@@ -25,7 +25,11 @@ pub(super) fn motion_block(
     if cx.fe.modes.in_profile && matches!(code, G0 | G1 | G2 | G3) {
         return motion_in_profile(cx, params, code, span, explicit, g53, f_in_block);
     }
-    cx.fe.modes.motion_unset = false;
+    // Tested first: the write journals the whole `Rs274State` (a copy of it), and only the
+    // first motion of a run finds it set (measured, docs/performance.md).
+    if cx.fe.modes.motion_unset {
+        cx.fe.modes.motion_unset = false;
+    }
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 

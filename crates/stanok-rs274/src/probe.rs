@@ -162,7 +162,7 @@ pub(super) fn straight_probe(
             law: stanok_canon::FeedLaw::PerMinute,
         },
         probe: kind,
-        contact,
+        contact: contact.map(Box::new),
     });
     let k = cx.st.units.mm_per_unit();
     for (i, v) in work.iter().enumerate() {

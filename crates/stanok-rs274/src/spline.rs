@@ -98,7 +98,7 @@ fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64
     } else {
         feed
     };
-    cx.out.push(Canon::SplineFeed(SplineMove {
+    cx.out.push(Canon::SplineFeed(Box::new(SplineMove {
         start,
         end,
         degree,
@@ -108,7 +108,7 @@ fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64
         plane: Plane::XY,
         feed,
         law: stanok_canon::FeedLaw::PerMinute,
-    }));
+    })));
     cx.st.position = end;
 }
 

@@ -16,7 +16,7 @@ fn splines(program: &str) -> Vec<SplineMove> {
     assert!(err.is_none(), "{err:?}");
     cmds.into_iter()
         .filter_map(|c| match c.value {
-            Canon::SplineFeed(s) => Some(s),
+            Canon::SplineFeed(s) => Some(*s),
             _ => None,
         })
         .collect()

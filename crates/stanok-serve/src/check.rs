@@ -274,7 +274,7 @@ fn motion_points(cmd: &Canon, out: &mut Vec<[f64; 3]>) -> Option<(bool, [f64; 3]
         Canon::StraightProbe {
             motion, contact, ..
         } => {
-            out.push(motion.stopped_at(*contact).end.xyz());
+            out.push(motion.stopped_at(contact.as_deref().copied()).end.xyz());
             Some((false, motion.start.xyz()))
         }
         Canon::ArcFeed(a) => {

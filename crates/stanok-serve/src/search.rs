@@ -86,7 +86,7 @@ impl BlockSearch {
             Canon::StraightProbe {
                 motion, contact, ..
             } => {
-                self.program_at = Some(motion.stopped_at(*contact).end);
+                self.program_at = Some(motion.stopped_at(contact.as_deref().copied()).end);
                 vec![]
             }
             Canon::Dwell { .. }

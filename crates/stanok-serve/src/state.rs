@@ -118,7 +118,12 @@ impl MachineState {
             }
             Canon::StraightProbe {
                 motion, contact, ..
-            } => self.position = motion.stopped_at(*contact).end.to_array(),
+            } => {
+                self.position = motion
+                    .stopped_at(contact.as_deref().copied())
+                    .end
+                    .to_array()
+            }
             Canon::SetFeedRate { feed } => self.feed = *feed,
             Canon::SetFeedMode { mode } => self.feed_mode = format!("{mode:?}"),
             Canon::SelectPlane { plane } => self.plane = format!("{plane:?}"),

@@ -78,7 +78,7 @@ mod tests {
         };
         let at = |value| Spanned::new(Span::default(), value);
         let stream = [
-            at(Canon::StraightFeed(turn)),
+            at(Canon::StraightFeed(turn.clone())),
             at(Canon::SetToolCentrePoint {
                 active: true,
                 tool_offset: [0.0, 0.0, 100.0],

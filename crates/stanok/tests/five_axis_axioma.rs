@@ -174,7 +174,7 @@ fn example_12_3_trafooff() {
         .iter()
         .rev()
         .find_map(|c| match c {
-            stanok_canon::Canon::StraightFeed(m) => Some(*m),
+            stanok_canon::Canon::StraightFeed(m) => Some(m.clone()),
             _ => None,
         })
         .unwrap();

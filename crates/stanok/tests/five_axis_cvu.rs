@@ -693,7 +693,7 @@ fn balt_circle_errors() {
         .canon
         .iter()
         .find_map(|c| match c {
-            stanok_canon::Canon::ArcFeed(a) => Some(*a),
+            stanok_canon::Canon::ArcFeed(a) => Some(a.clone()),
             _ => None,
         })
         .unwrap();

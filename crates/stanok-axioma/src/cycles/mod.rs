@@ -103,7 +103,7 @@ pub struct CycleState {
 
 /// Activation: defaults first, then the block's parameters (§6.2).
 pub(super) fn activate(cx: &mut Ctx<'_>, kind: CycleKind) {
-    cx.fe.ext.cycle = CycleState {
+    *cx.fe.cycle = CycleState {
         active: Some(kind),
         q: [None; 32],
     };
@@ -119,7 +119,7 @@ pub(super) fn set_params(cx: &mut Ctx<'_>, qs: &[(u8, Val)]) -> Result<(), Diagn
                 v.span,
             ));
         }
-        cx.fe.ext.cycle.q[i as usize - 1] = Some(v.v);
+        cx.fe.cycle.q[i as usize - 1] = Some(v.v);
     }
     Ok(())
 }
@@ -286,7 +286,7 @@ impl<'c, 'a> Call<'c, 'a> {
 
 /// Calls the active cycle at the block's axis words.
 pub(super) fn call(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
-    let Some(kind) = cx.fe.ext.cycle.active else {
+    let Some(kind) = cx.fe.cycle.active else {
         return Ok(());
     };
     if cx.fe.ext.comp.is_active() {
@@ -307,7 +307,7 @@ pub(super) fn call(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     }
     let h0 = cx.st.program_position();
     let (p, _) = cx.end_point()?;
-    let q = cx.fe.ext.cycle.q;
+    let q = cx.fe.cycle.q;
     // Q3: the F of the moment of the call, always mm/min.
     let f_now = cx.path_feed(0.0);
     let mut call = Call {

@@ -123,7 +123,7 @@ pub(super) fn thread(c: &mut Call<'_, '_>) -> Result<(), Diagnostic> {
     }
     // §8.1 [M] precondition, §9.4 [D] error (issue 22 item 6): under G96 the spindle speed follows
     // the tool's radius, so S·pitch would not be a constant thread feed.
-    if c.cx.fe.ext.tech.css {
+    if c.cx.fe.tech.css {
         return Err(c
             .cx
             .err(

@@ -261,7 +261,7 @@ pub fn motions(text: &str, opts: InterpOptions) -> Result<Vec<Mv>, Diagnostic> {
     let mut out = Vec::new();
     for item in Interpreter::from_text(text, opts) {
         let c: Spanned<Canon> = item?;
-        match c.value {
+        match &c.value {
             Canon::StraightTraverse(m) | Canon::StraightFeed(m) => out.push(Mv {
                 line: c.span.line,
                 kind: matches!(c.value, Canon::StraightFeed(_)) as u8,

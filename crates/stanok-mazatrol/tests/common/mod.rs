@@ -29,7 +29,7 @@ impl Run {
                 Canon::ArcFeed(a) => Some(a.end),
                 Canon::StraightProbe {
                     motion, contact, ..
-                } => Some(contact.unwrap_or(motion.end)),
+                } => Some(contact.as_deref().copied().unwrap_or(motion.end)),
                 Canon::RigidTap { start, .. } => Some(*start),
                 _ => None,
             })

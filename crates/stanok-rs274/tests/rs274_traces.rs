@@ -359,8 +359,10 @@ own_tests! {
     parity_g53_tlo: "stanok-parity-g53-tlo";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
+    parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m60: "stanok-parity-m60";
+    parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";
     parity_predefined: "stanok-parity-predefined";
     parity_probe_backoff: "stanok-parity-probe-backoff";
@@ -529,6 +531,16 @@ fn known_difference_the_spindle_is_empty_at_start_as_milltask() {
     let (cmds, err) = run(program, Dialect::Rs274ngc);
     assert!(err.is_none(), "{err:?}");
     assert_at(&cmds, [5.0, 1.0, 20.0], "milltask ends at X5 Y1 Z20");
+}
+
+/// With the spindle empty milltask reads `#<_current_pocket>` as −1 (rs274: 1, its slot 1); after
+/// `T2 M6` it is tool 2's pocket.
+#[test]
+fn known_difference_the_empty_spindle_has_pocket_minus_one_as_milltask() {
+    let program = "G21 G90 G94 F3000\nG0 X[#<_current_pocket>]\nT2 M6\nG0 Y[#<_current_pocket>]\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(&cmds, [-1.0, 2.0, 0.0], "pocket -1 empty, then tool 2's pocket 2");
 }
 
 /// `M61 Q1` declares tool 1 loaded: `#<_current_tool>` = 1, #5400 = 1 and G43 takes its offset 7;

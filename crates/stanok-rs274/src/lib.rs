@@ -582,6 +582,9 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 19. Group 0 (G4 ran at 8). G10, G28, G30, G52 and G92 take the axis words for themselves:
     // with them an explicit motion code is an error and the modal motion is suspended.
     let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
+    // Where this block's commands start: a move without compensation (a cycle, a home) makes the
+    // programmed point a G40 left behind stale (below).
+    let queued = cx.out.queue.len();
     if let Some((code, span)) = g.get(Group::NonModal, cx) {
         if matches!(code, G10 | G28 | G30 | G52 | G92) {
             if g.get(Group::Motion, cx).is_some() {
@@ -635,6 +638,13 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             "Must use g0 or g1 with g53",
             span,
         ));
+    }
+    let comp = cx.fe.modes.comp;
+    if !comp.on()
+        && comp.program.is_some()
+        && cx.out.queue.iter().skip(queued).any(|c| c.value.motion().is_some())
+    {
+        cx.fe.modes.comp.program = None;
     }
     // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
     if cx.words.has(b'H') && !cx.words.is_used(b'H') {

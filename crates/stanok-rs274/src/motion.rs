@@ -173,9 +173,9 @@ fn motion_block_inner(
             } else {
                 cx.straight(rapid, end, feed);
                 // The exit move after G40 has used the programmed point.
-                if cx.fe.modes.comp.program.is_some() {
-                    cx.fe.modes.comp.program = None;
-                }
+                let comp = &mut cx.fe.modes.comp;
+                comp.program = None;
+                comp.arc_refused = false;
                 Ok(())
             }
         }
@@ -186,6 +186,15 @@ fn motion_block_inner(
                     "Must use g0 or g1 with g53",
                     g53_span,
                 ));
+            }
+            if cx.fe.modes.comp.arc_refused {
+                return Err(cx
+                    .err(
+                        "rs274::comp-exit-arc",
+                        "The move just after exiting cutter compensation mode must be straight, not an arc",
+                        span,
+                    )
+                    .with_note("leave cutter compensation with a G0 or G1 move after G40"));
             }
             cx.st.motion = if code == G2 {
                 MotionMode::ArcCw

@@ -30,7 +30,13 @@ pub fn predefined(
     line: u32,
 ) -> Option<f64> {
     let units = st.units.mm_per_unit();
-    let pos = st.program_position().to_array();
+    let mut pos = st.program_position().to_array();
+    // After G40, until a move, LinuxCNC's current point is the programmed one.
+    if let (false, Some(q)) = (rs.comp.on(), rs.comp.program) {
+        let (a, b, _) = st.plane.axes();
+        pos[a] = q[0];
+        pos[b] = q[1];
+    }
     let axis = |i: usize| {
         if matches!(i, 3..=5) {
             pos[i]

@@ -344,6 +344,7 @@ macro_rules! own_tests {
 // The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
+    err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g5_1: "stanok-err-parity-g5-1";
     err_parity_mod_zero: "stanok-err-parity-mod-zero";
@@ -351,6 +352,7 @@ own_tests! {
     err_parity_pow: "stanok-err-parity-pow";
     err_parity_unclosed_comment: "stanok-err-parity-unclosed-comment";
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
+    parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
     parity_css_inch: "stanok-parity-css-inch";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";

@@ -642,7 +642,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     let comp = cx.fe.modes.comp;
     if !comp.on()
         && comp.program.is_some()
-        && cx.out.queue.iter().skip(queued).any(|c| c.value.motion().is_some())
+        && cx
+            .out
+            .queue
+            .iter()
+            .skip(queued)
+            .any(|c| c.value.motion().is_some())
     {
         cx.fe.modes.comp.program = None;
     }

@@ -539,10 +539,15 @@ fn known_difference_the_spindle_is_empty_at_start_as_milltask() {
 /// `T2 M6` it is tool 2's pocket.
 #[test]
 fn known_difference_the_empty_spindle_has_pocket_minus_one_as_milltask() {
-    let program = "G21 G90 G94 F3000\nG0 X[#<_current_pocket>]\nT2 M6\nG0 Y[#<_current_pocket>]\nM2\n";
+    let program =
+        "G21 G90 G94 F3000\nG0 X[#<_current_pocket>]\nT2 M6\nG0 Y[#<_current_pocket>]\nM2\n";
     let (cmds, err) = run(program, Dialect::Rs274ngc);
     assert!(err.is_none(), "{err:?}");
-    assert_at(&cmds, [-1.0, 2.0, 0.0], "pocket -1 empty, then tool 2's pocket 2");
+    assert_at(
+        &cmds,
+        [-1.0, 2.0, 0.0],
+        "pocket -1 empty, then tool 2's pocket 2",
+    );
 }
 
 /// `M61 Q1` declares tool 1 loaded: `#<_current_tool>` = 1, #5400 = 1 and G43 takes its offset 7;

@@ -274,6 +274,46 @@ fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
     Ok(())
 }
 
+/// LinuxCNC's `$` word selects the spindle of S, M3–M5, M19, M51, G33, G33.1, G76 and G95–G97.
+/// The `linuxcnc` machine has one spindle: `$0` (or `$-1`, all of them) changes nothing, any other
+/// number is refused with the message of the first word that would use it (S before the M codes,
+/// as LinuxCNC checks them), and a `$` nothing uses is refused.
+#[cold]
+fn spindle_selection(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
+    let Some(sel) = cx.words.take(b'$') else {
+        return Ok(());
+    };
+    let m_user = cx
+        .words
+        .m
+        .iter()
+        .find(|(c, _)| matches!(c, 3 | 4 | 5 | 19 | 51))
+        .map(|&(c, _)| c);
+    let g_user = cx
+        .words
+        .g
+        .iter()
+        .any(|(c, _)| matches!(*c, G33 | G33_1 | G76 | G95 | G96 | G97));
+    let s_user = cx.words.has(b'S');
+    if m_user.is_none() && !g_user && !s_user {
+        return Err(cx.err(
+            "rs274::spindle-word-unused",
+            "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it",
+            sel.span,
+        ));
+    }
+    let n = sel.v.trunc();
+    if n == 0.0 || n == -1.0 {
+        return Ok(());
+    }
+    let msg = match m_user {
+        _ if s_user => "Invalid spindle ($) number in Spindle speed command".to_string(),
+        Some(c) => format!("Spindle ($) number out of range in M{c} Command"),
+        None => "Spindle ($) number out of range".to_string(),
+    };
+    Err(cx.err("rs274::spindle-number", msg, sel.span))
+}
+
 /// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
 pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
     let text = match mode {
@@ -357,6 +397,8 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     } else {
         Some(mcodes::classify_m(cx)?)
     };
+
+    spindle_selection(cx)?;
 
     // Codes recognised but not supported: the UVW planes.
     if let Some((code @ (G17_1 | G18_1 | G19_1), span)) = g.get(Group::Plane, cx) {

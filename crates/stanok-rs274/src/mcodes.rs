@@ -108,23 +108,13 @@ pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> 
 }
 
 /// M48 (all overrides on), M49 (off), M50 P (feed), M51 P (spindle), M52 P (adaptive feed),
-/// M53 P (feed hold input): P0 disables, P1 or no P enables.
+/// M53 P (feed hold input): P0 disables, any other P or no P enables (LinuxCNC 2.9: `M52 P10`
+/// and `M51 P-1` enable).
 pub(super) fn overrides(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     let enabled = match code {
         48 => true,
         49 => false,
-        _ => match cx.words.take(b'P') {
-            Some(p) if p.v == 0.0 => false,
-            Some(p) if p.v == 1.0 => true,
-            Some(p) => {
-                return Err(cx.err(
-                    "rs274::override-p",
-                    format!("M{code} P must be 0 or 1"),
-                    p.span,
-                ))
-            }
-            None => true,
-        },
+        _ => cx.words.take(b'P').is_none_or(|p| p.v != 0.0),
     };
     if matches!(code, 48..=50) {
         cx.fe.modes.feed_override_disabled = !enabled;

@@ -346,6 +346,9 @@ macro_rules! own_tests {
 own_tests! {
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_g4: "stanok-err-parity-g4";
+    err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
+    err_parity_n_not_first: "stanok-err-parity-n-not-first";
+    err_parity_spindle_number: "stanok-err-parity-spindle-number";
     err_parity_g5_1: "stanok-err-parity-g5-1";
     err_parity_mod_zero: "stanok-err-parity-mod-zero";
     err_parity_nested_comment: "stanok-err-parity-nested-comment";
@@ -367,6 +370,7 @@ own_tests! {
     parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";
     parity_predefined: "stanok-parity-predefined";
+    parity_spindle_select: "stanok-parity-spindle-select";
     parity_probe_backoff: "stanok-parity-probe-backoff";
     parity_tapping_offsets: "stanok-parity-tapping-offsets";
     parity_tapping_planes: "stanok-parity-tapping-planes";

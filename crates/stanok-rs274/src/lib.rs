@@ -274,6 +274,32 @@ fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
     Ok(())
 }
 
+/// LinuxCNC checks a block's L word before it runs anything: G74 (left-hand tapping) and G33.1
+/// take none, unlike the other canned cycles (`G74 … L2` is refused even with the spindle the
+/// wrong way round, which the cycle itself would report).
+#[cold]
+fn l_word_check(cx: &Ctx<'_>, g: &GCodes) -> Result<(), Diagnostic> {
+    let Some(l) = cx.words.peek(b'L') else {
+        return Ok(());
+    };
+    let motion = match g.get(Group::Motion, cx) {
+        Some((code, _)) => Some(code),
+        None if cx.has_axis_words() => cx.fe.modes.motion_code,
+        None => None,
+    };
+    let other_user = g.get(Group::NonModal, cx).is_some_and(|(c, _)| c == G10)
+        || g.get(Group::CutterComp, cx).is_some()
+        || cx.words.m.iter().any(|&(c, _)| c == 66);
+    if matches!(motion, Some(G74 | G33_1)) && !other_user {
+        return Err(cx.err(
+            "interp::unused-word",
+            "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 or NURBS code",
+            l.span,
+        ));
+    }
+    Ok(())
+}
+
 /// LinuxCNC's `$` word selects the spindle of S, M3–M5, M19, M51, G33, G33.1, G76 and G95–G97.
 /// The `linuxcnc` machine has one spindle: `$0` (or `$-1`, all of them) changes nothing, any other
 /// number is refused with the message of the first word that would use it (S before the M codes,
@@ -399,6 +425,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     };
 
     spindle_selection(cx)?;
+    l_word_check(cx, &g)?;
 
     // Codes recognised but not supported: the UVW planes.
     if let Some((code @ (G17_1 | G18_1 | G19_1), span)) = g.get(Group::Plane, cx) {

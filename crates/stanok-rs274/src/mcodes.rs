@@ -305,10 +305,11 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
             }
             6 => std::mem::replace(&mut m.tool_change, true) || m.set_tool.is_some(),
             3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE || m.orient.is_some(),
+            // M7, M8 and M9 are one group in LinuxCNC 2.9: `M7 M8` on one line is refused.
             7..=9 => {
                 m.coolant[m.n_coolant] = code;
                 m.n_coolant += 1;
-                false
+                m.n_coolant > 1
             }
             100..=199 if cx.fe.opts.user_m_codes => {
                 m.user[m.n_user] = code;

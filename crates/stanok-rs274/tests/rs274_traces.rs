@@ -345,10 +345,13 @@ macro_rules! own_tests {
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_coolant_group: "stanok-err-parity-coolant-group";
+    err_parity_g74_l: "stanok-err-parity-g74-l";
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
     err_parity_n_not_first: "stanok-err-parity-n-not-first";
     err_parity_spindle_number: "stanok-err-parity-spindle-number";
+    err_parity_unknown_operation: "stanok-err-parity-unknown-operation";
     err_parity_g5_1: "stanok-err-parity-g5-1";
     err_parity_mod_zero: "stanok-err-parity-mod-zero";
     err_parity_nested_comment: "stanok-err-parity-nested-comment";
@@ -562,6 +565,19 @@ fn known_difference_m61_loads_the_tool_data_as_milltask() {
     let (cmds, err) = run(program, Dialect::Rs274ngc);
     assert!(err.is_none(), "{err:?}");
     assert_at(&cmds, [5.0, 2.0, 27.0], "milltask ends at X5 Y2 Z27");
+}
+
+/// `G43` and then `M61 Q2` (or `T2 M6`) with no move between: the standalone rs274 resynchronises
+/// its position from its stub, which has not seen the offset, and the next `G1 X5` goes to program
+/// Z 0 (machine Z 10); milltask keeps the program position, Z −10, and ends at machine Z 0.
+#[test]
+fn known_difference_m6_or_m61_after_an_offset_without_a_move_as_milltask() {
+    for change in ["M61 Q2", "T2 M6"] {
+        let program = format!("G21 G90 G94 F3000\nG10 L1 P1 Z10\nG10 L1 P2 Z0\nT1 M6\nG43\n{change}\nG1 X5\nG1 Y3\nM2\n");
+        let (cmds, err) = run(&program, Dialect::Rs274ngc);
+        assert!(err.is_none(), "{err:?}");
+        assert_at(&cmds, [5.0, 3.0, 0.0], "milltask ends at X5 Y3 Z0");
+    }
 }
 
 /// G84 with the spindle counterclockwise: LinuxCNC's message, on the G84 block; rs274 has already

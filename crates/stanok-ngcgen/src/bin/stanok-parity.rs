@@ -262,6 +262,8 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
     let mut tool_loaded = false;
     let mut after_m61 = false;
     let mut offset_in_force = false;
+    // A tool length offset changed since the last move: rs274's stub still has the old position.
+    let mut offset_unmoved = false;
     for line in text.lines() {
         let l = line
             .split(['(', ';'])
@@ -291,15 +293,28 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
         // After M61 the standalone rs274 leaves #<_current_tool>, #5400… and the offset G43
         // takes as they were; LinuxCNC (milltask) and Stanok take the declared tool's.
         let raw = line.to_ascii_lowercase();
+        let comp_from_tool = (has("g41") || has("g42")) && !l.contains('d');
         if after_m61
             && (raw.contains("_current_tool")
                 || raw.contains("#540")
                 || raw.contains("#541")
-                || (has("g43") && !l.contains('h')))
+                || (has("g43") && !l.contains('h'))
+                || comp_from_tool)
         {
             return Some("M61 leaves the tool data as it was");
         }
         after_m61 |= has("m61");
+        // M6/M61 resynchronise rs274's position from its stub, which has not seen a tool length
+        // offset applied since the last move; milltask (and Stanok) keep the program position.
+        if offset_unmoved && (m6 || has("m61")) {
+            return Some("M6/M61 after a tool length offset change or a NURBS without a move");
+        }
+        // (A NURBS, G5.2 … G5.3, leaves the stub's position behind too.)
+        if l.contains("g43") || has("g49") || l.contains("g5.3") {
+            offset_unmoved = true;
+        } else if l.contains(['x', 'y', 'z']) {
+            offset_unmoved = false;
+        }
         // G20/G21 under a tool length offset: LinuxCNC keeps the offset's number, which then
         // means another length (its later G43.2, G53, G28/G30 use it); Stanok keeps the length.
         if offset_in_force && (has("g20") || has("g21")) {

@@ -534,7 +534,12 @@ fn corner(
     let a = last.end_tangent();
     let turn = cross(a, dir).atan2(dot(a, dir));
     let plane = cx.st.plane;
-    if comp.sign() * turn < -CONCAVE_TOLERANCE {
+    // A line straight back on a line turns by ±π, the sign a rounding accident: LinuxCNC goes
+    // round the end with a half circle on either side. (An arc's cusp with a line is concave:
+    // their offsets cross.)
+    let lines = matches!((last, new), (Element::Line { .. }, Element::Line { .. }));
+    let reversal = lines && std::f64::consts::PI - turn.abs() < 1e-9;
+    if reversal || comp.sign() * turn < -CONCAVE_TOLERANCE {
         // Convex: an arc about the corner.
         reachable(cx, tool_at(cx), span)?;
         let here = cx.st.program_position();

@@ -360,6 +360,7 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_reversal: "stanok-parity-comp-reversal";
     parity_css_inch: "stanok-parity-css-inch";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";

@@ -616,8 +616,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             G61 => PathMode::ExactPath,
             G61_1 => PathMode::ExactStop,
             _ => {
-                let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
-                let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
+                // A negative P is 0 and a negative Q is P, as LinuxCNC reads them.
+                let p = cx.words.take(b'P').map_or(0.0, |v| cx.mm(v.v).max(0.0));
+                let q = cx
+                    .words
+                    .take(b'Q')
+                    .map(|v| cx.mm(v.v))
+                    .filter(|&q| q >= 0.0)
+                    .unwrap_or(p);
                 cx.fe.modes.naive_cam_tolerance = q;
                 PathMode::Continuous { blend_tolerance: p }
             }

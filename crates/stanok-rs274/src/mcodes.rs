@@ -143,14 +143,16 @@ pub(super) fn set_tool_number(
     let Some(q) = cx.words.take(b'Q') else {
         return Err(cx.err("rs274::m61-q-missing", "Q word missing with M61", span));
     };
-    if q.v < 0.0 || q.v.fract() != 0.0 || q.v > u32::MAX as f64 {
+    // LinuxCNC rounds Q to the nearest tool number (`M61 Q1.5` is tool 2).
+    let rounded = q.v.round();
+    if rounded < 0.0 || rounded > u32::MAX as f64 {
         return Err(cx.err(
             "rs274::m61-q",
-            format!("Need non-negative integer Q with M61, got {}", q.v),
+            "Need non-negative Q-word to specify tool number with M61",
             q.span,
         ));
     }
-    let tool = q.v as u32;
+    let tool = rounded as u32;
     let slot = if tool == 0 {
         0
     } else {

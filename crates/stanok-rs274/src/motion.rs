@@ -438,7 +438,12 @@ fn arc_error(cx: &Ctx<'_>, err: ArcError, span: ColSpan) -> Diagnostic {
             .with_note(format!(
                 "half chord {half_chord:.4} mm > radius {radius:.4} mm"
             )),
-        ArcError::NonPositiveRadius => cx.err("rs274::arc-zero-radius", "Zero-radius arc", span),
+        // `R0`: LinuxCNC finds the chord longer than the radius.
+        ArcError::NonPositiveRadius => cx.err(
+            "rs274::arc-radius-too-small",
+            "Arc radius too small to reach end point",
+            span,
+        ),
         ArcError::RadiusMismatch { r1, r2 } => cx.err(
             "rs274::arc-radius-mismatch",
             format!("Radius to end of arc differs from radius to start: r1={r1:.4} r2={r2:.4}"),

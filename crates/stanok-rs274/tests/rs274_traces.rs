@@ -348,8 +348,12 @@ own_tests! {
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
     err_parity_g4: "stanok-err-parity-g4";
+    err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
+    err_parity_g5_zero_feed: "stanok-err-parity-g5-zero-feed";
     err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
+    err_parity_m61_negative: "stanok-err-parity-m61-negative";
     err_parity_n_not_first: "stanok-err-parity-n-not-first";
+    err_parity_r0: "stanok-err-parity-r0";
     err_parity_spindle_number: "stanok-err-parity-spindle-number";
     err_parity_unknown_operation: "stanok-err-parity-unknown-operation";
     err_parity_g5_1: "stanok-err-parity-g5-1";
@@ -373,6 +377,7 @@ own_tests! {
     parity_m60: "stanok-parity-m60";
     parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";
+    parity_negative_words: "stanok-parity-negative-words";
     parity_predefined: "stanok-parity-predefined";
     parity_spindle_select: "stanok-parity-spindle-select";
     parity_probe_backoff: "stanok-parity-probe-backoff";

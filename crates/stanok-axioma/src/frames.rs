@@ -186,6 +186,34 @@ pub(super) fn block_rules(
             _ => {}
         }
     }
+    // [D] (spec §12 for G194/G195, §11 "separate block" for the others): the axis words of a
+    // mirror, scale, rotation or shift block are its factors, angle or vector, and the block
+    // moves nothing — a motion code in it would silently not move, so it is refused.
+    let frame = actions.iter().find(|(a, _, _)| {
+        matches!(
+            a,
+            GAction::Mirror(true)
+                | GAction::Scale(true)
+                | GAction::Rotate(true)
+                | GAction::Shift(crate::codes::G194 | crate::codes::G195)
+        )
+    });
+    let motion = actions
+        .iter()
+        .find(|(a, _, _)| matches!(a, GAction::Motion(_)));
+    if let (Some(&(_, frame, _)), Some(&(_, motion, at))) = (frame, motion) {
+        return Err(cx
+            .err(
+                "axioma::frame-with-motion",
+                format!(
+                    "{} moves nothing: its axis words are not a move, so {} cannot be in its block",
+                    crate::g_name(frame),
+                    crate::g_name(motion)
+                ),
+                at,
+            )
+            .with_note("program the frame function in a block of its own, the move after it"));
+    }
     one_p_user(
         cx,
         actions.iter().filter_map(|&(a, code, _)| match a {

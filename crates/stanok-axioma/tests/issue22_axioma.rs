@@ -340,3 +340,27 @@ fn issue22_bspline_with_too_few_points_is_reported_once() {
         assert_eq!(bspline[0].span.line, line, "{text}");
     }
 }
+
+/// Spec axioma-1 §12 [D] and the "separate block" of the frame functions: a motion code in a
+/// G73/G173/G273/G194/G195 block is refused at the motion code (its axis words are the frame's,
+/// so it would silently not move); after the frame, in its own block, the move runs.
+#[test]
+fn a_motion_code_in_a_frame_block_is_refused() {
+    for (text, at) in [
+        ("G194 X5 G1 Y3 F100\nM30\n", "G1"),
+        ("G195 X5 G0\nM30\n", "G0"),
+        ("G73 X-1 G01 F100\nM30\n", "G01"),
+        ("G173 P2 G02\nM30\n", "G02"),
+        ("G273 Q30 G1\nM30\n", "G1"),
+    ] {
+        let err = refused_with(text, opts(), "axioma::frame-with-motion");
+        assert_eq!(err.span.line, 1, "{text}");
+        assert_eq!(
+            &text[err.span.start as usize..err.span.end as usize],
+            at,
+            "{text}"
+        );
+    }
+    let cmds = ok_with("G194 X5\nG1 X1 F100\nM30\n", opts());
+    assert_eq!(ends(&cmds).last().copied(), Some([6.0, 0.0, 0.0]));
+}

@@ -78,6 +78,24 @@ pub(crate) fn arc(
     // R+ is an arc of at most 179.999° (§6.5): a chord longer than 2r·sin(179.999°/2) — a half
     // circle, within the tolerance of the radius check — needs R− (issue 22 item 16).
     let half_chord = 0.5 * (end[a] - s[a]).hypot(end[b] - s[b]);
+    // No circle of radius |R| joins points further apart than its diameter (§6.4: d > 2r is an
+    // error), whatever the sign; the check tolerates what the centre construction tolerates.
+    if half_chord > radius.abs() + RADIUS_TOLERANCE {
+        return Err(cx
+            .err(
+                "balt::arc",
+                format!(
+                    "R{}: the end is {:.4} mm from the start, more than the diameter {:.4} mm",
+                    r.v,
+                    2.0 * half_chord,
+                    2.0 * radius.abs()
+                ),
+                r.span,
+            )
+            .with_note(
+                "no circle of this radius passes through both points: check R and the end point",
+            ));
+    }
     if radius > 0.0 && half_chord > radius * (179.999f64 / 2.0).to_radians().sin() {
         return Err(cx
             .err(
@@ -104,8 +122,13 @@ pub(crate) fn arc(
         cx.err(
             "balt::arc",
             format!(
-                "no circle of radius R{} through the start and the end: {e:?}",
-                r.v
+                "no circle of radius R{} through the start and the end{}",
+                r.v,
+                match e {
+                    stanok_geom::RadiusError::EndEqualsStart => ": the start and the end coincide",
+                    stanok_geom::RadiusError::NonPositiveRadius => ": R must not be 0",
+                    stanok_geom::RadiusError::RadiusTooSmall { .. } => "",
+                }
             ),
             r.span,
         )

@@ -513,11 +513,12 @@ fn motion(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
     let rapid = cx.st.motion == MotionMode::Rapid && !cx.fe.modes.spline;
     let feed = cx.st.feed;
     if !rapid && feed <= 0.0 {
-        return Err(cx.err(
-            "balt::feed-missing",
-            "feed move without F (the first block after CVU=1 must program F)",
-            at,
-        ));
+        let e = cx.err("balt::feed-missing", "feed move without F", at);
+        return Err(if cx.fe.modes.cvu {
+            e.with_note("the first motion block after CVU=1 must program F (§6.1)")
+        } else {
+            e.with_note("program F in this block or before it")
+        });
     }
     if cx.fe.modes.spline {
         return crate::spline::node(cx, Pose::from_array(e), feed, at);

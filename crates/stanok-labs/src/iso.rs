@@ -574,6 +574,22 @@ impl Exec<'_> {
                         w.span,
                     ));
                 }
+                // "The last block holds M17 and no geometric or technological information"
+                // (§4.10): a move or a feed there would belong to no contour of the caller's.
+                if let Some(o) = self
+                    .words()
+                    .find(|o| "XYZUVWPQIJKABCDEFST".contains(o.letter))
+                {
+                    return Err(err(
+                        "lab::m17-block",
+                        format!(
+                            "the M17 block holds no geometric or technological words, not {}",
+                            o.letter
+                        ),
+                        o.span,
+                    )
+                    .with_note("move the word to a block of its own before M17"));
+                }
                 *self.ctl = Control::Return(w.span);
             }
             m if m >= 0 => {

@@ -8,6 +8,12 @@ use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span};
 use stanok_syntax::labs::words::{Item, Word};
 use stanok_syntax::Dialect;
 
+/// GOST-20999: the largest move of one block, mm or degrees (§4.3).
+const MAX_MOVE: f64 = 9999.999;
+
+/// The axes of a `Pose` array, in order.
+const AXIS_NAMES: [char; 9] = ['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W'];
+
 impl Exec<'_> {
     /// The work origin of `axis` (machine mm): the active G54/G55 offset plus the G92 shift.
     pub(super) fn origin(&self, axis: usize) -> f64 {
@@ -190,6 +196,36 @@ impl Exec<'_> {
             )
             .with_note("start and end cutter compensation with a G0 or G1 block"));
         }
+        // The start-up and exit blocks of radius compensation (§4.9 [doc]): the start-up block
+        // names its corrector with D and moves in the compensation plane; the G40 block holds at
+        // least one coordinate of the plane. Without them the control cannot build the offset
+        // path's first or last element.
+        let (pa, pb, _) = self.st.plane.axes();
+        let in_plane = programmed[pa].is_some() || programmed[pb].is_some();
+        if starts_comp && radius_d.is_none() {
+            return Err(err(
+                "lab::startup-without-d",
+                "the cutter compensation start-up block needs D with the radius corrector",
+                self.block.span,
+            )
+            .with_note("write G41/G42 followed by D<n> in the same block (§4.9)"));
+        }
+        if starts_comp && !in_plane {
+            return Err(err(
+                "lab::startup-without-plane-motion",
+                "the cutter compensation start-up block must move in the compensation plane",
+                self.block.span,
+            )
+            .with_note("give an end point in the plane chosen by G17/G18/G19 (§4.9)"));
+        }
+        if ends_comp && !in_plane {
+            return Err(err(
+                "lab::g40-without-plane-coordinate",
+                "the G40 block must contain a coordinate of the compensation plane",
+                self.block.span,
+            )
+            .with_note("the tool leaves the contour along this block's move in the plane (§4.9)"));
+        }
         let any_axis = programmed.iter().any(Option::is_some);
         // G91 full circle: centre words and no end point (`N51 G2 G91 I30`).
         let full_circle_g91 = circular
@@ -223,6 +259,23 @@ impl Exec<'_> {
             let c = correction(self.st, axis, self.opts);
             self.st.applied_correction[axis] = c;
             end[axis] = p + self.origin(axis) + c;
+        }
+        // GOST-20999 §4.3: "the largest move in one block is ±9999.999 mm (or degrees)" — the
+        // word format's reach, which an absolute end far from the start can exceed.
+        if self.dialect == Dialect::Gost20999 {
+            let start = self.st.position.to_array();
+            if let Some(axis) = (0..9).find(|&k| (end[k] - start[k]).abs() > MAX_MOVE + 1e-9) {
+                return Err(err(
+                    "lab::move-too-long",
+                    format!(
+                        "this block moves {} by {:.3}: more than ±{MAX_MOVE:.3}, the largest move of one block",
+                        AXIS_NAMES[axis],
+                        end[axis] - start[axis]
+                    ),
+                    self.block.span,
+                )
+                .with_note("split the move into blocks of at most 9999.999 each (§4.3)"));
+            }
         }
         let end = Pose::from_array(end);
         match self.st.motion {

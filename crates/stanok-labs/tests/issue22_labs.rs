@@ -33,10 +33,11 @@ fn issue22_gost20999_numbers_have_4_digits_before_the_point_and_3_after() {
         );
     }
     // The limits themselves, with and without a point (counts of 0.001 mm).
-    let r = gost("N1 G1 X9999.999 Y-9999.999 F100\nN2 G1 X9999999 Y0.001\nN3 M2\n");
+    // (N2 stays within the largest move of one block, 9999.999: see a_block_moves_at_most_9999_999.)
+    let r = gost("N1 G1 X9999.999 Y-9999.999 F100\nN2 G1 X9999999 Y-0.001\nN3 M2\n");
     assert!(r.errors.is_empty(), "{:?}", r.errors);
     xy(r.end_of(1), 9999.999, -9999.999, 1e-9, "N1");
-    xy(r.end_of(2), 9999.999, 0.001, 1e-9, "N2");
+    xy(r.end_of(2), 9999.999, -0.001, 1e-9, "N2");
 }
 
 #[test]

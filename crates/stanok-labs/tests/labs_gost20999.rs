@@ -442,6 +442,53 @@ fn arcs_in_compensation_start_up_or_exit_are_error_35() {
     assert_eq!(r.errors[0].span.line, 2);
 }
 
+/// The start-up block's requirements (§4.9 [doc]): D with the radius corrector and a move in the
+/// plane; the G40 block holds a coordinate of the plane. Each broken requirement stops the run at
+/// its block with nothing of it executed; the corrected block runs.
+#[test]
+fn start_up_and_exit_blocks_need_d_and_a_move_in_the_plane() {
+    let bad = [
+        ("N1 G1 G91 G17 G41 X10. F100\n", "lab::startup-without-d", 1),
+        (
+            "N1 G1 G91 G17 G41 D1 Z10. F100\n",
+            "lab::startup-without-plane-motion",
+            1,
+        ),
+        (
+            "N1 G1 G91 G17 G41 D1 F100\n",
+            "lab::startup-without-plane-motion",
+            1,
+        ),
+        (
+            "N1 G1 G91 G17 G41 D1 X10. F100\nN2 X10.\nN3 G40 Z5.\n",
+            "lab::g40-without-plane-coordinate",
+            3,
+        ),
+        (
+            "N1 G1 G91 G18 G42 D1 X10. Z2. F100\nN2 Z10.\nN3 G40 Y5.\n",
+            "lab::g40-without-plane-coordinate",
+            3,
+        ),
+    ];
+    for (text, code, line) in bad {
+        let r = gost_text(text, [0.0; 3]);
+        assert_eq!(r.error_codes(), [code], "{text}");
+        assert_eq!(r.errors[0].span.line, line, "{text}");
+        assert!(
+            r.moves().iter().all(|(l, _)| l.is_none_or(|l| l < line)),
+            "nothing of the failing block ran: {text}"
+        );
+    }
+    let good = [
+        "N1 G1 G91 G17 G41 D1 X10. F100\nN2 X10.\nN3 G40 Y5.\n",
+        "N1 G1 G91 G18 G42 D1 Z10. F100\nN2 Z10.\nN3 G40 X5. Y2.\n",
+    ];
+    for text in good {
+        let r = gost_text(text, [0.0; 3]);
+        assert!(r.errors.is_empty(), "{text}: {:?}", r.errors);
+    }
+}
+
 /// The rounded rectangle of subprogram 01 run by a main program, from P0 = (0, 0).
 fn rectangle(main: &str) -> Run {
     run(main, Dialect::Gost20999, |o| {
@@ -560,6 +607,44 @@ fn call_rules_are_enforced() {
         assert_eq!(r.error_codes(), [code], "{text}");
         assert!(r.moves().is_empty(), "{text}");
     }
+}
+
+/// §4.10: the subprogram's last block holds M17 and no geometric or technological information.
+/// The call stops at that block with nothing of it executed (the move before it ran).
+#[test]
+fn the_m17_block_holds_no_move_or_feed() {
+    for (sub_end, word) in [
+        ("N2 X2. M17", "X"),
+        ("N2 F200 M17", "F"),
+        ("N2 M17 S300", "S"),
+    ] {
+        let text = format!("N1 L0101\nN9 M2\nL0100\nN1 G1 X1. F100\n{sub_end}\n");
+        let r = gost_text(&text, [0.0; 3]);
+        assert_eq!(r.error_codes(), ["lab::m17-block"], "{text}");
+        assert_eq!(r.errors[0].span.line, 5, "{text}");
+        assert!(r.errors[0].message.ends_with(word), "{text}");
+        assert_eq!(r.moves().len(), 1, "only N1 of the subprogram ran: {text}");
+    }
+    let r = gost_text("N1 L0101\nN9 M2\nL0100\nN1 G1 X1. F100\nN2 M17\n", [0.0; 3]);
+    assert!(r.errors.is_empty(), "{:?}", r.errors);
+}
+
+/// §4.3: the largest move in one block is ±9999.999 mm: an absolute end further than that from
+/// the start is refused at its block (nothing of it runs); 9999.999 itself moves.
+#[test]
+fn a_block_moves_at_most_9999_999() {
+    let r = gost_text(
+        "N1 G91 G1 X9999.999 F1000\nN2 X9999.\nN3 G90 X-9999.\n",
+        [0.0; 3],
+    );
+    assert_eq!(r.error_codes(), ["lab::move-too-long"]);
+    assert_eq!(r.errors[0].span.line, 3);
+    assert!(
+        r.errors[0].message.contains("-29997.999"),
+        "{}",
+        r.errors[0]
+    );
+    assert_eq!(r.moves().len(), 2, "N1 and N2 ran, N3 did not");
 }
 
 #[test]

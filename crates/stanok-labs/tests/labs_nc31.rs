@@ -404,3 +404,13 @@ fn g25_repeats_a_section_k_more_times_then_goes_on() {
     let r = run_text("N1 G25*\nN2 P001003*\nN3 R2\n", Dialect::Nc31, |_| {});
     assert_eq!(r.error_codes(), ["nc31::bad-repeat"]);
 }
+
+/// §2.2: frame numbers run 0…249, raised by a machine parameter to at most 999: N1000 is refused
+/// at its number, N999 (the raised maximum) reads.
+#[test]
+fn frame_numbers_above_999_are_refused() {
+    let r = run_text("N999 X100\nN1000 X200\n", Dialect::Nc31, |_| {});
+    assert_eq!(r.error_codes(), ["nc31::syntax"]);
+    assert_eq!(r.errors[0].span.line, 2);
+    assert!(r.errors[0].message.contains("N1000"), "{}", r.errors[0]);
+}

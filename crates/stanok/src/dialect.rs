@@ -3,11 +3,12 @@
 //! `--dialect` decides when given. Otherwise, in this order:
 //! 1. **The file name**: a lab corpus prefix (`nc31-`, `2p32-`, `mc2101-`, `gost20999-` followed
 //!    by `-` or `_`) is that lab dialect; `.ngc` is RS274/NGC; `.mpf`/`.spf` (Sinumerik-style main
-//!    and subprograms) are AxiOMA.
+//!    and subprograms) are AxiOMA; `.eia` (Mazak's name for EIA/ISO programs) is Mazatrol.
 //! 2. **The text**, when the name cannot say (`.nc`, `.gcode`, `.tap`, `.cnc`, `.txt`, no
 //!    extension, standard input): the first [`SCAN_BYTES`] are read, comments left out, and the
 //!    first line with a word only one dialect has decides, by precedence: Balt-System (`CVU=`,
-//!    `MOVST=`), Mazatrol (`G43.4`, `G43.5`), RS274/NGC (an O-word with its keyword, `o100 sub`,
+//!    `MOVST=`), Mazatrol (`G43.4`, `G43.5`, and the Fanuc family's program number `O1000` on a
+//!    line of its own, `M98 P…`, `G65 P…`), RS274/NGC (an O-word with its keyword, `o100 sub`,
 //!    `o<name> call` …, or a `#<named>` parameter), AxiOMA (its keywords: `TRAORI`, `BRISK`,
 //!    `SOFT`, `MSG(`, `CR=`, `$iPerm`, `G153`…`G159`, `G193`…`G195`, the spline and compensation
 //!    keywords …). A higher dialect wins over a lower one found earlier in the text: Balt and
@@ -86,6 +87,7 @@ fn from_name(name: &str) -> Option<(Dialect, String)> {
     match ext {
         "ngc" => Some((Dialect::Rs274ngc, "extension .ngc".into())),
         "mpf" | "spf" => Some((Dialect::Axioma, format!("extension .{ext}"))),
+        "eia" => Some((Dialect::Mazatrol, "extension .eia (Mazak EIA/ISO)".into())),
         _ => None,
     }
 }
@@ -197,6 +199,30 @@ fn o_word(code: &str) -> Option<String> {
         .then(|| format!("o{} {keyword}", &rest[..label_end]))
 }
 
+/// Words of the Fanuc family, whose one dialect here is Mazatrol EIA/ISO: a line that is only a
+/// program number (`O1000`, `O0001 (PART)`: an RS274/NGC O-word always has its keyword, the other
+/// dialects number programs otherwise), a subprogram call `M98 P…` or a macro call `G65 P…`
+/// (RS274/NGC has neither; AxiOMA calls by name).
+fn fanuc_evidence(upper: &str) -> Option<String> {
+    let t = upper.trim();
+    if let Some(rest) = t.strip_prefix('O') {
+        if !rest.is_empty() && rest.len() <= 5 && rest.bytes().all(|b| b.is_ascii_digit()) {
+            return Some(format!("program number O{rest}"));
+        }
+    }
+    let compact: String = t.chars().filter(|c| !c.is_whitespace()).collect();
+    for call in ["M98P", "G65P"] {
+        if let Some(i) = compact.find(call) {
+            let before_ok = i == 0 || !compact.as_bytes()[i - 1].is_ascii_digit();
+            let digit_after = compact[i + call.len()..].starts_with(|c: char| c.is_ascii_digit());
+            if before_ok && digit_after {
+                return Some(format!("{} P…", &call[..3]));
+            }
+        }
+    }
+    None
+}
+
 /// What the text says (see the module doc), with the evidence.
 pub fn from_text(text: &str) -> Option<(Dialect, String)> {
     // Precedence: a dialect found later but ranked higher replaces one found earlier.
@@ -215,6 +241,8 @@ pub fn from_text(text: &str) -> Option<(Dialect, String)> {
             Some((Dialect::Balt, at(w)))
         } else if let Some(w) = ["G43.4", "G43.5"].iter().find(|w| has_word(&upper, w)) {
             Some((Dialect::Mazatrol, at(w)))
+        } else if let Some(w) = fanuc_evidence(&upper) {
+            Some((Dialect::Mazatrol, at(&w)))
         } else if let Some(o) = o_word(&code) {
             Some((Dialect::Rs274ngc, format!("O-word {}", at(&o))))
         } else if code.contains("#<") {
@@ -324,6 +352,27 @@ mod tests {
         // A Balt or Mazatrol word wins over a more common one found before it.
         assert_eq!(text("G64 BRISK\nG43.4 H1\n"), Some(Dialect::Mazatrol));
         assert_eq!(text("#<a>=1\nCVU=1\n"), Some(Dialect::Balt));
+    }
+
+    #[test]
+    fn fanuc_style_programs_are_mazatrol() {
+        let fanuc = "O1000 (PART 7)\nG21 G90 G54\nT1 M6\nG81 X10. Y10. Z-5. R2. F100\nM30\n%\n";
+        assert_eq!(text(fanuc), Some(Dialect::Mazatrol));
+        assert_eq!(
+            from_text(fanuc).unwrap().1,
+            "text: `program number O1000` on line 1"
+        );
+        assert_eq!(text("G90\nM98 P2000 L3\nM30\n"), Some(Dialect::Mazatrol));
+        assert_eq!(text("G90\nM98P2000\nM30\n"), Some(Dialect::Mazatrol));
+        assert_eq!(text("G65 P9010 A1. B2.\n"), Some(Dialect::Mazatrol));
+        // RS274/NGC's O-words keep their keyword; a number in another word is not a call.
+        assert_eq!(
+            text("o100 sub\nG1 X1\no100 endsub\n"),
+            Some(Dialect::Rs274ngc)
+        );
+        assert_eq!(text("G1 X1 M198 P2\n"), None);
+        assert_eq!(text("(O1000 in a comment)\nG1 X1\n"), None);
+        assert_eq!(from_name("job.EIA").unwrap().0, Dialect::Mazatrol);
     }
 
     #[test]

@@ -116,3 +116,36 @@ fn issue22_fat_axis_missing_from_the_machine_is_error_169() {
     let err = MachineData::from_toml_str(&text, "tt.toml").unwrap_err();
     assert!(err.message.contains("FAT error 169"), "{err}");
 }
+
+/// §6.4: "If d > 2r, raise an error" — for R+ and R− alike, naming the distance and the
+/// diameter (the message once printed the geometry error's Debug form for R−, and "sweeps 180° or
+/// more" for R+, which is not the fault).
+#[test]
+fn cvu_arc_whose_end_is_beyond_the_diameter_is_refused_for_both_signs() {
+    for r in ["R10", "R-10"] {
+        let run = cvu(&format!("G1 X0 Y0 F100\nG2 X30 Y0 {r}\nM30\n"), 0.0);
+        let err = run
+            .error
+            .as_ref()
+            .expect("d = 30 > 2r = 20 must be refused");
+        assert_eq!(err.code, DiagCode::Stanok("balt::arc"), "{err}");
+        assert_eq!(err.span.line, 2);
+        assert!(
+            err.message.contains("30.0000 mm") && err.message.contains("20.0000 mm"),
+            "{err}"
+        );
+        assert!(!err.message.contains('{'), "no Debug form: {err}");
+    }
+}
+
+/// A feed move without F outside CVU=1 says so without blaming CVU=1.
+#[test]
+fn cvu_feed_missing_note_names_cvu_only_under_cvu() {
+    let run = cvu("G1 X1\nM30\n", 0.0);
+    let err = run.error.as_ref().expect("no feed");
+    assert_eq!(err.code, DiagCode::Stanok("balt::feed-missing"), "{err}");
+    assert!(!format!("{err:?}").contains("CVU=1"), "{err:?}");
+    let run = cvu("CVU=1\nG1 X1\nCVU=0\nM30\n", 0.0);
+    let err = run.error.as_ref().expect("no feed after CVU=1");
+    assert!(format!("{err:?}").contains("after CVU=1"), "{err:?}");
+}

@@ -77,6 +77,9 @@ pub enum Line {
     },
 }
 
+/// Largest frame number (spec §2.2: 249, raised by a machine parameter to at most 999).
+pub const MAX_FRAME_NUMBER: u32 = 999;
+
 /// Largest magnitude of a value (spec §2.2: ±999999).
 pub const MAX_VALUE: i64 = 999_999;
 
@@ -132,6 +135,17 @@ pub fn parse_line(text: &str, at: LineAt) -> (Line, Vec<Diagnostic>) {
         return (Line::Empty, diags);
     }
     let number: u32 = text[i..d].parse().unwrap_or(0);
+    // Frame numbers run 0…249, a machine parameter raises the maximum to 999 (§2.2; the flange
+    // listing uses N99…N321, so the raised maximum is the one that reads the lab's programs).
+    if number > MAX_FRAME_NUMBER {
+        err(
+            &mut diags,
+            start,
+            d,
+            format!("frame number N{number} is above {MAX_FRAME_NUMBER}, the NC-31's largest"),
+        );
+        return (Line::Empty, diags);
+    }
     i = skip_blanks(b, d);
     if i >= end {
         return (

@@ -162,6 +162,20 @@ impl Words {
         warnings: &mut Vec<Diagnostic>,
     ) -> Result<(), Diagnostic> {
         self.clear();
+        // Bounded work per block: a diagnostic's column is counted along the line, so a block of
+        // a megabyte of words warning at each would cost the square of its length.
+        if block.words.len() > stanok_syntax::MAX_WORDS_PER_BLOCK {
+            let w = &block.words[stanok_syntax::MAX_WORDS_PER_BLOCK];
+            return Err(Diagnostic::error(
+                "syntax::too-many-words",
+                format!(
+                    "more than {} words in one block",
+                    stanok_syntax::MAX_WORDS_PER_BLOCK
+                ),
+                block.span_of(w.span),
+            )
+            .with_note("split the block: no control reads a block this long"));
+        }
         for w in &block.words {
             let value = match w.value {
                 Value::None => None,

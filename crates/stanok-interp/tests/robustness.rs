@@ -229,11 +229,11 @@ fn deep_oword_nesting_is_refused() {
 
 // ---------------------------------------------------------------- item 5: diagnostics per line
 
-/// One AxiOMA line of 1,000 repeated `G1 X1` words: at most `max_diagnostics_per_line`
-/// warnings, the last counting the rest.
+/// One AxiOMA line of 499 repeated `G1 X1` words (1,000 words, the most a block holds): at most
+/// `max_diagnostics_per_line` warnings, the last counting the rest.
 #[test]
 fn warnings_per_line_are_bounded() {
-    let text = format!("G1 F100 {}\nM30\n", "G1 X1 ".repeat(1_000));
+    let text = format!("G1 F100 {}\nM30\n", "G1 X1 ".repeat(499));
     let mut opts = InterpOptions::new(Dialect::Axioma);
     opts.continue_after_error = true;
     let (_, _, mut interp) = run(&text, opts);
@@ -385,4 +385,81 @@ fn lines_read_again_have_their_own_bound() {
     opts.max_repeated_lines = 10;
     let (_, errors, _) = run(&straight, opts);
     assert!(errors.is_empty(), "{errors:?}");
+}
+
+// ------------------------------------------- mutation campaign, session 3: a megabyte of words
+
+/// Found by the mutation campaign (seed 20261127, run 565): one 2P32 line of 300,000 `G1 X1` words
+/// took 95 s of CPU in every verb — each word's column was counted from the start of the line —
+/// and an AxiOMA block of 160,000 repeated words 17 s (each warning's column likewise). A block
+/// holds at most `MAX_WORDS_PER_BLOCK` words in every dialect: the next one is an error at its
+/// column, found in milliseconds; a block of exactly that many reads.
+#[test]
+fn a_block_of_a_megabyte_of_words_is_refused_at_its_1001st_word() {
+    let max = stanok_syntax::MAX_WORDS_PER_BLOCK;
+    let words = "G1 X1 ".repeat(80_000);
+    for dialect in [
+        Dialect::Axioma,
+        Dialect::Rs274ngc,
+        Dialect::Mazatrol,
+        Dialect::Balt,
+        Dialect::Gost20999,
+        Dialect::P2p32,
+        Dialect::Mc2101,
+    ] {
+        let text = format!("N1 {words}\nN2 M2\n");
+        let t0 = std::time::Instant::now();
+        let err = first_error(&text, dialect).expect("refused");
+        assert_eq!(
+            err.code.to_string(),
+            "syntax::too-many-words",
+            "{dialect:?}: {err}"
+        );
+        assert_eq!(err.span.line, 1, "{dialect:?}");
+        // Word 1,001 starts after "N1 " and 1,000 words of 3 characters each.
+        assert_eq!(err.span.column as usize, 4 + 3 * max, "{dialect:?}: {err}");
+        // Not a timing assertion of speed: a guard against the quadratic cost coming back (it
+        // took minutes; linear work takes milliseconds even in a debug build).
+        assert!(
+            t0.elapsed().as_secs() < 20,
+            "{dialect:?}: {:?}",
+            t0.elapsed()
+        );
+    }
+    let exactly = "X1 ".repeat(max - 2);
+    let (_, errors, _) = run(
+        &format!("N1 G1 F100 {exactly}\nN2 M2\n"),
+        InterpOptions::new(Dialect::Axioma),
+    );
+    assert!(errors.is_empty(), "{errors:?}");
+}
+
+/// The lab parsers' columns are characters, not bytes, after the one-pass column count: a word
+/// after Cyrillic text has the column a person counts.
+#[test]
+fn lab_columns_count_characters_after_cyrillic() {
+    // `ПС` (2 characters, 4 bytes), then `Q` with no number: the error is at `?`, character
+    // column 8 (byte column 10).
+    let err = first_error("ПС N1 Q? X1\n", Dialect::P2p32).expect("refused");
+    assert_eq!(err.span.line, 1);
+    assert_eq!(err.span.column, 8, "{err}");
+}
+
+/// Mutation campaign (session 3): `o9 while [1]` / `G1 X1` / `o9 endwhile` under G41 — moves
+/// without motion in the compensation plane, each held for the next element's corner and copied
+/// into every block's undo — took minutes (the square of the count). After
+/// `MAX_MOVES_OUT_OF_PLANE` such moves in a row, an error at the next one.
+#[test]
+fn moves_out_of_the_compensation_plane_are_bounded() {
+    let text = "G21 G90 G17\nG0 X50 Y50\nG41.1 D10\nG3 X70 Y50 I10 J0 F100\n\
+                G1 X1\no9 while [1]\nZ1\no9 endwhile\nM2\n";
+    let t0 = std::time::Instant::now();
+    let err = first_error(text, Dialect::Rs274ngc).expect("refused");
+    assert_eq!(err.code.to_string(), "rs274::comp-no-plane-motion", "{err}");
+    assert_eq!(err.span.line, 7, "{err}");
+    assert!(t0.elapsed().as_secs() < 60, "{:?}", t0.elapsed());
+    // A real retract-and-plunge sequence stays far below the bound.
+    let ok = "G21 G90 G17\nG0 X50 Y50\nG41.1 D10\nG3 X70 Y50 I10 J0 F100\n\
+              G1 X1\nZ5\nZ10\nZ5\nZ0\nG1 Y0\nG40 G0 X-10\nM2\n";
+    assert!(first_error(ok, Dialect::Rs274ngc).is_none());
 }

@@ -387,6 +387,21 @@ pub(super) fn straight(
     // (Within 1e-9 mm: a G70 pass's first rapid to S comes back through the cycle's frame.)
     if len(sub(e, s)) <= 1e-9 {
         // No motion in the plane: the tool keeps its plane position (LinuxCNC's, if stale).
+        // Every move held behind the last element is copied into each block's undo (the next
+        // element may move them all to its corner): bounded, so that a loop of Z moves under
+        // compensation cannot cost the square of its length (mutation campaign, session 3).
+        if comp.moves_since as usize >= MAX_MOVES_OUT_OF_PLANE {
+            return Err(err(
+                cx,
+                "rs274::comp-no-plane-motion",
+                &format!(
+                    "more than {MAX_MOVES_OUT_OF_PLANE} moves in a row without motion in the \
+                     plane of cutter compensation"
+                ),
+                span,
+            )
+            .with_note("move in the plane, or turn compensation off with G40 before them"));
+        }
         let t = comp.stale.unwrap_or_else(|| tool_at(cx));
         cx.straight(rapid, emit_at(cx, end, t), feed);
         cx.fe.modes.comp.moves_since += 1;
@@ -410,6 +425,10 @@ pub(super) fn straight(
     c.arc_refused = false;
     Ok(())
 }
+
+/// Moves held in a row under compensation without motion in its plane (each waits for the next
+/// element's corner): far beyond any real program's retract-and-plunge sequences.
+pub const MAX_MOVES_OUT_OF_PLANE: usize = 2000;
 
 /// An arc under compensation: programmed end `end`, programmed centre and turns in `planar`.
 pub(super) fn arc(

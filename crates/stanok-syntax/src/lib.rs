@@ -74,6 +74,7 @@
 //! | `syntax::chained-comparison` | error | Mazatrol: `[a LT b LT c]` (bracket each comparison) |
 //! | `syntax::block-skip-ignored` | warning | AxiOMA `/` block skip (not supported, block runs) |
 //! | `syntax::invalid-utf8` | error | [`BlockReader`]: bytes that are not UTF-8 (replaced) |
+//! | `syntax::too-many-words` | error | a block with more than [`MAX_WORDS_PER_BLOCK`] words (the lab controls' parser; the interpreter core for the others) |
 //! | `syntax::line-too-long` | error | [`BlockReader`]: line longer than [`MAX_LINE_BYTES`] (or the bound set) |
 //! | `syntax::program-too-large` | error | [`BlockReader`]: program longer than [`MAX_PROGRAM_BYTES`] (or the bound set) |
 #![deny(missing_docs)]
@@ -95,6 +96,11 @@ mod seekbuf;
 
 pub use ast::*;
 pub use expr::MAX_EXPR_HEIGHT;
+
+/// Most words one block may hold. No control's block comes near it (LinuxCNC reads 256
+/// characters a line); a line of a megabyte of words is refused at its 1,001st word, so that work
+/// per word that looks back along the line (a diagnostic's column) stays bounded.
+pub const MAX_WORDS_PER_BLOCK: usize = 1000;
 pub use reader::{BlockReader, SourcePos, MAX_LINE_BYTES, MAX_PROGRAM_BYTES};
 pub use seekbuf::SeekBufReader;
 

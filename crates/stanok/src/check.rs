@@ -28,6 +28,9 @@ use std::process::ExitCode;
 /// bounded look is enough).
 const TRIAL_BLOCKS: u64 = 200_000;
 
+/// Blocks whose travel violations `check` lists; past them it stops checking travel.
+const MAX_TRAVEL_ERRORS: usize = 100;
+
 /// Every diagnostic of one program, warnings and errors in line order, and how many are errors;
 /// with `travel`, also the moves beyond the machine's travel before the first error.
 fn diagnose(
@@ -51,6 +54,7 @@ fn diagnose(
     // hour is worth a word (`stanok_machine::time_bound`).
     let mut long_blocks = Vec::new();
     let mut limits = travel.then(|| stanok_machine::TravelCheck::new(machine));
+    let mut travel_blocks = HashSet::new();
     let mut failed = false;
     for item in interp.by_ref() {
         let d = match item {
@@ -62,7 +66,18 @@ fn diagnose(
                     ));
                 }
                 match limits.as_mut().map(|t| t.check(&cmd)) {
-                    Some(Err(d)) => d,
+                    // One violation per block: in a loop each pass may go a step further, and
+                    // a message per position made a million errors (33 s; mutation campaign,
+                    // session 3). Past `MAX_TRAVEL_ERRORS` blocks the check stops.
+                    Some(Err(d)) => {
+                        if travel_blocks.len() >= MAX_TRAVEL_ERRORS {
+                            limits = None;
+                        }
+                        if !travel_blocks.insert((d.span.start, d.span.end)) {
+                            continue;
+                        }
+                        d
+                    }
                     _ => continue,
                 }
             }

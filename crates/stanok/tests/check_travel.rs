@@ -53,3 +53,19 @@ fn travel_is_checked_only_up_to_the_first_error() {
     );
     assert!(err.contains("1 error(s)"), "{err}");
 }
+
+/// Mutation campaign (session 3): a loop whose every pass moves one step further beyond travel
+/// made a new error per pass (the message names the position) — a million of them, 33 s. Each
+/// block is listed once, at its first violation.
+#[test]
+fn a_loop_beyond_travel_lists_its_block_once() {
+    let program = temp_in(
+        "check-travel",
+        "loop.mpf",
+        "G90 G0 X0\nG91\nint i;\nfor (i = 0; i < 2000; i++) {\nG1 X1 F100\n}\nM30\n",
+    );
+    let (code, _, err) = stanok(&["check", "--dialect", "axioma", &program]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("X would reach 501.0000 mm"), "{err}");
+    assert_eq!(err.matches("× X would reach").count(), 1, "{err}");
+}

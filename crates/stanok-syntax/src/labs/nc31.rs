@@ -85,6 +85,7 @@ pub const MAX_VALUE: i64 = 999_999;
 
 /// Reads one line. Never fails: problems are diagnostics (errors) next to what was read.
 pub fn parse_line(text: &str, at: LineAt) -> (Line, Vec<Diagnostic>) {
+    let at = super::LineSpans::new(at, text);
     let mut diags = Vec::new();
     let b = text.as_bytes();
     let start = skip_blanks(b, 0);

@@ -114,6 +114,7 @@ impl LabBlock {
 
 /// Reads one line.
 pub fn parse_line(text: &str, at: LineAt, profile: Profile) -> (LabBlock, Vec<Diagnostic>) {
+    let at = super::LineSpans::new(at, text);
     let mut block = LabBlock {
         span: at.span(text, 0, text.len()),
         ..LabBlock::default()
@@ -162,6 +163,17 @@ pub fn parse_line(text: &str, at: LineAt, profile: Profile) -> (LabBlock, Vec<Di
     while i < end {
         i = skip_blanks(b, i);
         if i >= end {
+            break;
+        }
+        if block.items.len() >= crate::MAX_WORDS_PER_BLOCK {
+            diags.push(Diagnostic::error(
+                "syntax::too-many-words",
+                format!(
+                    "more than {} words in one block",
+                    crate::MAX_WORDS_PER_BLOCK
+                ),
+                at.span(text, i, end),
+            ));
             break;
         }
         let c = b[i];

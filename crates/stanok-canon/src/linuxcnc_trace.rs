@@ -52,6 +52,8 @@ pub fn parse(text: &str) -> Trace {
     let mut after_error = false;
     // A miette report (`× message`) may wrap the message over several lines before its location.
     let mut miette_message = false;
+    // rs274's message may run over several lines (`num_spindles =1. $=1`): the block is the last.
+    let mut rs274_message = false;
     for raw in text.lines() {
         if let Some(call) = call_line(raw) {
             let body = &call[7..];
@@ -64,6 +66,7 @@ pub fn parse(text: &str) -> Trace {
                 if t.error.is_none() && !rest.is_empty() && rest != "executing" {
                     t.error = Some(rest.to_string());
                     after_error = true;
+                    rs274_message = true;
                 }
             } else if !after_error {
                 t.lines.push(call.to_string());
@@ -76,6 +79,7 @@ pub fn parse(text: &str) -> Trace {
         }
         if t.error.is_none() {
             miette_message = s.starts_with('×');
+            rs274_message = !miette_message;
             t.error = Some(s.trim_start_matches('×').trim().to_string());
             after_error = true;
         } else if miette_message && !s.starts_with("╭─[") && t.error_line.is_none() {
@@ -83,6 +87,8 @@ pub fn parse(text: &str) -> Trace {
                 e.push(' ');
                 e.push_str(s);
             }
+        } else if rs274_message {
+            t.error_block = Some(s.to_string());
         } else if t.error_line.is_none() && t.error_block.is_none() {
             // miette: "╭─[prog.ngc:4:1]"; rs274: the block's text on the next line.
             if let Some(loc) = s.strip_prefix("╭─[").and_then(|l| l.strip_suffix(']')) {
@@ -278,7 +284,14 @@ pub fn compare(ours: &Trace, theirs: &Trace, program: Option<&str>) -> Result<()
                 (program, ours.error_line, &theirs.error_block)
             {
                 let our_block = text.lines().nth(line.saturating_sub(1)).unwrap_or("");
-                if our_block.trim() != block.trim() {
+                // A call of a subroutine that is nowhere: LinuxCNC shows the last block it read
+                // while seeking it (the file's end) and names the call's line in the message;
+                // Stanok points at the call. The same block, named two ways.
+                let names_our_line = their_msg
+                    .rsplit_once("from line: ")
+                    .and_then(|(_, n)| n.trim().parse::<usize>().ok())
+                    == Some(line);
+                if our_block.trim() != block.trim() && !names_our_line {
                     return Err(Difference::Block {
                         ours: our_block.trim().to_string(),
                         theirs: block.trim().to_string(),
@@ -304,6 +317,38 @@ mod tests {
     use super::*;
 
     const RS274: &str = "    1 N..... DWELL(1.0000)\n    2 N..... STRAIGHT_FEED(1.0000, 2.0000)\n    3 N..... ON_RESET()\n    4 N..... ON_RESET()executing\nBad thing: here\nG1 X\n";
+
+    #[test]
+    fn a_missing_subroutine_is_the_same_block_when_the_message_names_the_call_line() {
+        let theirs = Trace {
+            lines: vec![],
+            error: Some("EOF in file:p.ngc seeking o-word: o<x> from line: 2".into()),
+            error_block: Some("M2".into()),
+            error_line: None,
+        };
+        let ours = |line| Trace {
+            lines: vec![],
+            error: Some("EOF in file seeking o-word: o<x> from line: 2".into()),
+            error_block: None,
+            error_line: Some(line),
+        };
+        let text = "G0 X1\no<x> call\nM2\n";
+        assert_eq!(compare(&ours(2), &theirs, Some(text)), Ok(()));
+        assert!(matches!(
+            compare(&ours(1), &theirs, Some(text)),
+            Err(Difference::Block { .. })
+        ));
+    }
+
+    #[test]
+    fn the_block_of_a_message_over_several_lines_is_its_last_line() {
+        let t = parse("    1 N..... ON_RESET()executing\nSpindle ($) number out of range in M5 Command\nnum_spindles =1. $=1\n\n$1 M5\n");
+        assert_eq!(
+            t.error.as_deref(),
+            Some("Spindle ($) number out of range in M5 Command")
+        );
+        assert_eq!(t.error_block.as_deref(), Some("$1 M5"));
+    }
 
     #[test]
     fn reads_an_rs274_error_run() {

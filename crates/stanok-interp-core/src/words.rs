@@ -32,7 +32,7 @@ pub struct Words {
     /// M codes, in written order.
     pub m: Vec<(u32, ColSpan)>,
     /// Single-letter words other than G, M (`letter[b'X' - b'A']`), valid where `present` has the bit.
-    letter: [Val; 28],
+    letter: [Val; 29],
     /// Letters written in this block (bit i = letter `A + i`).
     present: u32,
     /// Letters a function has consumed.
@@ -110,7 +110,7 @@ impl Default for Words {
             letter: [Val {
                 v: 0.0,
                 span: ColSpan::default(),
-            }; 28],
+            }; 29],
             present: 0,
             used: 0,
             indexed: Vec::new(),
@@ -120,11 +120,13 @@ impl Default for Words {
     }
 }
 
-/// Slot of a letter: A–Z, then LinuxCNC's polar words `@` (radius) and `^` (angle).
+/// Slot of a letter: A–Z, then LinuxCNC's polar words `@` (radius) and `^` (angle) and its
+/// spindle selection `$`.
 fn idx(letter: u8) -> usize {
     match letter {
         b'@' => 26,
         b'^' => 27,
+        b'$' => 28,
         l => (l.to_ascii_uppercase() - b'A') as usize,
     }
 }
@@ -133,6 +135,7 @@ fn letter_of(i: usize) -> u8 {
     match i {
         26 => b'@',
         27 => b'^',
+        28 => b'$',
         i => b'A' + i as u8,
     }
 }
@@ -225,7 +228,7 @@ impl Words {
                             }
                             self.m.push((code as u32, w.span));
                         }
-                        b'A'..=b'Z' | b'@' | b'^' => {
+                        b'A'..=b'Z' | b'@' | b'^' | b'$' => {
                             let i = idx(l);
                             if self.present & (1 << i) != 0 {
                                 // Mazatrol `T01 T02 M6`: the second T is the next tool (prepared).

@@ -70,7 +70,7 @@ const RS274_UNUSED: &str = "interp::unused-word";
 fn rs274_modal_groups() {
     rs274(
         "G91\nG20\nG18\nG64 P0.01 Q0.01\nG99\n",
-        "G17 G21 G90 G95 F0.2 S800 G61 G98 M7 M8 G7 G90.1 G1 X1 Y1 Q5",
+        "G17 G21 G90 G95 F0.2 S800 G61 G98 M8 G7 G90.1 G1 X1 Y1 Q5",
         RS274_UNUSED,
     );
     rs274("G95 F0.1\nG93\n", "G94 F300 G1 X5 Q5", RS274_UNUSED);

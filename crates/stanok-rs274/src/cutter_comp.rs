@@ -101,6 +101,13 @@ pub struct CutterComp {
     /// LinuxCNC's tool position when it is not the real one (nose centre, plane): reading a G70
     /// profile under compensation leaves it at the profile's end (`stale.rs`).
     pub stale: Option<[f64; 2]>,
+    /// After G40 of a compensation that moved with a radius > 0, the next move must be straight
+    /// (LinuxCNC's `arc_not_allowed`: an arc is refused until a G0/G1; dwells, cycles and tool
+    /// changes leave it set).
+    pub arc_refused: bool,
+    /// The entry move starts here rather than at the tool: the programmed point a G40 left
+    /// (LinuxCNC resets its current point to it), if no move has been made since.
+    pub entry_from: Option<[f64; 2]>,
 }
 
 impl CutterComp {
@@ -311,6 +318,8 @@ pub(super) fn comp_on(
         moves_since: 0,
         nose: nose_shift(cx.st.plane, orientation, radius.abs()),
         stale: None,
+        arc_refused: cx.fe.modes.comp.arc_refused,
+        entry_from: cx.fe.modes.comp.program,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -324,8 +333,10 @@ pub(super) fn comp_on(
 /// G40.
 pub(super) fn comp_off(cx: &mut Ctx<'_>) {
     // The programmed point stays until the exit move: its missing words come from it.
+    let was = cx.fe.modes.comp;
     cx.fe.modes.comp = CutterComp {
-        program: cx.fe.modes.comp.program,
+        program: was.program.or(was.entry_from),
+        arc_refused: was.arc_refused || (was.on() && was.radius > 0.0 && was.program.is_some()),
         ..CutterComp::default()
     };
     cx.out.push(Canon::Comment {
@@ -352,7 +363,7 @@ pub(super) fn straight(
     let e = plane_of(&end, plane);
     let Some(s) = comp.program else {
         // Entry move.
-        let t = tool_at(cx);
+        let t = comp.entry_from.unwrap_or_else(|| tool_at(cx));
         let d = len(sub(e, t));
         // LinuxCNC accepts an entry exactly as long as the radius.
         if d < r {
@@ -369,6 +380,8 @@ pub(super) fn straight(
         c.program = Some(e);
         c.last = Some(Element::Line { from: t, to: e });
         c.moves_since = 0;
+        c.entry_from = None;
+        c.arc_refused = false;
         return Ok(());
     };
     // (Within 1e-9 mm: a G70 pass's first rapid to S comes back through the cycle's frame.)
@@ -392,6 +405,7 @@ pub(super) fn straight(
         let t = comp.stale.unwrap_or_else(|| tool_at(cx));
         cx.straight(rapid, emit_at(cx, end, t), feed);
         cx.fe.modes.comp.moves_since += 1;
+        cx.fe.modes.comp.arc_refused = false;
         return Ok(());
     }
     let dir = unit(sub(e, s));
@@ -408,6 +422,7 @@ pub(super) fn straight(
     c.program = Some(e);
     c.last = Some(new);
     c.moves_since = 0;
+    c.arc_refused = false;
     Ok(())
 }
 
@@ -427,7 +442,10 @@ pub(super) fn arc(
     let plane = cx.st.plane;
     let comp = cx.fe.modes.comp;
     let r = comp.radius;
-    let s = comp.program.unwrap_or_else(|| tool_at(cx));
+    let s = comp
+        .program
+        .or(comp.entry_from)
+        .unwrap_or_else(|| tool_at(cx));
     let e = plane_of(&end, plane);
     let c = planar.centre;
     let radius = len(sub(e, c));
@@ -453,7 +471,7 @@ pub(super) fn arc(
     };
     if comp.program.is_none() {
         // Entry arc: through the current point, centre on the line C–E.
-        let t = tool_at(cx);
+        let t = comp.entry_from.unwrap_or_else(|| tool_at(cx));
         let u = unit(sub(e, c));
         let chord = sub(tool_end, t);
         let k = dot(u, chord);
@@ -535,7 +553,12 @@ fn corner(
     let a = last.end_tangent();
     let turn = cross(a, dir).atan2(dot(a, dir));
     let plane = cx.st.plane;
-    if comp.sign() * turn < -CONCAVE_TOLERANCE {
+    // A line straight back on a line turns by ±π, the sign a rounding accident: LinuxCNC goes
+    // round the end with a half circle on either side. (An arc's cusp with a line is concave:
+    // their offsets cross.)
+    let lines = matches!((last, new), (Element::Line { .. }, Element::Line { .. }));
+    let reversal = lines && std::f64::consts::PI - turn.abs() < 1e-9;
+    if reversal || comp.sign() * turn < -CONCAVE_TOLERANCE {
         // Convex: an arc about the corner.
         reachable(cx, tool_at(cx), span)?;
         let here = cx.st.program_position();

@@ -168,7 +168,8 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
             span,
         ));
     }
-    let pos = cx.st.program_position().to_array();
+    // After G40 LinuxCNC's current point is the programmed one, not the compensated tool's.
+    let pos = cx.programmed_position().to_array();
     let il = if cx.fe.modes.cycle_il_set {
         cx.fe.modes.cycle_il
     } else {
@@ -267,7 +268,7 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
     let mut old_level = il;
     let mut current = pos[n];
     if old_level < r {
-        let mut p = cx.st.program_position().to_array();
+        let mut p = cx.programmed_position().to_array();
         p[n] = r;
         cx.straight(true, Pose::from_array(p), 0.0);
         old_level = r;

@@ -92,6 +92,49 @@ pub(crate) const WORD_RULES: WordRules = WordRules {
     second_word: None,
 };
 
+/// LinuxCNC reads a block's words left to right and stops at the first one it cannot take: a
+/// second G code of a modal group before a repeated letter is the error, not the letter (Stanok's
+/// word table sees the repeated letter first). `e` is the table's error; only the repeated-letter
+/// error can have a G-group conflict before it (G words written as plain numbers).
+#[cold]
+fn first_reading_error(block: &Block, e: Diagnostic) -> Diagnostic {
+    use stanok_syntax::{Address, Value};
+    if e.code != stanok_canon::DiagCode::Stanok("rs274::multiple-words") {
+        return e;
+    }
+    let mut letters = 0u32;
+    let mut groups = Vec::new();
+    for w in &block.words {
+        let Address::Letter(l) = w.address else {
+            continue;
+        };
+        match (l, w.value) {
+            (b'G', Value::Number(v)) => {
+                let Some(group) = crate::group_of((v * 10.0).round() as u32) else {
+                    return e;
+                };
+                if groups.contains(&group) {
+                    return Diagnostic::error(
+                        "rs274::two-g-codes-same-group",
+                        "Two g codes used from same modal group",
+                        block.span_of(w.span),
+                    );
+                }
+                groups.push(group);
+            }
+            (b'A'..=b'Z', _) if l != b'G' && l != b'M' => {
+                let bit = 1 << (l - b'A');
+                if letters & bit != 0 {
+                    return e;
+                }
+                letters |= bit;
+            }
+            _ => {}
+        }
+    }
+    e
+}
+
 /// The RS274/NGC (LinuxCNC) front end.
 #[derive(Debug)]
 pub struct Rs274 {
@@ -367,9 +410,12 @@ impl FrontEnd for Rs274 {
                 state: parts.st,
                 modes: &self.part.modes,
             };
-            parts
+            let filled = parts
                 .words
-                .fill(parts.block, &eval, &WORD_RULES, parts.warnings)?;
+                .fill(parts.block, &eval, &WORD_RULES, parts.warnings);
+            if let Err(e) = filled {
+                return Err(first_reading_error(parts.block, e));
+            }
             // Assignments are evaluated with the old values and applied after the line.
             self.pending.clear();
             for a in &parts.block.assignments {

@@ -420,8 +420,9 @@ pub fn finish(
     } else {
         [p0_c[0], s_c[1]]
     };
+    let unit = cx.mm(1.0);
     let offset = |d: f64| {
-        arcs::offset_profile(&canon, p0_c, d).ok_or_else(|| {
+        arcs::offset_profile(&canon, p0_c, d, unit).ok_or_else(|| {
             cx.err(
                 "rs274::g7x-offset",
                 "G7X error: the profile cannot be offset by this distance",

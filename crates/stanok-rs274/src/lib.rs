@@ -32,6 +32,7 @@
 //! own traces.
 
 mod arc_rules;
+mod checks;
 mod codes;
 pub(crate) mod cutter_comp;
 mod cycles;
@@ -358,6 +359,9 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         Some(mcodes::classify_m(cx)?)
     };
 
+    checks::spindle_selection(cx)?;
+    checks::l_word_check(cx, &g)?;
+
     // Codes recognised but not supported: the UVW planes.
     if let Some((code @ (G17_1 | G18_1 | G19_1), span)) = g.get(Group::Plane, cx) {
         return Err(unsupported(
@@ -547,8 +551,14 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             G61 => PathMode::ExactPath,
             G61_1 => PathMode::ExactStop,
             _ => {
-                let p = cx.words.take(b'P').map(|v| cx.mm(v.v)).unwrap_or(0.0);
-                let q = cx.words.take(b'Q').map(|v| cx.mm(v.v)).unwrap_or(p);
+                // A negative P is 0 and a negative Q is P, as LinuxCNC reads them.
+                let p = cx.words.take(b'P').map_or(0.0, |v| cx.mm(v.v).max(0.0));
+                let q = cx
+                    .words
+                    .take(b'Q')
+                    .map(|v| cx.mm(v.v))
+                    .filter(|&q| q >= 0.0)
+                    .unwrap_or(p);
                 cx.fe.modes.naive_cam_tolerance = q;
                 PathMode::Continuous { blend_tolerance: p }
             }
@@ -582,6 +592,9 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 19. Group 0 (G4 ran at 8). G10, G28, G30, G52 and G92 take the axis words for themselves:
     // with them an explicit motion code is an error and the modal motion is suspended.
     let mut axis_words_used_by_modal_0 = axis_words_used_by_g43;
+    // Where this block's commands start: a move without compensation (a cycle, a home) makes the
+    // programmed point a G40 left behind stale (below).
+    let queued = cx.out.queue.len();
     if let Some((code, span)) = g.get(Group::NonModal, cx) {
         if matches!(code, G10 | G28 | G30 | G52 | G92) {
             if g.get(Group::Motion, cx).is_some() {
@@ -635,6 +648,18 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             "Must use g0 or g1 with g53",
             span,
         ));
+    }
+    let comp = cx.fe.modes.comp;
+    if !comp.on()
+        && comp.program.is_some()
+        && cx
+            .out
+            .queue
+            .iter()
+            .skip(queued)
+            .any(|c| c.value.motion().is_some())
+    {
+        cx.fe.modes.comp.program = None;
     }
     // Words nothing consumed: LinuxCNC's "… word with no G code that uses it".
     if cx.words.has(b'H') && !cx.words.is_used(b'H') {

@@ -108,23 +108,13 @@ pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> 
 }
 
 /// M48 (all overrides on), M49 (off), M50 P (feed), M51 P (spindle), M52 P (adaptive feed),
-/// M53 P (feed hold input): P0 disables, P1 or no P enables.
+/// M53 P (feed hold input): P0 disables, any other P or no P enables (LinuxCNC 2.9: `M52 P10`
+/// and `M51 P-1` enable).
 pub(super) fn overrides(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     let enabled = match code {
         48 => true,
         49 => false,
-        _ => match cx.words.take(b'P') {
-            Some(p) if p.v == 0.0 => false,
-            Some(p) if p.v == 1.0 => true,
-            Some(p) => {
-                return Err(cx.err(
-                    "rs274::override-p",
-                    format!("M{code} P must be 0 or 1"),
-                    p.span,
-                ))
-            }
-            None => true,
-        },
+        _ => cx.words.take(b'P').is_none_or(|p| p.v != 0.0),
     };
     if matches!(code, 48..=50) {
         cx.fe.modes.feed_override_disabled = !enabled;
@@ -153,14 +143,16 @@ pub(super) fn set_tool_number(
     let Some(q) = cx.words.take(b'Q') else {
         return Err(cx.err("rs274::m61-q-missing", "Q word missing with M61", span));
     };
-    if q.v < 0.0 || q.v.fract() != 0.0 || q.v > u32::MAX as f64 {
+    // LinuxCNC rounds Q to the nearest tool number (`M61 Q1.5` is tool 2).
+    let rounded = q.v.round();
+    if rounded < 0.0 || rounded > u32::MAX as f64 {
         return Err(cx.err(
             "rs274::m61-q",
-            format!("Need non-negative integer Q with M61, got {}", q.v),
+            "Need non-negative Q-word to specify tool number with M61",
             q.span,
         ));
     }
-    let tool = q.v as u32;
+    let tool = rounded as u32;
     let slot = if tool == 0 {
         0
     } else {
@@ -315,10 +307,11 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
             }
             6 => std::mem::replace(&mut m.tool_change, true) || m.set_tool.is_some(),
             3..=5 => std::mem::replace(&mut m.spindle, code) != NO_CODE || m.orient.is_some(),
+            // M7, M8 and M9 are one group in LinuxCNC 2.9: `M7 M8` on one line is refused.
             7..=9 => {
                 m.coolant[m.n_coolant] = code;
                 m.n_coolant += 1;
-                false
+                m.n_coolant > 1
             }
             100..=199 if cx.fe.opts.user_m_codes => {
                 m.user[m.n_user] = code;

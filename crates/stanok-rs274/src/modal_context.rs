@@ -9,7 +9,10 @@
 //!
 //! Restoring changes, and announces, only what differs, in LinuxCNC's order: units; feed mode
 //! (which resets F, as a feed-mode change always does) — or else F; S; the spindle's sense; the
-//! plane; the G54…G59.3 system; path control; distance mode; coolant. Tool length offsets, the
+//! plane; the G54…G59.3 system; path control; distance mode; coolant; and whether the G92/G52
+//! offset is applied (#5210): if that differs, M72 does what G92.3 (re-apply #5211…#5219) or
+//! G92.2 (off, values kept) would — rs274 prints SET_G92_OFFSET for it, even when the values are
+//! the same; a changed offset that stays applied is not restored. Tool length offsets, the
 //! retract mode and the lathe diameter mode are not part of the context (LinuxCNC's choice).
 //!
 //! The contexts live in `Parameters` next to the local scopes of the calls, so they come and go
@@ -39,11 +42,13 @@ pub struct SavedContext {
     distance: DistanceMode,
     mist: bool,
     flood: bool,
+    /// #5210: the G92/G52 offset is applied.
+    g92_applied: bool,
     /// M73: restore when the subroutine returns.
     pub auto_restore: bool,
 }
 
-fn capture(cx: &Ctx<'_>, auto_restore: bool) -> SavedContext {
+fn capture(cx: &Ctx<'_>, params: &Parameters, auto_restore: bool) -> SavedContext {
     let st = &cx.st;
     SavedContext {
         units: st.units,
@@ -63,6 +68,7 @@ fn capture(cx: &Ctx<'_>, auto_restore: bool) -> SavedContext {
         distance: st.distance,
         mist: st.mist,
         flood: st.flood,
+        g92_applied: params.get(5210) != 0.0,
         auto_restore,
     }
 }
@@ -76,7 +82,7 @@ pub(super) fn m70_73(
 ) -> Result<(), Diagnostic> {
     match code {
         70 | 73 => {
-            let saved = capture(cx, code == 73);
+            let saved = capture(cx, params, code == 73);
             params.set_context(Some(saved));
         }
         71 => params.set_context(None),
@@ -168,5 +174,14 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
     if cx.st.flood != saved.flood {
         cx.st.flood = saved.flood;
         cx.out.push(Canon::Flood { on: saved.flood });
+    }
+    if (params.get(5210) != 0.0) != saved.g92_applied {
+        let code = if saved.g92_applied {
+            super::codes::G92_3
+        } else {
+            super::codes::G92_2
+        };
+        // Neither can fail: G92.2 and G92.3 read no words.
+        let _ = super::offsets::g92_family(cx, params, code, ColSpan::default());
     }
 }

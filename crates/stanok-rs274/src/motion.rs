@@ -177,9 +177,9 @@ fn motion_block_inner(
             } else {
                 cx.straight(rapid, end, feed);
                 // The exit move after G40 has used the programmed point.
-                if cx.fe.modes.comp.program.is_some() {
-                    cx.fe.modes.comp.program = None;
-                }
+                let comp = &mut cx.fe.modes.comp;
+                comp.program = None;
+                comp.arc_refused = false;
                 Ok(())
             }
         }
@@ -190,6 +190,15 @@ fn motion_block_inner(
                     "Must use g0 or g1 with g53",
                     g53_span,
                 ));
+            }
+            if cx.fe.modes.comp.arc_refused {
+                return Err(cx
+                    .err(
+                        "rs274::comp-exit-arc",
+                        "The move just after exiting cutter compensation mode must be straight, not an arc",
+                        span,
+                    )
+                    .with_note("leave cutter compensation with a G0 or G1 move after G40"));
             }
             cx.st.motion = if code == G2 {
                 MotionMode::ArcCw
@@ -433,7 +442,12 @@ fn arc_error(cx: &Ctx<'_>, err: ArcError, span: ColSpan) -> Diagnostic {
             .with_note(format!(
                 "half chord {half_chord:.4} mm > radius {radius:.4} mm"
             )),
-        ArcError::NonPositiveRadius => cx.err("rs274::arc-zero-radius", "Zero-radius arc", span),
+        // `R0`: LinuxCNC finds the chord longer than the radius.
+        ArcError::NonPositiveRadius => cx.err(
+            "rs274::arc-radius-too-small",
+            "Arc radius too small to reach end point",
+            span,
+        ),
         ArcError::RadiusMismatch { r1, r2 } => cx.err(
             "rs274::arc-radius-mismatch",
             format!("Radius to end of arc differs from radius to start: r1={r1:.4} r2={r2:.4}"),

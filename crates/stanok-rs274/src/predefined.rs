@@ -30,7 +30,13 @@ pub fn predefined(
     line: u32,
 ) -> Option<f64> {
     let units = st.units.mm_per_unit();
-    let pos = st.program_position().to_array();
+    let mut pos = st.program_position().to_array();
+    // After G40, until a move, LinuxCNC's current point is the programmed one.
+    if let (false, Some(q)) = (rs.comp.on(), rs.comp.program) {
+        let (a, b, _) = st.plane.axes();
+        pos[a] = q[0];
+        pos[b] = q[1];
+    }
     let axis = |i: usize| {
         if matches!(i, 3..=5) {
             pos[i]
@@ -127,7 +133,10 @@ pub fn predefined(
         "_abs_v" => abs_axis(7),
         "_abs_w" => abs_axis(8),
         "_current_tool" => st.current_tool as f64,
-        // The tool's pocket as its table gives it (LinuxCNC's `P`; rs274 prints 10 for T10 P10).
+        // The tool's pocket as its table gives it (LinuxCNC's `P`; rs274 prints 10 for T10 P10);
+        // −1 with the spindle empty, as milltask reads it (docs/linuxcnc.md, known differences:
+        // the standalone rs274 starts with table slot 1 in the spindle).
+        "_current_pocket" if st.current_tool == 0 => -1.0,
         "_current_pocket" => params
             .tools()
             .get(st.current_tool)

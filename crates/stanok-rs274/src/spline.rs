@@ -48,16 +48,23 @@ fn check_plane_and_axes(cx: &mut Ctx<'_>, name: &str, span: ColSpan) -> Result<(
     Ok(())
 }
 
+/// The feed of a spline block, with LinuxCNC's checks and words: G5 and G5.1 are arcs to it (an
+/// F under G93, a feed under G94); G5.2 needs a feed under G94 only.
 fn feed(cx: &mut Ctx<'_>, name: &str, f_in_block: bool, span: ColSpan) -> Result<f64, Diagnostic> {
+    let nurbs = name == "G5.2";
     match cx.st.feed_mode {
-        FeedMode::InverseTime if !f_in_block => Err(cx.err(
+        FeedMode::InverseTime if !f_in_block && !nurbs => Err(cx.err(
             "rs274::spline-inverse-time-f",
-            format!("F word missing with inverse time {name} move"),
+            "F word missing with inverse time arc move",
             span,
         )),
         FeedMode::UnitsPerMinute if cx.st.feed <= 0.0 => Err(cx.err(
             "rs274::zero-feed",
-            format!("Cannot make {name} with zero feed rate"),
+            if nurbs {
+                "Cannot make a NURBS with 0 feedrate"
+            } else {
+                "Cannot make arc with zero feed rate"
+            },
             span,
         )),
         _ => Ok(cx.path_feed(0.0)),

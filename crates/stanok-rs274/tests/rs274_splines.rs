@@ -114,5 +114,5 @@ fn a_failing_g5_3_keeps_the_collected_points() {
         "G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nG5.3\nM2\n",
         Dialect::Rs274ngc,
     );
-    assert!(err.unwrap().message.contains("zero feed"));
+    assert!(err.unwrap().message.contains("NURBS with 0 feedrate"));
 }

@@ -344,14 +344,27 @@ macro_rules! own_tests {
 // The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
+    err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_coolant_group: "stanok-err-parity-coolant-group";
+    err_parity_g74_l: "stanok-err-parity-g74-l";
     err_parity_g4: "stanok-err-parity-g4";
+    err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
+    err_parity_g5_zero_feed: "stanok-err-parity-g5-zero-feed";
+    err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
+    err_parity_m61_negative: "stanok-err-parity-m61-negative";
+    err_parity_n_not_first: "stanok-err-parity-n-not-first";
+    err_parity_r0: "stanok-err-parity-r0";
+    err_parity_spindle_number: "stanok-err-parity-spindle-number";
+    err_parity_unknown_operation: "stanok-err-parity-unknown-operation";
     err_parity_g5_1: "stanok-err-parity-g5-1";
     err_parity_mod_zero: "stanok-err-parity-mod-zero";
     err_parity_nested_comment: "stanok-err-parity-nested-comment";
     err_parity_pow: "stanok-err-parity-pow";
     err_parity_unclosed_comment: "stanok-err-parity-unclosed-comment";
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
+    parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_reversal: "stanok-parity-comp-reversal";
     parity_css_inch: "stanok-parity-css-inch";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
@@ -359,10 +372,14 @@ own_tests! {
     parity_g53_tlo: "stanok-parity-g53-tlo";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
+    parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m60: "stanok-parity-m60";
+    parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";
+    parity_negative_words: "stanok-parity-negative-words";
     parity_predefined: "stanok-parity-predefined";
+    parity_spindle_select: "stanok-parity-spindle-select";
     parity_probe_backoff: "stanok-parity-probe-backoff";
     parity_tapping_offsets: "stanok-parity-tapping-offsets";
     parity_tapping_planes: "stanok-parity-tapping-planes";
@@ -531,6 +548,21 @@ fn known_difference_the_spindle_is_empty_at_start_as_milltask() {
     assert_at(&cmds, [5.0, 1.0, 20.0], "milltask ends at X5 Y1 Z20");
 }
 
+/// With the spindle empty milltask reads `#<_current_pocket>` as −1 (rs274: 1, its slot 1); after
+/// `T2 M6` it is tool 2's pocket.
+#[test]
+fn known_difference_the_empty_spindle_has_pocket_minus_one_as_milltask() {
+    let program =
+        "G21 G90 G94 F3000\nG0 X[#<_current_pocket>]\nT2 M6\nG0 Y[#<_current_pocket>]\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(
+        &cmds,
+        [-1.0, 2.0, 0.0],
+        "pocket -1 empty, then tool 2's pocket 2",
+    );
+}
+
 /// `M61 Q1` declares tool 1 loaded: `#<_current_tool>` = 1, #5400 = 1 and G43 takes its offset 7;
 /// milltask ends at machine X 5, Y 2, Z 27. rs274 leaves its tool data as they were.
 #[test]
@@ -539,6 +571,19 @@ fn known_difference_m61_loads_the_tool_data_as_milltask() {
     let (cmds, err) = run(program, Dialect::Rs274ngc);
     assert!(err.is_none(), "{err:?}");
     assert_at(&cmds, [5.0, 2.0, 27.0], "milltask ends at X5 Y2 Z27");
+}
+
+/// `G43` and then `M61 Q2` (or `T2 M6`) with no move between: the standalone rs274 resynchronises
+/// its position from its stub, which has not seen the offset, and the next `G1 X5` goes to program
+/// Z 0 (machine Z 10); milltask keeps the program position, Z −10, and ends at machine Z 0.
+#[test]
+fn known_difference_m6_or_m61_after_an_offset_without_a_move_as_milltask() {
+    for change in ["M61 Q2", "T2 M6"] {
+        let program = format!("G21 G90 G94 F3000\nG10 L1 P1 Z10\nG10 L1 P2 Z0\nT1 M6\nG43\n{change}\nG1 X5\nG1 Y3\nM2\n");
+        let (cmds, err) = run(&program, Dialect::Rs274ngc);
+        assert!(err.is_none(), "{err:?}");
+        assert_at(&cmds, [5.0, 3.0, 0.0], "milltask ends at X5 Y3 Z0");
+    }
 }
 
 /// G84 with the spindle counterclockwise: LinuxCNC's message, on the G84 block; rs274 has already

@@ -242,7 +242,19 @@ impl Rs<'_> {
                     start + 1,
                 )
             }
-            Some(_) => return self.unexpected("an operator or `]`"),
+            Some(_) => {
+                // LinuxCNC reads an operation name here: whatever it is, "Unknown operation".
+                let at = self.pos;
+                return self.fail(
+                    "syntax::unknown-operation",
+                    format!(
+                        "Unknown operation: expected an operator or `]`, found `{}`",
+                        String::from_utf8_lossy(&self.b[at..(at + 1).min(self.b.len())])
+                    ),
+                    at,
+                    at + 1,
+                );
+            }
         }
         let id = self.operand_expr(value);
         self.out.exprs[id.0 as usize].1 = ColSpan::new(start, self.pos);

@@ -167,7 +167,8 @@ impl Rs<'_> {
                     let start = self.pos;
                     return self.fail(
                         "syntax::unexpected-character",
-                        "`N` line number must be the first item of the line",
+                        // LinuxCNC's message first (its reader has no `n` word past the start).
+                        "Bad character 'n' used: `N` line number must be the first item of the line",
                         start,
                         start + 1,
                     );

@@ -335,7 +335,7 @@ fn expression_errors() {
     single_error("G1 X[1+2", NGC, "syntax::unbalanced-brackets", 5, "[");
     // Blanks are deleted before reading, as LinuxCNC does: `1 2 3` is 123.
     assert_eq!(word_tree(&clean("G1 X[1 2 3]", NGC), 1), "123");
-    single_error("G1 X[1 ? 2]", NGC, "syntax::unexpected-character", 8, "?");
+    single_error("G1 X[1 ? 2]", NGC, "syntax::unknown-operation", 8, "?");
     single_error("G1 X1]", NGC, "syntax::unbalanced-brackets", 6, "]");
     single_error("G1 X[foo[1]]", NGC, "syntax::unknown-word", 6, "foo");
     single_error("G1 X sin 30", NGC, "syntax::bad-function", 6, "sin");

@@ -10,7 +10,8 @@
 //!       (no crossing, gap < 0.001 mm)      → join them at the foot of the perpendicular from
 //!                                             the arc's centre to the line;
 //!     θ turns away from the offset side   → a gap opens: insert an arc of radius |d| about the
-//!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁);
+//!       (right turn for d > 0, …)             programmed corner from end(oᵢ) to start(oᵢ₊₁)
+//!       (two lines, a short gap: LinuxCNC's → extend both to their crossing (`ArcStarts`);
 //!     θ turns towards the offset side     → the pieces overlap: cut both at their intersection
 //!                                             nearest the programmed corner.
 //! ```
@@ -59,6 +60,34 @@ pub struct ArcStarts<'a> {
     pub radius: &'a [f64],
     /// The first of the steps the offset is made in, signed like the offset, |d₁| ≤ |d|.
     pub first_step: f64,
+    /// At a corner that turns away from the offset side, LinuxCNC's G7x inserts its arc only if
+    /// the gap the first step opens runs forward along the first axis by more than this (0.01
+    /// program units); two lines with a shorter gap run on to their crossing instead (a sharp
+    /// corner). 0: always an arc.
+    pub corner_arc_gap: f64,
+}
+
+/// Where two offset lines `last` and `next` meet when their gap is too short for an arc
+/// (`ArcStarts::corner_arc_gap`); None: an arc closes it (or it is not two lines).
+fn sharp_corner(arcs: Option<&ArcStarts>, d: f64, last: &Seg2, next: &Seg2) -> Option<P2> {
+    let arcs = arcs?;
+    // The gaps of every step have the same direction; their size scales with the step.
+    let gap = (next.start()[0] - last.end()[0]) * (arcs.first_step / d).abs();
+    if arcs.corner_arc_gap <= 0.0 || gap > arcs.corner_arc_gap {
+        return None;
+    }
+    let (Seg2::Line { a: p, b: q }, Seg2::Line { a: r, b: t }) = (*last, *next) else {
+        return None;
+    };
+    // p + u·(q − p) = r + v·(t − r), solved for u by Cramer's rule.
+    let (e, f) = ([q[0] - p[0], q[1] - p[1]], [t[0] - r[0], t[1] - r[1]]);
+    let det = e[0] * f[1] - e[1] * f[0];
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let u = ((r[0] - p[0]) * f[1] - (r[1] - p[1]) * f[0]) / det;
+    let x = [p[0] + u * e[0], p[1] + u * e[1]];
+    (x[0].is_finite() && x[1].is_finite()).then_some(x)
 }
 
 /// [`offset_chain`] of a chain whose arcs may end off the circle through their start (a lathe
@@ -256,6 +285,17 @@ pub fn offset_chain_sourced(
                     }
                     _ => {}
                 }
+            } else if let Some(p) = ((theta < 0.0) == (d > 0.0))
+                .then(|| sharp_corner(arcs, d, last, &o))
+                .flatten()
+            {
+                // Turn away from the offset side with a gap too short for LinuxCNC to close it
+                // with an arc (`ArcStarts::corner_arc_gap`): both lines run on to their crossing.
+                *last = Seg2::Line {
+                    a: last.start(),
+                    b: p,
+                };
+                o = Seg2::Line { a: p, b: o.end() };
             } else if (theta < 0.0) == (d > 0.0) {
                 // Turn away from the offset side: an arc about the corner closes the gap.
                 let ccw = d < 0.0;
@@ -471,6 +511,7 @@ mod tests {
         let arcs = ArcStarts {
             radius: &radius,
             first_step: 0.1,
+            corner_arc_gap: 0.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
         let expected = 2.0015 * 2.1 / 2.0 + 0.4;
@@ -485,6 +526,7 @@ mod tests {
         let arcs = ArcStarts {
             radius: &radius,
             first_step: 0.5,
+            corner_arc_gap: 0.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
         assert!(matches!(o[1].0, Seg2::Arc { r, .. } if (r - 2.0015 * 2.5 / 2.0).abs() < 1e-12));
@@ -497,6 +539,7 @@ mod tests {
         let arcs = ArcStarts {
             radius: &radius,
             first_step: 0.1,
+            corner_arc_gap: 0.0,
         };
         let o = offset_chain_sourced(&chain[1..], Some(&arcs), 0.5).unwrap();
         assert!(
@@ -533,6 +576,7 @@ mod tests {
         let arcs = ArcStarts {
             radius: &radius,
             first_step: 1.0,
+            corner_arc_gap: 0.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 1.0).unwrap();
         // The first arc keeps its start circle for its crossings.
@@ -635,5 +679,30 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_short_gap_at_a_convex_corner_is_closed_by_the_crossing_not_an_arc() {
+        // Along +c, then down (−l): a convex corner for an offset to the left (+l side). The gap
+        // along c is d; LinuxCNC closes it with an arc only if that exceeds 0.01 program units.
+        let chain = [line([0.0, 0.0], [5.0, 0.0]), line([5.0, 0.0], [5.0, -3.0])];
+        let radius = [0.0, 0.0];
+        let gap = |corner_arc_gap: f64, d: f64| {
+            let arcs = ArcStarts {
+                radius: &radius,
+                first_step: d,
+                corner_arc_gap,
+            };
+            offset_chain_sourced(&chain, Some(&arcs), d).unwrap()
+        };
+        let sharp = gap(0.254, 0.17);
+        assert_eq!(sharp.len(), 2, "{sharp:?}");
+        assert!(close(sharp[0].0.end(), [5.17, 0.17]), "{sharp:?}");
+        assert!(close(sharp[1].0.start(), [5.17, 0.17]), "{sharp:?}");
+        let round = gap(0.254, 0.762);
+        assert_eq!(round.len(), 3, "{round:?}");
+        assert!(matches!(round[1], (Seg2::Arc { r, .. }, None) if (r - 0.762).abs() < 1e-9));
+        // 0: always an arc (the plain offset).
+        assert_eq!(gap(0.0, 0.17).len(), 3);
     }
 }

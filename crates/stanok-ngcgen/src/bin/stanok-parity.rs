@@ -7,12 +7,14 @@
 //!
 //!   stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH]
 //!                 [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--tools TBL]
-//!                 [--program FILE…]
+//!                 [--program FILE…] [--mutate DIR…]
 //!
 //! `--coverage` only generates and prints the feature table; `--emit DIR` writes the programs;
 //! `--program FILE…` compares given files instead of generated ones (another generator's, or
 //! LinuxCNC's samples: `scripts/linuxcnc-parity.sh`); `--tools TBL` replaces the generator's tool
-//! table for both sides.
+//! table for both sides. `--mutate DIR…` compares the second style of program instead: mutants of
+//! the `.ngc` files under the directories (LinuxCNC's samples; `stanok_ngcgen::mutate`), mutant
+//! i of run S drawn from (S, i), not redrawn when rs274 refuses it.
 //!
 //! ## Algorithm
 //! Workers (threads) take program indices from a shared counter. For index i, draws
@@ -23,6 +25,7 @@
 //! two still differ with the same [`Difference::signature`]; at most `SHRINK_RUNS` runs.
 
 use stanok_canon::linuxcnc_trace::{compare, parse, Difference};
+use stanok_ngcgen::mutate::mutate;
 use stanok_ngcgen::{generate, Program, TOOL_TABLE};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -47,10 +50,11 @@ struct Config {
     emit: Option<PathBuf>,
     tools: Option<PathBuf>,
     programs: Vec<PathBuf>,
+    mutate: Vec<PathBuf>,
 }
 
 fn usage() -> ExitCode {
-    eprintln!("usage: stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH] [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--tools TBL] [--program FILE...]");
+    eprintln!("usage: stanok-parity [--seed S] [--count N] [--start I] [--jobs J] [--stanok PATH] [--rs274 PATH] [--keep DIR] [--no-shrink] [--coverage] [--emit DIR] [--tools TBL] [--program FILE...] [--mutate DIR...]");
     ExitCode::from(2)
 }
 
@@ -74,6 +78,7 @@ fn config() -> Result<Config, ExitCode> {
         emit: None,
         tools: None,
         programs: Vec::new(),
+        mutate: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -95,6 +100,13 @@ fn config() -> Result<Config, ExitCode> {
                 c.programs.push(value()?.into());
                 for rest in args.by_ref() {
                     c.programs.push(rest.into());
+                }
+                break;
+            }
+            "--mutate" => {
+                c.mutate.push(value()?.into());
+                for rest in args.by_ref() {
+                    c.mutate.push(rest.into());
                 }
                 break;
             }
@@ -250,6 +262,8 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
     let mut tool_loaded = false;
     let mut after_m61 = false;
     let mut offset_in_force = false;
+    // A tool length offset changed since the last move: rs274's stub still has the old position.
+    let mut offset_unmoved = false;
     for line in text.lines() {
         let l = line
             .split(['(', ';'])
@@ -279,15 +293,28 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
         // After M61 the standalone rs274 leaves #<_current_tool>, #5400… and the offset G43
         // takes as they were; LinuxCNC (milltask) and Stanok take the declared tool's.
         let raw = line.to_ascii_lowercase();
+        let comp_from_tool = (has("g41") || has("g42")) && !l.contains('d');
         if after_m61
             && (raw.contains("_current_tool")
                 || raw.contains("#540")
                 || raw.contains("#541")
-                || (has("g43") && !l.contains('h')))
+                || (has("g43") && !l.contains('h'))
+                || comp_from_tool)
         {
             return Some("M61 leaves the tool data as it was");
         }
         after_m61 |= has("m61");
+        // M6/M61 resynchronise rs274's position from its stub, which has not seen a tool length
+        // offset applied since the last move; milltask (and Stanok) keep the program position.
+        if offset_unmoved && (m6 || has("m61")) {
+            return Some("M6/M61 after a tool length offset change or a NURBS without a move");
+        }
+        // (A NURBS, G5.2 … G5.3, leaves the stub's position behind too.)
+        if l.contains("g43") || has("g49") || l.contains("g5.3") {
+            offset_unmoved = true;
+        } else if l.contains(['x', 'y', 'z']) {
+            offset_unmoved = false;
+        }
         // G20/G21 under a tool length offset: LinuxCNC keeps the offset's number, which then
         // means another length (its later G43.2, G53, G28/G30 use it); Stanok keeps the length.
         if offset_in_force && (has("g20") || has("g21")) {
@@ -305,23 +332,8 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
 
 /// A difference found by the runner and not fixed yet (docs/linuxcnc.md, "Open differences"):
 /// Stanok's own shortcoming, listed so that the run stays a regression guard for everything else.
-pub fn open_difference(text: &str) -> Option<&'static str> {
-    for line in text.lines() {
-        let l = line
-            .split(['(', ';'])
-            .next()
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
-        let g7x = ["g70", "g71", "g72"].iter().any(|c| l.contains(c));
-        let allowance = l.match_indices('d').any(|(i, _)| {
-            l[i + 1..].starts_with(|c: char| c.is_ascii_digit() || c == '.' || c == '+')
-        }) && !l.contains("d0 ")
-            && !l.ends_with("d0");
-        if g7x && allowance {
-            return Some("OPEN: G7x finishing allowance D at some corners");
-        }
-    }
+/// None are open now; a new one gets a rule here (on the program's text) and a line in the docs.
+pub fn open_difference(_text: &str) -> Option<&'static str> {
     None
 }
 
@@ -386,20 +398,22 @@ enum Outcome {
     Differs { text: String, why: String },
 }
 
-fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> Outcome {
-    let (_, verdict) = scratch.verdict(c, &p.text, &p.subfiles);
-    match verdict {
+/// The outcome of one program, and whether rs274 stopped on it (None: it timed out).
+fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> (Outcome, Option<bool>) {
+    let (stopped, verdict) = scratch.verdict(c, &p.text, &p.subfiles);
+    let outcome = match verdict {
         Ok(()) => Outcome::Same,
         Err(d) => {
             if let Some(k) = known_difference(&p.text) {
-                return Outcome::Known(k);
+                return (Outcome::Known(k), stopped);
             }
             if let Some(k) = open_difference(&p.text) {
-                return Outcome::Known(k);
+                return (Outcome::Known(k), stopped);
             }
             if matches!(d, Difference::MovedBeforeError(_)) {
                 // Same block, same message; rs274 issued calls of the failing block first.
-                return Outcome::Known("an error found after the block moved leaves nothing of it");
+                let k = "an error found after the block moved leaves nothing of it";
+                return (Outcome::Known(k), stopped);
             }
             let shrunk = if c.shrink {
                 shrink(scratch, c, &p.text, &p.subfiles, &d.signature())
@@ -412,6 +426,7 @@ fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> Outcome 
             }
             if let Some(dir) = &c.keep {
                 let _ = std::fs::create_dir_all(dir);
+                let name = name.split(' ').next().unwrap_or(name).replace('/', "_");
                 let _ = std::fs::write(dir.join(format!("{name}.ngc")), &p.text);
                 let _ = std::fs::write(dir.join(format!("{name}.min.ngc")), &shrunk);
                 for (f, body) in &p.subfiles {
@@ -423,7 +438,8 @@ fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> Outcome 
                 why: d.signature(),
             }
         }
-    }
+    };
+    (outcome, stopped)
 }
 
 /// Program `index`: the first draw whose rs274 verdict is the intended one.
@@ -464,6 +480,44 @@ fn coverage(c: &Config) {
     }
 }
 
+/// The sources of `--mutate`: every `.ngc` file under the directories of at most 32 kB (the
+/// longest samples would make a run slow without adding language), read, sorted by path, with
+/// duplicate texts dropped (the sample configurations repeat programs). (file stem, text) pairs.
+fn mutation_sources(dirs: &[PathBuf]) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    let mut todo: Vec<PathBuf> = dirs.to_vec();
+    while let Some(d) = todo.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                todo.push(p);
+            } else if p.extension().is_some_and(|x| x == "ngc")
+                && e.metadata().is_ok_and(|m| m.len() <= 32 * 1024)
+            {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    let mut seen = std::collections::BTreeSet::new();
+    let mut out = Vec::new();
+    for p in files {
+        let Ok(text) = std::fs::read_to_string(&p) else {
+            continue;
+        };
+        if seen.insert(text.clone()) {
+            let stem = p
+                .file_stem()
+                .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+            out.push((stem, text));
+        }
+    }
+    out
+}
+
 fn main() -> ExitCode {
     let c = match config() {
         Ok(c) => c,
@@ -483,17 +537,25 @@ fn main() -> ExitCode {
             )
         })
         .collect();
+    let sources = mutation_sources(&c.mutate);
+    if !c.mutate.is_empty() && sources.is_empty() {
+        eprintln!("stanok-parity: no .ngc files under the --mutate directories");
+        return ExitCode::from(2);
+    }
+    let texts: Vec<String> = sources.iter().map(|s| s.1.clone()).collect();
     let total = if given.is_empty() {
         c.count
     } else {
         given.len() as u64
     };
     let next = AtomicU64::new(0);
+    let stops = AtomicU64::new(0);
     let results: Mutex<Vec<(u64, Outcome)>> = Mutex::new(Vec::new());
     let started = Instant::now();
     std::thread::scope(|s| {
         for worker in 0..c.jobs {
-            let (c, next, results, given) = (&c, &next, &results, &given);
+            let (c, next, results, given, sources, texts, stops) =
+                (&c, &next, &results, &given, &sources, &texts, &stops);
             s.spawn(move || {
                 let scratch = Scratch::new(worker, c.tools.as_deref());
                 loop {
@@ -501,20 +563,29 @@ fn main() -> ExitCode {
                     if k >= total {
                         break;
                     }
-                    let (name, p) = if given.is_empty() {
+                    let plain = |text: String| Program {
+                        text,
+                        subfiles: Vec::new(),
+                        features: Default::default(),
+                        invalid: None,
+                    };
+                    let (name, p) = if !sources.is_empty() {
+                        let i = c.start + k;
+                        let m = mutate(texts, c.seed, i);
+                        let from = &sources[m.source].0;
+                        let name = format!("mutant{}-{i} ({from}: {})", c.seed, m.ops.join(", "));
+                        (name, plain(m.text))
+                    } else if given.is_empty() {
                         let i = c.start + k;
                         (format!("seed{}-{i}", c.seed), program(&scratch, c, i))
                     } else {
                         let (n, t) = &given[k as usize];
-                        let p = Program {
-                            text: t.clone(),
-                            subfiles: Vec::new(),
-                            features: Default::default(),
-                            invalid: None,
-                        };
-                        (n.clone(), p)
+                        (n.clone(), plain(t.clone()))
                     };
-                    let outcome = check_one(&scratch, c, &name, &p);
+                    let (outcome, stopped) = check_one(&scratch, c, &name, &p);
+                    if stopped == Some(true) {
+                        stops.fetch_add(1, Ordering::Relaxed);
+                    }
                     if let Outcome::Differs { text, .. } = &outcome {
                         println!("{text}");
                     }
@@ -546,8 +617,9 @@ fn main() -> ExitCode {
     }
     let known_total: usize = known.values().sum();
     println!(
-        "parity: {same}/{total} ({known_total} known differences, {:.1} s)",
-        started.elapsed().as_secs_f64()
+        "parity: {same}/{total} ({known_total} known differences, {:.1} s; rs274 stopped on {})",
+        started.elapsed().as_secs_f64(),
+        stops.into_inner()
     );
     if kinds.is_empty() {
         ExitCode::SUCCESS

@@ -50,8 +50,12 @@ pub(super) fn end_circle_arc(c: P2, s: P2, e: P2, ccw: bool, full: bool) -> Seg2
 }
 
 /// The profile `chain` (arcs on their end circles, starting at `p0`) offset by `d` to the left,
-/// each arc on the circle its level crossings use (module comment). None: see `offset_chain`.
-pub(super) fn offset_profile(chain: &[Seg2], p0: P2, d: f64) -> Option<Vec<Seg2>> {
+/// each arc on the circle its level crossings use (module comment). `unit` is the program's
+/// length unit in mm: a convex corner between two lines gets its arc only where the first step
+/// opens a gap of more than 0.01 units along the cut axis, else the lines meet at their crossing
+/// (LinuxCNC's `add_distance`; D0.0067 in inches leaves sharp corners, D0.03 rounds them).
+/// None: see `offset_chain`.
+pub(super) fn offset_profile(chain: &[Seg2], p0: P2, d: f64, unit: f64) -> Option<Vec<Seg2>> {
     // The programmed start of element i is where element i − 1 ends (arcs on their end circles
     // end exactly at their programmed end), or P0.
     let start_radius = |i: usize| {
@@ -76,6 +80,7 @@ pub(super) fn offset_profile(chain: &[Seg2], p0: P2, d: f64) -> Option<Vec<Seg2>
     let arcs = ArcStarts {
         radius: &start_radii,
         first_step,
+        corner_arc_gap: 0.01 * unit,
     };
     Some(
         offset_chain_sourced(chain, Some(&arcs), d)?

@@ -1,0 +1,73 @@
+//! Checks LinuxCNC makes on a block before it runs any of it, kept apart from the order of
+//! execution in `lib.rs`: the `$` spindle-selection word and the L word of G74/G33.1.
+
+use crate::codes::*;
+use crate::ctx::Ctx;
+use crate::{GCodes, Group};
+use stanok_canon::Diagnostic;
+
+/// LinuxCNC checks a block's L word before it runs anything: G74 (left-hand tapping) and G33.1
+/// take none, unlike the other canned cycles (`G74 … L2` is refused even with the spindle the
+/// wrong way round, which the cycle itself would report).
+#[cold]
+pub(super) fn l_word_check(cx: &Ctx<'_>, g: &GCodes) -> Result<(), Diagnostic> {
+    let Some(l) = cx.words.peek(b'L') else {
+        return Ok(());
+    };
+    let motion = match g.get(Group::Motion, cx) {
+        Some((code, _)) => Some(code),
+        None if cx.has_axis_words() => cx.fe.modes.motion_code,
+        None => None,
+    };
+    let other_user = g.get(Group::NonModal, cx).is_some_and(|(c, _)| c == G10)
+        || g.get(Group::CutterComp, cx).is_some()
+        || cx.words.m.iter().any(|&(c, _)| c == 66);
+    if matches!(motion, Some(G74 | G33_1)) && !other_user {
+        return Err(cx.err(
+            "interp::unused-word",
+            "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 or NURBS code",
+            l.span,
+        ));
+    }
+    Ok(())
+}
+
+/// LinuxCNC's `$` word selects the spindle of S, M3–M5, M19, M51, G33, G33.1, G76 and G95–G97.
+/// The `linuxcnc` machine has one spindle: `$0` (or `$-1`, all of them) changes nothing, any other
+/// number is refused with the message of the first word that would use it (S before the M codes,
+/// as LinuxCNC checks them), and a `$` nothing uses is refused.
+#[cold]
+pub(super) fn spindle_selection(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
+    let Some(sel) = cx.words.take(b'$') else {
+        return Ok(());
+    };
+    let m_user = cx
+        .words
+        .m
+        .iter()
+        .find(|(c, _)| matches!(c, 3 | 4 | 5 | 19 | 51))
+        .map(|&(c, _)| c);
+    let g_user = cx
+        .words
+        .g
+        .iter()
+        .any(|(c, _)| matches!(*c, G33 | G33_1 | G76 | G95 | G96 | G97));
+    let s_user = cx.words.has(b'S');
+    if m_user.is_none() && !g_user && !s_user {
+        return Err(cx.err(
+            "rs274::spindle-word-unused",
+            "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it",
+            sel.span,
+        ));
+    }
+    let n = sel.v.trunc();
+    if n == 0.0 || n == -1.0 {
+        return Ok(());
+    }
+    let msg = match m_user {
+        _ if s_user => "Invalid spindle ($) number in Spindle speed command".to_string(),
+        Some(c) => format!("Spindle ($) number out of range in M{c} Command"),
+        None => "Spindle ($) number out of range".to_string(),
+    };
+    Err(cx.err("rs274::spindle-number", msg, sel.span))
+}

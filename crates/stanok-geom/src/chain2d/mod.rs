@@ -67,27 +67,40 @@ pub struct ArcStarts<'a> {
     pub corner_arc_gap: f64,
 }
 
-/// Where two offset lines `last` and `next` meet when their gap is too short for an arc
-/// (`ArcStarts::corner_arc_gap`); None: an arc closes it (or it is not two lines).
-fn sharp_corner(arcs: Option<&ArcStarts>, d: f64, last: &Seg2, next: &Seg2) -> Option<P2> {
+/// Where the offsets `last` and `next` meet when the gap between them is too short for an arc
+/// (`ArcStarts::corner_arc_gap`): the two pieces trimmed or extended to the point; None: an arc
+/// closes it. LinuxCNC's `intersect_end`: two lines at their crossing; a line and an arc at the
+/// crossing of the line with the arc's circle nearest `next`'s start (the foot of the
+/// perpendicular from the centre if the line misses the circle); two arcs at the crossing of
+/// their circles nearest `next`'s start (none: an arc after all).
+fn sharp_corner(
+    arcs: Option<&ArcStarts>,
+    d: f64,
+    last: &Seg2,
+    next: &Seg2,
+) -> Option<(Seg2, Seg2)> {
     let arcs = arcs?;
     // The gaps of every step have the same direction; their size scales with the step.
     let gap = (next.start()[0] - last.end()[0]) * (arcs.first_step / d).abs();
     if arcs.corner_arc_gap <= 0.0 || gap > arcs.corner_arc_gap {
         return None;
     }
-    let (Seg2::Line { a: p, b: q }, Seg2::Line { a: r, b: t }) = (*last, *next) else {
-        return None;
+    let nearest = |ps: Vec<P2>| {
+        ps.into_iter()
+            .min_by(|p, q| dist2(*p, next.start()).total_cmp(&dist2(*q, next.start())))
     };
-    // p + u·(q − p) = r + v·(t − r), solved for u by Cramer's rule.
-    let (e, f) = ([q[0] - p[0], q[1] - p[1]], [t[0] - r[0], t[1] - r[1]]);
-    let det = e[0] * f[1] - e[1] * f[0];
-    if det.abs() < 1e-12 {
+    let x = match (*last, *next) {
+        (Seg2::Line { .. }, Seg2::Line { .. }) => nearest(curve_intersections(last, next))?,
+        (Seg2::Arc { c, .. }, Seg2::Line { a, b }) | (Seg2::Line { a, b }, Seg2::Arc { c, .. }) => {
+            nearest(curve_intersections(last, next)).unwrap_or_else(|| foot_on_line(c, a, b))
+        }
+        (Seg2::Arc { .. }, Seg2::Arc { .. }) => nearest(curve_intersections(last, next))?,
+    };
+    if !(x[0].is_finite() && x[1].is_finite()) {
         return None;
     }
-    let u = ((r[0] - p[0]) * f[1] - (r[1] - p[1]) * f[0]) / det;
-    let x = [p[0] + u * e[0], p[1] + u * e[1]];
-    (x[0].is_finite() && x[1].is_finite()).then_some(x)
+    let (a, b) = (trim_end(last, x), trim_start(next, x));
+    (same_sense(last, &a) && same_sense(next, &b)).then_some((a, b))
 }
 
 /// [`offset_chain`] of a chain whose arcs may end off the circle through their start (a lathe
@@ -285,17 +298,14 @@ pub fn offset_chain_sourced(
                     }
                     _ => {}
                 }
-            } else if let Some(p) = ((theta < 0.0) == (d > 0.0))
+            } else if let Some((a, b)) = ((theta < 0.0) == (d > 0.0))
                 .then(|| sharp_corner(arcs, d, last, &o))
                 .flatten()
             {
                 // Turn away from the offset side with a gap too short for LinuxCNC to close it
-                // with an arc (`ArcStarts::corner_arc_gap`): both lines run on to their crossing.
-                *last = Seg2::Line {
-                    a: last.start(),
-                    b: p,
-                };
-                o = Seg2::Line { a: p, b: o.end() };
+                // with an arc (`ArcStarts::corner_arc_gap`): both run on to their crossing.
+                *last = a;
+                o = b;
             } else if (theta < 0.0) == (d > 0.0) {
                 // Turn away from the offset side: an arc about the corner closes the gap.
                 let ccw = d < 0.0;

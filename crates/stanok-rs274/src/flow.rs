@@ -67,7 +67,12 @@ enum Skip {
     },
     IfBranch(String),
     ToEndIf(String),
-    LoopEnd(String),
+    /// To the end of a loop left (a `break`, a false `while`, a repeat count below 1): its
+    /// `endwhile`, `endrepeat` or a do's `while`, with the frame of the loop a `break` left
+    /// (LinuxCNC loops back into it if a `continue` is pending, `Flow::doing_continue`).
+    LoopEnd(String, Option<LoopFrame>),
+    /// To the `while` line that ends do-loop `label` (a `continue`), which then runs as usual.
+    DoEnd(String),
 }
 
 /// A call about to be entered.
@@ -113,6 +118,8 @@ struct LoopFrame {
     kind: LoopKind,
     /// `while`: the `while` line itself (re-evaluated); `do`/`repeat`: the first body line.
     target: SourcePos,
+    /// The line number of the loop's first line (`while`, `do`, `repeat`).
+    line: u32,
     iterations: u64,
 }
 
@@ -130,6 +137,14 @@ pub struct Flow {
     source: usize,
     /// Loop passes of the run, all loops together (`max_total_loop_iterations`).
     total_iterations: u64,
+    /// LinuxCNC's `doing_break` and `doing_continue` (`interp_o_word.cc`): a `break` sets the
+    /// first and only the end of a do-loop (its `while` line) clears it — so a break out of a
+    /// while or repeat loop leaves it set, and the next do-loop end met does not loop back. A
+    /// `continue` sets the second and only an `endwhile`/`endrepeat` reached while skipping
+    /// clears it — so a continue in a do-loop leaves it set, and the next break out of a while
+    /// or repeat loop loops back to that loop's start instead of leaving it.
+    doing_break: bool,
+    doing_continue: bool,
 }
 
 /// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
@@ -264,7 +279,14 @@ impl Flow {
             OLabel::Name(_) => format!("o{label}"),
         };
         if let Some(skip) = self.skip.clone() {
-            return self.while_skipping(skip, block, eval, &o.kind, label, next, opts);
+            match skip {
+                // The do-loop's end after a `continue`: evaluated as if reached normally.
+                Skip::DoEnd(l) if l == label && matches!(o.kind, OKind::While(_)) => {
+                    self.skip = None;
+                }
+                Skip::DoEnd(_) => return Ok(FlowAction::Skip),
+                _ => return self.while_skipping(skip, block, eval, &o.kind, label, next, opts),
+            }
         }
         match &o.kind {
             OKind::Sub => {
@@ -381,11 +403,12 @@ impl Flow {
                 let cond = eval.eval(*c)? != 0.0;
                 match self.loops.last_mut() {
                     Some(f) if f.label == label && f.kind == LoopKind::Do => {
-                        if cond {
+                        if cond && !self.doing_break {
                             f.iterations += 1;
                             check_iterations(block, f, &mut self.total_iterations, opts)?;
                             Ok(FlowAction::Seek(f.target))
                         } else {
+                            self.doing_break = false;
                             self.loops.pop();
                             Ok(FlowAction::Handled)
                         }
@@ -398,7 +421,7 @@ impl Flow {
                             check_iterations(block, f, &mut self.total_iterations, opts)?;
                         } else {
                             self.loops.pop();
-                            self.skip = Some(Skip::LoopEnd(label));
+                            self.skip = Some(Skip::LoopEnd(label, None));
                         }
                         Ok(FlowAction::Handled)
                     }
@@ -409,10 +432,11 @@ impl Flow {
                                 label,
                                 kind: LoopKind::While,
                                 target: here,
+                                line: block.line,
                                 iterations: 1,
                             });
                         } else {
-                            self.skip = Some(Skip::LoopEnd(label));
+                            self.skip = Some(Skip::LoopEnd(label, None));
                         }
                         Ok(FlowAction::Handled)
                     }
@@ -434,6 +458,7 @@ impl Flow {
                     label,
                     kind: LoopKind::Do,
                     target: next,
+                    line: block.line,
                     iterations: 1,
                 });
                 Ok(FlowAction::Handled)
@@ -441,23 +466,43 @@ impl Flow {
             OKind::Repeat(n) => {
                 let n = eval.eval(*n)?.round();
                 if n < 1.0 {
-                    self.skip = Some(Skip::LoopEnd(label));
+                    self.skip = Some(Skip::LoopEnd(label, None));
                 } else {
                     self.check_nesting(block, opts)?;
                     self.loops.push(LoopFrame {
                         label,
                         kind: LoopKind::Repeat(n.min(u64::MAX as f64) as u64),
                         target: next,
+                        line: block.line,
                         iterations: 1,
                     });
                 }
                 Ok(FlowAction::Handled)
             }
             OKind::EndRepeat => self.end_repeat(block, &label, &name, opts),
+            OKind::Break | OKind::Continue
+                if self
+                    .loops
+                    .last()
+                    .is_some_and(|f| f.label == label && matches!(f.kind, LoopKind::Repeat(_))) =>
+            {
+                // LinuxCNC leaves only while and do loops with break and continue.
+                let line = self.loops.last().map_or(0, |f| f.line);
+                Err(flow_err(
+                    block,
+                    "flow::not-while-or-do",
+                    format!(
+                        "{}: no matching while/do label: '{}' (found 'repeat' in line {line})",
+                        block.line,
+                        block.text.trim()
+                    ),
+                ))
+            }
             OKind::Break => match self.loops.last() {
                 Some(f) if f.label == label => {
-                    self.loops.pop();
-                    self.skip = Some(Skip::LoopEnd(label));
+                    let frame = self.loops.pop();
+                    self.doing_break = true;
+                    self.skip = Some(Skip::LoopEnd(label, frame));
                     Ok(FlowAction::Handled)
                 }
                 _ => Err(flow_err(
@@ -467,10 +512,11 @@ impl Flow {
                 )),
             },
             OKind::Continue => match self.loops.last().map(|f| f.kind) {
-                Some(LoopKind::Repeat(_))
-                    if self.loops.last().map(|f| &f.label) == Some(&label) =>
-                {
-                    self.end_repeat(block, &label, &name, opts)
+                Some(LoopKind::Do) if self.loops.last().map(|f| &f.label) == Some(&label) => {
+                    // LinuxCNC skips to the loop's `while` line, which tests the condition.
+                    self.doing_continue = true;
+                    self.skip = Some(Skip::DoEnd(label));
+                    Ok(FlowAction::Handled)
                 }
                 Some(_) if self.loops.last().map(|f| &f.label) == Some(&label) => {
                     let f = self.loops.last_mut().expect("checked");
@@ -640,12 +686,26 @@ impl Flow {
                 self.ifs.pop();
                 Ok(FlowAction::Handled)
             }
-            Skip::LoopEnd(l)
+            Skip::LoopEnd(l, frame)
                 if l == label
                     && matches!(kind, OKind::EndWhile | OKind::EndRepeat | OKind::While(_)) =>
             {
                 self.skip = None;
-                Ok(FlowAction::Handled)
+                if matches!(kind, OKind::While(_)) {
+                    // A do-loop's end after its break.
+                    self.doing_break = false;
+                    return Ok(FlowAction::Handled);
+                }
+                if !std::mem::take(&mut self.doing_continue) {
+                    return Ok(FlowAction::Handled);
+                }
+                // A continue pending from a do-loop: LinuxCNC loops back to the start of the
+                // loop just left (after a false `while` or a count below 1 that start only
+                // leads here again).
+                match frame {
+                    Some(f) if f.kind == LoopKind::While => Ok(FlowAction::Seek(f.target)),
+                    _ => Ok(FlowAction::Handled),
+                }
             }
             _ => Ok(FlowAction::Skip),
         }
@@ -696,7 +756,7 @@ impl Flow {
                 format!("File ended with no percent sign or program end (o{l} sub has no endsub)")
             }
             Some(Skip::IfBranch(l)) | Some(Skip::ToEndIf(l)) => format!("o{l} if has no endif"),
-            Some(Skip::LoopEnd(l)) => format!("o{l} loop has no end"),
+            Some(Skip::LoopEnd(l, _) | Skip::DoEnd(l)) => format!("o{l} loop has no end"),
             None => {
                 if let Some(c) = self.calls.last() {
                     format!("file ended inside subroutine o{}", c.label)

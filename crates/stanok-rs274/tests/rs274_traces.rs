@@ -344,6 +344,7 @@ macro_rules! own_tests {
 // The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
+    err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
@@ -366,10 +367,12 @@ own_tests! {
     parity_comp_labels: "stanok-parity-comp-labels";
     parity_comp_reversal: "stanok-parity-comp-reversal";
     parity_css_inch: "stanok-parity-css-inch";
+    parity_flow_break_continue: "stanok-parity-flow-break-continue";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
     parity_g53_tlo: "stanok-parity-g53-tlo";
+    parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";

@@ -100,7 +100,9 @@ pub fn control_flow(g: &mut Gen) {
             body(g, "  ");
             g.line(format!("  #{k} = [#{k} + 1]"));
             g.line(format!("{label} while [#{k} LT {n}]"));
-            g.set_param(format!("#{k}"), n as f64);
+            // A break that left a while loop earlier ends a do-loop after one pass (LinuxCNC's
+            // pending `doing_break`): the count is not known.
+            g.forget_param(&format!("#{k}"));
         }
         3 => {
             g.feat("flow: repeat");
@@ -114,30 +116,52 @@ pub fn control_flow(g: &mut Gen) {
             let k = g.rng.int(1, 30);
             let inner = o_label(g);
             let n = g.rng.int(1, 3);
+            let in_do = g.rng.chance(0.3);
             g.line(format!("#{k} = 0"));
-            g.line(format!("{label} while [1]"));
+            if in_do {
+                g.feat("flow: break in a do-loop");
+                g.line(format!("{label} do"));
+            } else {
+                g.line(format!("{label} while [1]"));
+            }
             g.line(format!("  #{k} = [#{k} + 1]"));
             g.line(format!("  {inner} if [#{k} GT {n}]"));
             g.line(format!("    {label} break"));
             g.line(format!("  {inner} endif"));
             body(g, "  ");
-            g.line(format!("{label} endwhile"));
-            g.set_param(format!("#{k}"), (n + 1) as f64);
+            if in_do {
+                g.line(format!("{label} while [1]"));
+                g.forget_param(&format!("#{k}"));
+            } else {
+                g.line(format!("{label} endwhile"));
+                g.set_param(format!("#{k}"), (n + 1) as f64);
+            }
         }
         _ => {
             g.feat("flow: continue");
             let k = g.rng.int(1, 30);
             let inner = o_label(g);
             let n = g.rng.int(2, 4);
+            let in_do = g.rng.chance(0.3);
             g.line(format!("#{k} = 0"));
-            g.line(format!("{label} while [#{k} LT {n}]"));
+            if in_do {
+                g.feat("flow: continue in a do-loop");
+                g.line(format!("{label} do"));
+            } else {
+                g.line(format!("{label} while [#{k} LT {n}]"));
+            }
             g.line(format!("  #{k} = [#{k} + 1]"));
             g.line(format!("  {inner} if [#{k} EQ 2]"));
             g.line(format!("    {label} continue"));
             g.line(format!("  {inner} endif"));
             body(g, "  ");
-            g.line(format!("{label} endwhile"));
-            g.set_param(format!("#{k}"), n as f64);
+            if in_do {
+                g.line(format!("{label} while [#{k} LT {n}]"));
+                g.forget_param(&format!("#{k}"));
+            } else {
+                g.line(format!("{label} endwhile"));
+                g.set_param(format!("#{k}"), n as f64);
+            }
         }
     }
     g.forget_position();

@@ -268,6 +268,14 @@ impl Gen {
         self.st.params.push((name, v));
     }
 
+    /// Forgets a parameter's value (a value the generator cannot be sure of).
+    pub fn forget_param(&mut self, name: &str) {
+        self.st.params.retain(|(n, _)| n != name);
+        if let Some(n) = name.strip_prefix('#').and_then(|n| n.parse::<u32>().ok()) {
+            self.st.numbered.retain(|(k, _)| *k != n);
+        }
+    }
+
     /// Forgets the values that depend on the position (predefined `#<_x>` …).
     pub fn forget_position(&mut self) {
         self.st.pos = None;

@@ -167,9 +167,7 @@ fn motion_block_inner(
             let feed = if rapid {
                 0.0
             } else {
-                let a = cx.st.program_position().to_array();
-                let b = end.to_array();
-                let length = (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt();
+                let length = inverse_time_length(cx, &end);
                 feed_for(cx, f_in_block, span, false, || length)?
             };
             if cx.fe.modes.comp.on() && g53.is_none() {
@@ -213,6 +211,31 @@ fn motion_block_inner(
             "RS274/NGC cycles, splines and probing",
             span,
         )),
+    }
+}
+
+/// The length an inverse-time straight feed to `end` divides by, in mm (LinuxCNC's
+/// `find_straight_length`): the XYZ distance if X, Y or Z moves by more than 10⁻⁷ program units,
+/// else the UVW distance if they move, else the ABC distance in degrees (taken as program units).
+/// A move of none of them is given the length that makes its rate 0.1 units/min whatever F is
+/// (LinuxCNC's `inverse_time_rate_straight`, its issue 2410).
+fn inverse_time_length(cx: &Ctx<'_>, end: &Pose) -> f64 {
+    let a = cx.st.program_position().to_array();
+    let b = end.to_array();
+    let tiny = cx.mm(1e-7);
+    let moved = |k: &[usize]| k.iter().any(|&k| (b[k] - a[k]).abs() > tiny);
+    let norm = |k: &[usize]| k.iter().map(|&k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt();
+    let length = if moved(&[0, 1, 2]) {
+        norm(&[0, 1, 2])
+    } else if moved(&[6, 7, 8]) {
+        norm(&[6, 7, 8])
+    } else {
+        cx.mm(norm(&[3, 4, 5]))
+    };
+    if length == 0.0 && cx.st.feed > 0.0 {
+        cx.mm(0.1) / cx.st.feed
+    } else {
+        length
     }
 }
 

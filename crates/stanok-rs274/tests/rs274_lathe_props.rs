@@ -125,12 +125,14 @@ fn cycle_moves(cmds: &[Canon]) -> Vec<(bool, Seg2)> {
     out
 }
 
-/// How far from a monotonic profile an offset by `d` may pass: d, but at a convex corner between
-/// two lines where the first offset step opens a gap of at most 0.01 program units along the cut
-/// axis LinuxCNC runs both lines on to their crossing (`stanok_geom::chain2d::ArcStarts`), at
-/// d / cos(θ/2) from the corner — at most d·√2, the turns of a monotonic profile being ≤ 90°.
+/// How far from a monotonic profile an offset by `d` may pass: d, but at a convex corner where
+/// the first offset step opens a gap of at most 0.01 program units along the cut axis LinuxCNC
+/// runs both elements on to their crossing (`stanok_geom::chain2d::ArcStarts`): two lines at
+/// d / cos(θ/2) from the corner — at most d·√2, the turns of a monotonic profile being ≤ 90° —
+/// and a line and an arc of radius R (≥ 1.5 here) up to d·√2·(1 + d/R) + O(d³), less than
+/// d·√2 + d².
 fn corner_reach(d: f64) -> f64 {
-    d * std::f64::consts::SQRT_2 + 1e-6
+    d * std::f64::consts::SQRT_2 + d * d + 1e-6
 }
 
 fn distance(chain: &[Seg2], p: [f64; 2]) -> f64 {
@@ -220,7 +222,7 @@ proptest! {
             }
         }
         // The final pass runs at D from the profile, except its closing move — and but for
-        // convex corners between lines whose gap LinuxCNC leaves sharp (`corner_reach`).
+        // convex corners whose gap LinuxCNC leaves sharp (`corner_reach`).
         let (closing, along) = finish.split_last().unwrap();
         prop_assert!(!along.is_empty());
         for (rapid, seg) in along {

@@ -62,6 +62,10 @@ pub struct Rs274Part {
     /// profile subroutine (cleared if the block fails). Kept out of the modes, which every
     /// block may copy, so that ordinary blocks do not pay for it.
     pub lathe_call: Option<LatheCall>,
+    /// An error of a G7x profile block that LinuxCNC only finds when the cycle cuts the element
+    /// (an arc whose end is off its radius): the profile runs on, and the cycle's block (the
+    /// profile's endsub) fails with it (`lathe.rs`).
+    pub profile_error: Option<Box<Diagnostic>>,
     /// Options.
     pub opts: Rs274Options,
 }
@@ -208,6 +212,7 @@ impl Rs274 {
             part: Rs274Part {
                 modes: Journalled::default(),
                 lathe_call: None,
+                profile_error: None,
                 opts: rs,
             },
             params,

@@ -15,7 +15,7 @@
 
 use crate::lathe_cycles::{self, LatheCall, Profile};
 use crate::{params, Rs274};
-use stanok_canon::{Diagnostic, Span};
+use stanok_canon::{Diagnostic, FeedMode, Span};
 use stanok_interp_core::Core;
 use stanok_syntax::{ColSpan, SourcePos};
 use std::io::{BufRead, Seek};
@@ -147,10 +147,28 @@ impl Rs274 {
         // rs274 prints the label of the line it executes when it issues the cycle: the
         // profile's endsub line, not the G7x line.
         let number = core.block.number;
+        let deferred = self.part.profile_error.take();
         let mut cx = core.parts(cap.span, number).with(&mut self.part);
-        let result = match profile {
-            Ok(p) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
-            Err(msg) => Err(cx.err("rs274::g7x-profile", msg, whole)),
+        let result = match (deferred, profile) {
+            // An error LinuxCNC finds only when the cycle cuts the element (after the cycle's
+            // first moves): this block's, the message naming the element.
+            (Some(d), _) => {
+                let at = format!("in the profile at line {}", d.span.line);
+                let mut d = *d;
+                d.span = cx.block.span_of(whole);
+                Err(d.with_note(at))
+            }
+            // LinuxCNC checks the feed when the cycle cuts, not in the profile (which keeps the
+            // G7x block's feed).
+            (None, _) if cx.st.feed_mode == FeedMode::UnitsPerMinute && cx.st.feed <= 0.0 => {
+                Err(cx.err(
+                    "rs274::zero-feed",
+                    "Cannot do g1 with zero feed rate",
+                    whole,
+                ))
+            }
+            (None, Ok(p)) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
+            (None, Err(msg)) => Err(cx.err("rs274::g7x-profile", msg, whole)),
         };
         if let Err(d) = result {
             core.queue.truncate(before);

@@ -249,7 +249,8 @@ fn feed_for(
 ) -> Result<f64, Diagnostic> {
     match cx.st.feed_mode {
         FeedMode::UnitsPerMinute => {
-            if cx.st.feed <= 0.0 {
+            // A G7x profile is only read: its feed is checked when the cycle cuts (`lathe.rs`).
+            if cx.st.feed <= 0.0 && !cx.fe.modes.in_profile {
                 return Err(cx.err(
                     "rs274::zero-feed",
                     if arc {
@@ -410,30 +411,23 @@ fn arc_block(
                 ]
             }
         };
-        arc_rules::centre_format(s, e, centre, turns, tol).map_err(|err| {
-            if let ArcError::RadiusMismatch { r1, r2 } = err {
-                let k = cx.st.units.mm_per_unit();
-                let la = AXIS_WORDS[a] as char;
-                let lb = AXIS_WORDS[b] as char;
-                return cx
-                    .err(
-                        "rs274::arc-radius-mismatch",
-                        format!(
-                            "Radius to end of arc differs from radius to start: start=({la}{:.4},{lb}{:.4}) center=({la}{:.4},{lb}{:.4}) end=({la}{:.4},{lb}{:.4}) r1={:.4} r2={:.4} abs_err={:.4} rel_err={:.4}%",
-                            s[0] / k, s[1] / k, centre[0] / k, centre[1] / k, e[0] / k, e[1] / k,
-                            r1 / k, r2 / k, (r1 - r2).abs() / k,
-                            (r1 - r2).abs() / r1.max(r2) * 100.0
-                        ),
-                        span,
-                    )
-                    .with_note(format!(
-                        "allowed: |r1 − r2| ≤ {:.4} (hard limit {:.4}), or a relative error ≤ 0.1 %",
-                        tol / k,
-                        100.0 * tol / k
-                    ));
+        let checked = arc_rules::centre_format(s, e, centre, turns, tol);
+        let checked = match checked {
+            // In a G7x profile LinuxCNC reads the arc as written and refuses it only when the
+            // cycle cuts it: the profile goes on, the cycle's block fails (`lathe.rs`).
+            Err(ArcError::RadiusMismatch { .. })
+                if cx.fe.modes.in_profile && cx.fe.profile_error.is_none() =>
+            {
+                let refused =
+                    checked.map_err(|err| radius_mismatch(cx, err, s, e, centre, tol, span));
+                if let Err(d) = refused {
+                    cx.fe.profile_error = Some(Box::new(d));
+                }
+                arc_rules::centre_format(s, e, centre, turns, f64::INFINITY)
             }
-            arc_error(cx, err, span)
-        })?
+            other => other,
+        };
+        checked.map_err(|err| radius_mismatch(cx, err, s, e, centre, tol, span))?
     };
     let feed = feed_for(cx, f_in_block, span, true, || {
         helix_length(start, end, plane, planar.centre, ccw, planar.turns)
@@ -446,6 +440,43 @@ fn arc_block(
         cx.fe.modes.comp.program = None;
     }
     Ok(())
+}
+
+/// The error of a centre-format arc (`s`, `e`, `centre` in the plane's axes, mm), with
+/// LinuxCNC's numbers for a radius mismatch.
+#[allow(clippy::too_many_arguments)]
+fn radius_mismatch(
+    cx: &Ctx<'_>,
+    err: ArcError,
+    s: [f64; 2],
+    e: [f64; 2],
+    centre: [f64; 2],
+    tol: f64,
+    span: ColSpan,
+) -> Diagnostic {
+    let (a, b, _) = cx.st.plane.axes();
+    if let ArcError::RadiusMismatch { r1, r2 } = err {
+        let k = cx.st.units.mm_per_unit();
+        let la = AXIS_WORDS[a] as char;
+        let lb = AXIS_WORDS[b] as char;
+        return cx
+            .err(
+                "rs274::arc-radius-mismatch",
+                format!(
+                    "Radius to end of arc differs from radius to start: start=({la}{:.4},{lb}{:.4}) center=({la}{:.4},{lb}{:.4}) end=({la}{:.4},{lb}{:.4}) r1={:.4} r2={:.4} abs_err={:.4} rel_err={:.4}%",
+                    s[0] / k, s[1] / k, centre[0] / k, centre[1] / k, e[0] / k, e[1] / k,
+                    r1 / k, r2 / k, (r1 - r2).abs() / k,
+                    (r1 - r2).abs() / r1.max(r2) * 100.0
+                ),
+                span,
+            )
+            .with_note(format!(
+                "allowed: |r1 − r2| ≤ {:.4} (hard limit {:.4}), or a relative error ≤ 0.1 %",
+                tol / k,
+                100.0 * tol / k
+            ));
+    }
+    arc_error(cx, err, span)
 }
 
 fn arc_error(cx: &Ctx<'_>, err: ArcError, span: ColSpan) -> Diagnostic {

@@ -602,3 +602,33 @@ fn known_difference_an_error_inside_a_cycle_leaves_nothing_of_its_block() {
     assert_eq!(err.span.line, 3);
     assert!(!cmds.iter().any(|c| c.value.motion().is_some()));
 }
+
+/// A G7x profile arc whose end is off its radius, and a G7x cycle without a feed: LinuxCNC reads
+/// the profile without checking either and refuses the cycle when it cuts the element, on the
+/// profile's `O… ENDSUB` after the cycle's first moves (rs274 2.9: "Radius to end of arc differs
+/// from radius to start: start=(Z-15.5450,X5.9060) …" and "Cannot do g1 with zero feed rate",
+/// both on `O100 ENDSUB`); Stanok fails the same block with the same message and leaves nothing
+/// of the cycle (ARCHITECTURE.md invariant 4). The shrunk programs of seed 20261129, 144.
+#[test]
+fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cycle() {
+    let arc = "G21 G18 G7 F100\nO100 SUB\nG0 X8.112 Z0\nG1 Z-7.545\nX11.812\nZ-15.545\n\
+               G2 X14.282 Z-18.015 I2.47 K0\nG1 Z-21.015\nO100 ENDSUB\nG0 X19.321 Z3.3\n\
+               G72 Q100 X19.321 Z3.3 I1.224\nM2\n";
+    let no_feed = "G21 G18\nG0 X20 Z5\nO100 SUB\nG1 X11.812\nZ-21.015\nO100 ENDSUB\n\
+                   G72 Q100 X20 Z5 D0.1 I1\nM2\n";
+    for (program, message, moves_before) in [
+        (arc, "Radius to end of arc differs from radius to start", 2),
+        (no_feed, "Cannot do g1 with zero feed rate", 2),
+    ] {
+        let (cmds, err) = run(program, Dialect::Rs274ngc);
+        let err = err.expect("refused");
+        assert!(err.message.starts_with(message), "{}", err.message);
+        let endsub = program.lines().position(|l| l == "O100 ENDSUB").unwrap() + 1;
+        assert_eq!(err.span.line as usize, endsub);
+        let moves = cmds.iter().filter(|c| c.value.motion().is_some()).count();
+        assert_eq!(
+            moves, moves_before,
+            "the rapids before the cycle and to its start"
+        );
+    }
+}

@@ -309,6 +309,8 @@ pub fn mcodes(g: &mut Gen) {
             }
             4 => {
                 g.feat("M: M19 orient");
+                // LinuxCNC takes the spindle for stopped after M19 (threads and tapping need M3).
+                g.st.spindle = false;
                 let r = g.rng.int(0, 359);
                 format!("M19 R{r} Q2 P{}", g.rng.int(0, 2))
             }

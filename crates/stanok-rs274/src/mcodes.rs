@@ -85,7 +85,10 @@ pub(super) fn io(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Diagn
     Ok(())
 }
 
-/// M19 R (angle) Q (timeout) P (direction 0/1/2). LinuxCNC prints nothing without R.
+/// M19 R (angle) Q (timeout) P (direction 0/1/2). LinuxCNC orients when R or P is given (to
+/// angle 0 without R), waits when Q is (Q must be positive), and in any case takes the spindle
+/// for stopped (G33, G76, the cycles that need it turning refuse to run until M3/M4) without a
+/// stop command.
 pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
     let r = cx.words.take(b'R');
     let q = cx.words.take(b'Q');
@@ -96,10 +99,19 @@ pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> 
         None => 0,
     };
     let _ = span;
-    if let Some(r) = r {
+    cx.fe.modes.spindle_direction = None;
+    if let Some(q) = q.filter(|q| q.v <= 0.0) {
+        return Err(cx.err(
+            "rs274::m19-q",
+            "Q word with M19 requires a value > 0",
+            q.span,
+        ));
+    }
+    // (Q alone, a wait without an orientation, is not modelled: Canon has no such command.)
+    if r.is_some() || p.is_some() {
         cx.out.push(Canon::OrientSpindle {
             spindle: 0,
-            degrees: r.v,
+            degrees: r.map_or(0.0, |r| r.v),
             direction,
             timeout: q.map(|q| q.v),
         });

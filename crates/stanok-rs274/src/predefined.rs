@@ -98,7 +98,8 @@ pub fn predefined(
         "_ijk_absolute_mode" => flag(st.arc_distance == DistanceMode::Absolute),
         "_lathe_diameter_mode" => flag(st.diameter_mode),
         "_lathe_radius_mode" => flag(!st.diameter_mode),
-        "_spindle_on" => flag(st.spindle_on[0]),
+        // LinuxCNC's spindle_turning: M19 and M6 leave it stopped without a stop command.
+        "_spindle_on" => flag(st.spindle_on[0] && rs.spindle_direction.is_some()),
         "_spindle_cw" => flag(rs.spindle_direction == Some(SpindleDirection::Clockwise)),
         "_mist" => flag(st.mist),
         "_flood" => flag(st.flood),

@@ -352,6 +352,7 @@ own_tests! {
     err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
     err_parity_g5_zero_feed: "stanok-err-parity-g5-zero-feed";
     err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
+    err_parity_m19_g33: "stanok-err-parity-m19-g33";
     err_parity_m61_negative: "stanok-err-parity-m61-negative";
     err_parity_n_not_first: "stanok-err-parity-n-not-first";
     err_parity_r0: "stanok-err-parity-r0";
@@ -378,6 +379,7 @@ own_tests! {
     parity_g7x_labels: "stanok-parity-g7x-labels";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g87_repeat: "stanok-parity-g87-repeat";
+    parity_m19: "stanok-parity-m19";
     parity_m60: "stanok-parity-m60";
     parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";

@@ -73,6 +73,19 @@ fn feed(cx: &mut Ctx<'_>, name: &str, f_in_block: bool, span: ColSpan) -> Result
 
 /// Emits a spline given by program-coordinate control points and moves to its end.
 fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64>, feed: f64) {
+    emit_with(cx, points, weights, knots, feed, true)
+}
+
+/// [`emit`]; `print_inverse_feed`: under G93 announce the curve's rate (G5, G5.1 do in
+/// LinuxCNC; a G5.2 NURBS does not: it keeps whatever rate was last set).
+fn emit_with(
+    cx: &mut Ctx<'_>,
+    points: &[[f64; 2]],
+    weights: Vec<f64>,
+    knots: Vec<f64>,
+    feed: f64,
+    print_inverse_feed: bool,
+) {
     cx.apply_pending_tlo();
     let start = cx.st.position;
     let here = cx.st.program_position();
@@ -100,7 +113,9 @@ fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64
     let feed = if cx.st.feed_mode == FeedMode::InverseTime {
         let length = stanok_geom::Nurbs::new(degree, &control_points, &weights, &knots).length();
         let f = cx.path_feed(length);
-        cx.out.push(Canon::SetFeedRate { feed: f });
+        if print_inverse_feed {
+            cx.out.push(Canon::SetFeedRate { feed: f });
+        }
         f
     } else {
         feed
@@ -226,6 +241,14 @@ pub(super) fn nurbs_point(
             span,
         ));
     }
+    // LinuxCNC checks the feed on every G5.2 block (under G94 only), not on G5.3.
+    if cx.st.feed_mode == FeedMode::UnitsPerMinute && cx.st.feed <= 0.0 {
+        return Err(cx.err(
+            "rs274::zero-feed",
+            "Cannot make a NURBS with 0 feedrate",
+            span,
+        ));
+    }
     let here = cx.st.program_position();
     if opening {
         // LinuxCNC takes L only above 3 (order 3 otherwise).
@@ -320,7 +343,7 @@ pub(super) fn nurbs_end(
         .collect();
     let pts: Vec<[f64; 2]> = buf.points.iter().map(|(p, _)| [p[0], p[1]]).collect();
     let weights: Vec<f64> = buf.points.iter().map(|(_, w)| *w).collect();
-    emit(cx, &pts, weights, knots, f);
+    emit_with(cx, &pts, weights, knots, f, false);
     params.nurbs_mut().points.clear();
     cx.fe.modes.motion_code = None;
     cx.st.motion = crate::state::MotionMode::None;

@@ -107,11 +107,12 @@ fn g5_2_nurbs_has_the_header_points() {
 
 #[test]
 fn a_failing_g5_3_keeps_the_collected_points() {
-    // Zero feed at G5.3 fails the block; the points stay and a later G5.3 with F emits them.
-    let s = splines("G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF10 G5.3\nM2\n");
+    // A zero feed at G5.3 fails the block (F0 after the points: LinuxCNC checks the feed on the
+    // G5.2 blocks, which had one); the points stay and a later G5.3 with F emits them.
+    let s = splines("G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF0\nF10 G5.3\nM2\n");
     assert_eq!(s[0].control_points.len(), 3);
     let (_, err) = run(
-        "G20\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nG5.3\nM2\n",
+        "G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF0\nG5.3\nM2\n",
         Dialect::Rs274ngc,
     );
     assert!(err.unwrap().message.contains("NURBS with 0 feedrate"));

@@ -351,6 +351,7 @@ own_tests! {
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
     err_parity_g5_zero_feed: "stanok-err-parity-g5-zero-feed";
+    err_parity_g5_2_zero_feed: "stanok-err-parity-g5-2-zero-feed";
     err_parity_g_group_before_repeat: "stanok-err-parity-g-group-before-repeat";
     err_parity_m19_g33: "stanok-err-parity-m19-g33";
     err_parity_m61_negative: "stanok-err-parity-m61-negative";
@@ -372,6 +373,7 @@ own_tests! {
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
+    parity_g5_2_inverse_time: "stanok-parity-g5-2-inverse-time";
     parity_g53_tlo: "stanok-parity-g53-tlo";
     parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";
     parity_g93_rotary: "stanok-parity-g93-rotary";

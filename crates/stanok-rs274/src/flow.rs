@@ -120,6 +120,8 @@ struct LoopFrame {
     target: SourcePos,
     /// The line number of the loop's first line (`while`, `do`, `repeat`).
     line: u32,
+    /// Where that line starts (a pending continue sends a finished repeat loop back to it).
+    head: SourcePos,
     iterations: u64,
 }
 
@@ -433,6 +435,7 @@ impl Flow {
                                 kind: LoopKind::While,
                                 target: here,
                                 line: block.line,
+                                head: here,
                                 iterations: 1,
                             });
                         } else {
@@ -459,6 +462,7 @@ impl Flow {
                     kind: LoopKind::Do,
                     target: next,
                     line: block.line,
+                    head: here,
                     iterations: 1,
                 });
                 Ok(FlowAction::Handled)
@@ -474,6 +478,7 @@ impl Flow {
                         kind: LoopKind::Repeat(n.min(u64::MAX as f64) as u64),
                         target: next,
                         line: block.line,
+                        head: here,
                         iterations: 1,
                     });
                 }
@@ -571,7 +576,14 @@ impl Flow {
                     check_iterations(block, f, &mut self.total_iterations, opts)?;
                     Ok(FlowAction::Seek(f.target))
                 } else {
+                    let head = f.head;
                     self.loops.pop();
+                    if std::mem::take(&mut self.doing_continue) {
+                        // LinuxCNC goes back to the `repeat` line, finds the count spent, skips
+                        // to `endrepeat` — where the continue pending from a do-loop sends it
+                        // back again, to a count evaluated anew: the loop runs once more.
+                        return Ok(FlowAction::Seek(head));
+                    }
                     Ok(FlowAction::Handled)
                 }
             }

@@ -208,7 +208,11 @@ pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         return Err(cx.err("rs274::g76-plane", "G76 only allowed in XZ plane", span));
     }
     if !spindle_turning(cx) {
-        return Err(cx.err("rs274::g76-spindle", "Spindle not turning in G76", span));
+        return Err(cx.err(
+            "rs274::g76-spindle",
+            "Chosen spindle (0) not turning in G76",
+            span,
+        ));
     }
     for k in [0, 1, 3, 4, 5, 6, 7, 8] {
         if let Some(v) = cx.words.take(AXIS_WORDS[k]) {

@@ -348,6 +348,7 @@ own_tests! {
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
+    err_parity_g76_spindle: "stanok-err-parity-g76-spindle";
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
     err_parity_g5_zero_feed: "stanok-err-parity-g5-zero-feed";
@@ -370,6 +371,7 @@ own_tests! {
     parity_comp_reversal: "stanok-parity-comp-reversal";
     parity_css_inch: "stanok-parity-css-inch";
     parity_flow_break_continue: "stanok-parity-flow-break-continue";
+    parity_flow_continue_repeat: "stanok-parity-flow-continue-repeat";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
@@ -592,6 +594,23 @@ fn known_difference_m6_or_m61_after_an_offset_without_a_move_as_milltask() {
         assert!(err.is_none(), "{err:?}");
         assert_at(&cmds, [5.0, 3.0, 0.0], "milltask ends at X5 Y3 Z0");
     }
+}
+
+/// A G5 cubic (rs274 prints it as `NURBS_FEED`) and then `T1 M6` with no move between: the
+/// standalone rs274 resynchronises from its stub, which has not followed the spline, and the next
+/// `G0 X-3.661` goes to Y 0; milltask (lcnc-sim, 2026-11-27) ends at X −3.661, Y −7.457, Z 0. The
+/// shrunk program of seed 20261130, 557.
+#[test]
+fn known_difference_m6_after_a_g5_spline_without_a_move_as_milltask() {
+    let program =
+        "G21 G90 F1000\nG0 X0 Y0 Z0\nG5 I1.921 J3 P5.813 Q4.3 X6 Y-7.457\nT1 M6\nG0 X-3.661\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert_at(
+        &cmds,
+        [-3.661, -7.457, 0.0],
+        "milltask ends at X-3.661 Y-7.457 Z0",
+    );
 }
 
 /// G84 with the spindle counterclockwise: LinuxCNC's message, on the G84 block; rs274 has already

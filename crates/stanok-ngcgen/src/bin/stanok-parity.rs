@@ -307,10 +307,11 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
         // M6/M61 resynchronise rs274's position from its stub, which has not seen a tool length
         // offset applied since the last move; milltask (and Stanok) keep the program position.
         if offset_unmoved && (m6 || has("m61")) {
-            return Some("M6/M61 after a tool length offset change or a NURBS without a move");
+            return Some("M6/M61 after a tool length offset change or a spline without a move");
         }
-        // (A NURBS, G5.2 … G5.3, leaves the stub's position behind too.)
-        if l.contains("g43") || has("g49") || l.contains("g5.3") {
+        // (A spline — G5, G5.1, or a NURBS, G5.2 … G5.3 —, which rs274 prints as NURBS_FEED,
+        // leaves the stub's position behind too.)
+        if l.contains("g43") || has("g49") || l.contains("g5.3") || has("g5") || has("g5.1") {
             offset_unmoved = true;
         } else if l.contains(['x', 'y', 'z']) {
             offset_unmoved = false;

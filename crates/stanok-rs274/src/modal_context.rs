@@ -9,10 +9,11 @@
 //!
 //! Restoring changes, and announces, only what differs, in LinuxCNC's order: units; feed mode
 //! (which resets F, as a feed-mode change always does) — or else F; S; the spindle's sense; the
-//! plane; the G54…G59.3 system; path control; distance mode; coolant; and whether the G92/G52
+//! plane; the G54…G59.3 system; path control; distance mode; and whether the G92/G52
 //! offset is applied (#5210): if that differs, M72 does what G92.3 (re-apply #5211…#5219) or
 //! G92.2 (off, values kept) would — rs274 prints SET_G92_OFFSET for it, even when the values are
-//! the same; a changed offset that stays applied is not restored. Tool length offsets, the
+//! the same; a changed offset that stays applied is not restored. Coolant is restored by M7, M8
+//! and M9 as LinuxCNC's `gen_m_codes` issues them (see `restore_state`). Tool length offsets, the
 //! retract mode and the lathe diameter mode are not part of the context (LinuxCNC's choice).
 //!
 //! The contexts live in `Parameters` next to the local scopes of the calls, so they come and go
@@ -134,6 +135,26 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
     } else {
         None
     };
+    // Coolant as LinuxCNC restores it: its M-code slots (mist: M7 if on, else M9 unless flood is
+    // on; flood: M8 if on) are compared, each that differs is issued — unless the saved slot is
+    // empty — as the M code itself, so restoring mist off (M9) turns flood off too, and flood
+    // off is never restored by its own slot. The first M code of the restore (the spindle's,
+    // else the first coolant code) runs in the restoring block in its place after S; the others
+    // as blocks of their own after it.
+    let mist_slot = |mist: bool, flood: bool| match (mist, flood) {
+        (true, _) => Some(7),
+        (false, true) => None,
+        (false, false) => Some(9),
+    };
+    let mut coolant: Vec<u32> = Vec::with_capacity(2);
+    let saved_mist = mist_slot(saved.mist, saved.flood);
+    if saved_mist != mist_slot(cx.st.mist, cx.st.flood) {
+        coolant.extend(saved_mist);
+    }
+    if saved.flood && !cx.st.flood {
+        coolant.push(8);
+    }
+    let spindle_restored = now != saved.spindle;
     if now != saved.spindle {
         match saved.spindle {
             Some(direction) => {
@@ -149,6 +170,12 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
             }
         }
         cx.fe.modes.spindle_direction = saved.spindle;
+    }
+    let mut coolant = coolant.into_iter();
+    if !spindle_restored {
+        if let Some(code) = coolant.next() {
+            cx.coolant(code);
+        }
     }
     if cx.st.plane != saved.plane {
         cx.st.plane = saved.plane;
@@ -167,14 +194,6 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
         let old = std::mem::replace(&mut cx.st.distance, saved.distance);
         super::announce_distance(cx, "distance", old, saved.distance);
     }
-    if cx.st.mist != saved.mist {
-        cx.st.mist = saved.mist;
-        cx.out.push(Canon::Mist { on: saved.mist });
-    }
-    if cx.st.flood != saved.flood {
-        cx.st.flood = saved.flood;
-        cx.out.push(Canon::Flood { on: saved.flood });
-    }
     if (params.get(5210) != 0.0) != saved.g92_applied {
         let code = if saved.g92_applied {
             super::codes::G92_3
@@ -183,5 +202,8 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
         };
         // Neither can fail: G92.2 and G92.3 read no words.
         let _ = super::offsets::g92_family(cx, params, code, ColSpan::default());
+    }
+    for code in coolant {
+        cx.coolant(code);
     }
 }

@@ -385,6 +385,7 @@ own_tests! {
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";
     parity_m60: "stanok-parity-m60";
+    parity_m72_coolant: "stanok-parity-m72-coolant";
     parity_m72_g92: "stanok-parity-m72-g92";
     parity_modal_centre_words: "stanok-parity-modal-centre-words";
     parity_negative_words: "stanok-parity-negative-words";

@@ -96,44 +96,103 @@ pub(crate) const WORD_RULES: WordRules = WordRules {
     second_word: None,
 };
 
-/// LinuxCNC reads a block's words left to right and stops at the first one it cannot take: a
-/// second G code of a modal group before a repeated letter is the error, not the letter (Stanok's
-/// word table sees the repeated letter first). `e` is the table's error; only the repeated-letter
-/// error can have a G-group conflict before it (G words written as plain numbers).
-#[cold]
-fn first_reading_error(block: &Block, e: Diagnostic) -> Diagnostic {
-    use stanok_syntax::{Address, Value};
-    if e.code != stanok_canon::DiagCode::Stanok("rs274::multiple-words") {
-        return e;
+/// LinuxCNC's M-code modal groups (`Interp::ems`), −1: not an M code of 2.9 (index = code).
+const M_GROUPS: [i8; 100] = [
+    4, 4, 4, 7, 7, 7, 6, 8, 8, 8, // 0-9
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, 7, // 10-19
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, // 20-29
+    4, -1, -1, -1, -1, -1, -1, -1, -1, -1, // 30-39
+    -1, -1, -1, -1, -1, -1, -1, -1, 9, 9, // 40-49
+    9, 9, 9, 9, -1, -1, -1, -1, -1, -1, // 50-59
+    4, 6, 5, 5, 5, 5, 5, 5, 5, -1, // 60-69
+    7, 7, 7, 7, -1, -1, -1, -1, -1, -1, // 70-79
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, // 80-89
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, 4, // 90-99
+];
+
+/// The modal group LinuxCNC reads M code `m` into (M100–M199: 10), if it knows the code.
+fn m_group(m: f64) -> Option<i8> {
+    if m.fract() != 0.0 || !(0.0..200.0).contains(&m) {
+        return None;
     }
+    let m = m as usize;
+    let g = if m >= 100 { 10 } else { M_GROUPS[m] };
+    (g >= 0).then_some(g)
+}
+
+/// LinuxCNC reads a block's words left to right and stops at the first one it cannot take —
+/// a second G or M code of a modal group, a repeated letter, a value it cannot evaluate — before
+/// it executes anything. Stanok finds these in another order (the word table, then the G codes,
+/// then the M codes, then the block's meaning): `e` is the error Stanok found; this returns the
+/// first reading conflict in text order instead, if there is one before it. `at_word`: `e` was
+/// found reading the word at its span (an evaluation or word-table error), so only conflicts
+/// before that word count — and a repeated letter at it (LinuxCNC checks the letter before it
+/// evaluates the value); else any conflict in the block comes first.
+#[cold]
+fn first_reading_error(block: &Block, e: Diagnostic, at_word: bool) -> Diagnostic {
+    use stanok_syntax::{Address, Value};
     let mut letters = 0u32;
-    let mut groups = Vec::new();
+    let mut g_groups = Vec::new();
+    let mut m_groups = Vec::new();
     for w in &block.words {
         let Address::Letter(l) = w.address else {
             continue;
         };
-        match (l, w.value) {
+        let span = block.span_of(w.span);
+        let at_error = at_word && span.start >= e.span.start;
+        if at_word && span.start > e.span.start {
+            break;
+        }
+        let conflict = match (l, w.value) {
+            (b'G', _) | (b'M', _) if at_error => None,
             (b'G', Value::Number(v)) => {
-                let Some(group) = crate::group_of((v * 10.0).round() as u32) else {
-                    return e;
-                };
-                if groups.contains(&group) {
-                    return Diagnostic::error(
-                        "rs274::two-g-codes-same-group",
-                        "Two g codes used from same modal group",
-                        block.span_of(w.span),
-                    );
-                }
-                groups.push(group);
+                crate::group_of((v * 10.0).round() as u32).and_then(|group| {
+                    (g_groups.contains(&group))
+                        .then_some((
+                            "rs274::two-g-codes-same-group",
+                            "Two g codes used from same modal group".to_string(),
+                        ))
+                        .or_else(|| {
+                            g_groups.push(group);
+                            None
+                        })
+                })
             }
+            (b'M', Value::Number(v)) => m_group(v).and_then(|group| {
+                (m_groups.contains(&group))
+                    .then_some((
+                        "rs274::two-m-codes-same-group",
+                        "Two m codes used from same modal group".to_string(),
+                    ))
+                    .or_else(|| {
+                        m_groups.push(group);
+                        None
+                    })
+            }),
             (b'A'..=b'Z', _) if l != b'G' && l != b'M' => {
                 let bit = 1 << (l - b'A');
-                if letters & bit != 0 {
-                    return e;
-                }
+                let repeated = letters & bit != 0;
                 letters |= bit;
+                repeated.then(|| {
+                    (
+                        "rs274::multiple-words",
+                        format!(
+                            "Multiple {} words on one line",
+                            (l as char).to_ascii_lowercase()
+                        ),
+                    )
+                })
             }
-            _ => {}
+            _ => None,
+        };
+        if let Some((code, message)) = conflict {
+            if e.code == stanok_canon::DiagCode::Stanok(code) && e.span.start == span.start {
+                return e;
+            }
+            return Diagnostic::error(code, message, span);
+        }
+        if at_error {
+            break;
         }
     }
     e
@@ -419,19 +478,24 @@ impl FrontEnd for Rs274 {
                 .words
                 .fill(parts.block, &eval, &WORD_RULES, parts.warnings);
             if let Err(e) = filled {
-                return Err(first_reading_error(parts.block, e));
+                return Err(first_reading_error(parts.block, e, true));
             }
             // Assignments are evaluated with the old values and applied after the line.
             self.pending.clear();
             for a in &parts.block.assignments {
-                let v = eval.eval(a.value)?;
-                let slot = eval.assignment_slot(&a.target, a.value)?;
+                let v = eval
+                    .eval(a.value)
+                    .map_err(|e| first_reading_error(parts.block, e, true))?;
+                let slot = eval
+                    .assignment_slot(&a.target, a.value)
+                    .map_err(|e| first_reading_error(parts.block, e, true))?;
                 self.pending.push((slot, v));
             }
             self.comment(parts.block, &mut parts.out, &eval);
         }
+        let block = parts.block;
         let mut cx = parts.with(&mut self.part);
-        crate::execute(&mut cx, &mut self.params)
+        crate::execute(&mut cx, &mut self.params).map_err(|e| first_reading_error(block, e, false))
     }
 
     #[cold]

@@ -309,8 +309,11 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
             cx.words.m[4].1,
         ));
     }
+    // LinuxCNC's modal group 7 holds M3–M5, M19 and M70–M73: two of them on a line are refused.
+    let mut group7 = false;
     for &(code, span) in &cx.words.m {
         let taken = match code {
+            3..=5 | 19 | 70..=73 if std::mem::replace(&mut group7, true) => true,
             0 | 1 | 2 | 30 | 60 => {
                 let t = m.stop != NO_CODE;
                 m.stop = code;
@@ -328,19 +331,19 @@ pub(super) fn classify_m(cx: &Ctx<'_>) -> Result<MCodes, Diagnostic> {
             100..=199 if cx.fe.opts.user_m_codes => {
                 m.user[m.n_user] = code;
                 m.n_user += 1;
-                false
+                m.n_user > 1
             }
             19 => m.orient.replace(span).is_some() || m.spindle != NO_CODE,
             61 => m.set_tool.replace(span).is_some() || m.tool_change,
             62..=66 => {
                 m.io[m.n_io] = (code, span);
                 m.n_io += 1;
-                false
+                m.n_io > 1
             }
             48..=53 => {
                 m.overrides[m.n_overrides] = code;
                 m.n_overrides += 1;
-                false
+                m.n_overrides > 1
             }
             70..=73 => m.context.replace((code, span)).is_some(),
             67 | 68 => {

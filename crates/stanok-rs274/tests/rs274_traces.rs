@@ -358,6 +358,7 @@ own_tests! {
     err_parity_m61_negative: "stanok-err-parity-m61-negative";
     err_parity_n_not_first: "stanok-err-parity-n-not-first";
     err_parity_r0: "stanok-err-parity-r0";
+    err_parity_reading_order: "stanok-err-parity-reading-order";
     err_parity_spindle_number: "stanok-err-parity-spindle-number";
     err_parity_unknown_operation: "stanok-err-parity-unknown-operation";
     err_parity_g5_1: "stanok-err-parity-g5-1";
@@ -654,5 +655,42 @@ fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cyc
             moves, moves_before,
             "the rapids before the cycle and to its start"
         );
+    }
+}
+
+/// Two reading errors in one block: LinuxCNC reads the words left to right and reports the first
+/// it cannot take — a second G or M code of a modal group (M3–M5, M19 and M70–M73 are one), a
+/// repeated letter, a value it cannot evaluate — before anything of the block runs. The messages
+/// are rs274's (LinuxCNC 2.9) for each block.
+#[test]
+fn reading_errors_are_reported_in_text_order_as_linuxcnc() {
+    const M_GROUP: &str = "Two m codes used from same modal group";
+    const G_GROUP: &str = "Two g codes used from same modal group";
+    for (block, message) in [
+        ("M3 M4 X1 X2", M_GROUP),
+        ("X1 X2 M3 M4", "Multiple x words on one line"),
+        ("M3 X1 M4 X2", M_GROUP),
+        ("X1 G0 X2 G1", "Multiple x words on one line"),
+        ("M3 M4 G0 G1", M_GROUP),
+        ("G0 G1 M3 M4", G_GROUP),
+        ("M62 P1 M63 P2", M_GROUP),
+        ("X2 X[1/0]", "Multiple x words on one line"),
+        ("X[1/0] X2", "Attempt to divide by zero"),
+        ("M3 M4 X[1/0]", M_GROUP),
+        ("G0 G1 X[SQRT[-1]]", G_GROUP),
+        ("M3 M4 T1 T2", M_GROUP),
+        ("G80 X1 M3 M4", M_GROUP),
+        ("M3 M4 #1=[1/0]", M_GROUP),
+        ("#1=[1/0] M3 M4", "Attempt to divide by zero"),
+        ("M3 M70", M_GROUP),
+        ("M5 M73", M_GROUP),
+        ("M19 R1 M5", M_GROUP),
+        ("M48 M49", M_GROUP),
+    ] {
+        let program = format!("G21 F10\n{block}\nM2\n");
+        let (_, err) = run(&program, Dialect::Rs274ngc);
+        let err = err.unwrap_or_else(|| panic!("{block}: accepted"));
+        assert_eq!(err.message, message, "{block}");
+        assert_eq!(err.span.line, 2, "{block}");
     }
 }

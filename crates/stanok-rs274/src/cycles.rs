@@ -264,10 +264,12 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
         }
     }
 
-    // Set-up step 4: below R, rise (or sink) to it where the tool stands.
+    // Set-up step 4: below R, rise (or sink) to it where the tool stands. The level is read back
+    // through the work frame, so a tool left at R by the previous hole may read a few ulp below
+    // it (LinuxCNC keeps the program value): 10⁻⁹ mm is not below.
     let mut old_level = il;
     let mut current = pos[n];
-    if old_level < r {
+    if old_level < r - 1e-9 {
         let mut p = cx.programmed_position().to_array();
         p[n] = r;
         cx.straight(true, Pose::from_array(p), 0.0);
@@ -308,7 +310,8 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
             bb = rr * tt.sin();
         }
         traverse(cx, &f, aa, bb, travel);
-        if travel != r {
+        // (Read back through the work frame, a level at R may be off by a few ulp: step 4.)
+        if (travel - r).abs() > 1e-9 {
             traverse(cx, &f, aa, bb, r);
         }
         hole(cx, code, &f, aa, bb, &words, direction);

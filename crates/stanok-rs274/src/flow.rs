@@ -20,6 +20,8 @@ use stanok_interp_core::CoreOptions as InterpOptions;
 use stanok_syntax::{Block, OKind, OLabel, SourcePos};
 use std::collections::HashMap;
 
+mod skipping;
+
 /// What the driver does with the current line.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum FlowAction {
@@ -640,89 +642,6 @@ impl Flow {
         Ok(())
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn while_skipping(
-        &mut self,
-        skip: Skip,
-        block: &Block,
-        eval: &Evaluator<'_>,
-        kind: &OKind,
-        label: String,
-        next: SourcePos,
-        opts: &InterpOptions,
-    ) -> Result<FlowAction, Diagnostic> {
-        match skip {
-            Skip::Sub(l) => {
-                if l == label && matches!(kind, OKind::EndSub(_)) {
-                    self.skip = None;
-                }
-                Ok(FlowAction::Skip)
-            }
-            Skip::FindSub {
-                label: wanted,
-                args,
-                return_pos,
-                ..
-            } => {
-                if matches!(kind, OKind::Sub) {
-                    let key = self.sub_key(&label);
-                    self.subs.insert(key, next);
-                    if label == wanted {
-                        self.skip = None;
-                        self.enter(block, eval, Call::new(label, args, return_pos, false), opts)?;
-                        return Ok(FlowAction::Handled);
-                    }
-                }
-                Ok(FlowAction::Skip)
-            }
-            Skip::IfBranch(l) if l == label => match kind {
-                OKind::ElseIf(c) => {
-                    if eval.eval(*c)? != 0.0 {
-                        self.skip = None;
-                    }
-                    Ok(FlowAction::Handled)
-                }
-                OKind::Else => {
-                    self.skip = None;
-                    Ok(FlowAction::Handled)
-                }
-                OKind::EndIf => {
-                    self.skip = None;
-                    self.ifs.pop();
-                    Ok(FlowAction::Handled)
-                }
-                _ => Ok(FlowAction::Skip),
-            },
-            Skip::ToEndIf(l) if l == label && matches!(kind, OKind::EndIf) => {
-                self.skip = None;
-                self.ifs.pop();
-                Ok(FlowAction::Handled)
-            }
-            Skip::LoopEnd(l, frame)
-                if l == label
-                    && matches!(kind, OKind::EndWhile | OKind::EndRepeat | OKind::While(_)) =>
-            {
-                self.skip = None;
-                if matches!(kind, OKind::While(_)) {
-                    // A do-loop's end after its break.
-                    self.doing_break = false;
-                    return Ok(FlowAction::Handled);
-                }
-                if !std::mem::take(&mut self.doing_continue) {
-                    return Ok(FlowAction::Handled);
-                }
-                // A continue pending from a do-loop: LinuxCNC loops back to the start of the
-                // loop just left (after a false `while` or a count below 1 that start only
-                // leads here again).
-                match frame {
-                    Some(f) if f.kind == LoopKind::While => Ok(FlowAction::Seek(f.target)),
-                    _ => Ok(FlowAction::Handled),
-                }
-            }
-            _ => Ok(FlowAction::Skip),
-        }
-    }
-
     /// The error for a construct still open at end of file, if any.
     pub fn unterminated(&self, last: &Block) -> Option<Diagnostic> {
         let msg = match &self.skip {
@@ -815,44 +734,4 @@ fn check_iterations(
         ));
     }
     Ok(())
-}
-
-/// LinuxCNC `(DEBUG, …)`: `#n` and `#<name>` replaced by their values with six decimals.
-pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
-    let mut out = String::with_capacity(text.len());
-    let bytes = text.as_bytes();
-    let mut i = 0;
-    while i < bytes.len() {
-        if bytes[i] == b'#' {
-            if bytes.get(i + 1) == Some(&b'<') {
-                if let Some(end) = text[i + 2..].find('>') {
-                    let raw = &text[i + 2..i + 2 + end];
-                    let name = normalise_name(raw);
-                    let global = name.starts_with('_');
-                    let v = eval.params_named(&name, global);
-                    match v {
-                        Some(v) => out.push_str(&format!("{v:.6}")),
-                        None => out.push_str("######"),
-                    }
-                    i += end + 3;
-                    continue;
-                }
-            } else {
-                let digits = bytes[i + 1..]
-                    .iter()
-                    .take_while(|b| b.is_ascii_digit())
-                    .count();
-                if digits > 0 {
-                    let n: usize = text[i + 1..i + 1 + digits].parse().unwrap_or(0);
-                    out.push_str(&format!("{:.6}", eval.numbered(n)));
-                    i += 1 + digits;
-                    continue;
-                }
-            }
-        }
-        let ch = text[i..].chars().next().unwrap_or(' ');
-        out.push(ch);
-        i += ch.len_utf8();
-    }
-    out
 }

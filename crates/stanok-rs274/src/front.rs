@@ -362,7 +362,7 @@ impl Rs274 {
             // #5599 = 0 silences (DEBUG,…) (LinuxCNC; 1 at start).
             CommentKind::Debug if self.params.get(5599) == 0.0 => None,
             CommentKind::Debug => Some(Canon::Message {
-                text: flow::substitute_parameters(text, eval),
+                text: crate::subfiles::substitute_parameters(text, eval),
             }),
             // rs274 drops the blanks a comment starts with; LOG… comments are LinuxCNC's
             // program log, PRINT goes to its console (not a command).

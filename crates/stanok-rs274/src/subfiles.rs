@@ -7,6 +7,7 @@
 //! actions), the front end opens and closes, and while a file is open every line, position and
 //! seek refer to it. `Flow::set_source` keeps labels of different files apart.
 
+use crate::params::{normalise_name, Evaluator};
 use crate::{flow, params, Rs274};
 use stanok_canon::{Canon, Diagnostic, LogAction};
 use stanok_interp_core::{Core, OpenFile};
@@ -31,7 +32,7 @@ pub(crate) fn log_command(text: &str, eval: &params::Evaluator<'_>) -> Option<Op
         _ => return None,
     };
     let text = match action {
-        LogAction::Write => flow::substitute_parameters(rest, eval),
+        LogAction::Write => substitute_parameters(rest, eval),
         LogAction::Close => String::new(),
         _ => rest.to_string(),
     };
@@ -111,4 +112,44 @@ impl Rs274 {
         )
         .fatal()
     }
+}
+
+/// LinuxCNC `(DEBUG, …)`: `#n` and `#<name>` replaced by their values with six decimals.
+pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
+    let mut out = String::with_capacity(text.len());
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i] == b'#' {
+            if bytes.get(i + 1) == Some(&b'<') {
+                if let Some(end) = text[i + 2..].find('>') {
+                    let raw = &text[i + 2..i + 2 + end];
+                    let name = normalise_name(raw);
+                    let global = name.starts_with('_');
+                    let v = eval.params_named(&name, global);
+                    match v {
+                        Some(v) => out.push_str(&format!("{v:.6}")),
+                        None => out.push_str("######"),
+                    }
+                    i += end + 3;
+                    continue;
+                }
+            } else {
+                let digits = bytes[i + 1..]
+                    .iter()
+                    .take_while(|b| b.is_ascii_digit())
+                    .count();
+                if digits > 0 {
+                    let n: usize = text[i + 1..i + 1 + digits].parse().unwrap_or(0);
+                    out.push_str(&format!("{:.6}", eval.numbered(n)));
+                    i += 1 + digits;
+                    continue;
+                }
+            }
+        }
+        let ch = text[i..].chars().next().unwrap_or(' ');
+        out.push(ch);
+        i += ch.len_utf8();
+    }
+    out
 }

@@ -374,6 +374,7 @@ own_tests! {
     parity_flow_break_continue: "stanok-parity-flow-break-continue";
     parity_flow_continue_repeat: "stanok-parity-flow-continue-repeat";
     parity_cycle_after_g61_1: "stanok-parity-cycle-after-g61-1";
+    parity_cycle_at_r_offset: "stanok-parity-cycle-at-r-offset";
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
     parity_g5_2_inverse_time: "stanok-parity-g5-2-inverse-time";

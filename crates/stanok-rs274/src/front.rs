@@ -81,13 +81,17 @@ impl Hooks for Rs274Part {
     }
 
     fn axis_not_configured_message(&self, letter: u8) -> String {
-        // LinuxCNC's wording: its reader does not know the letter.
-        format!(
-            "Bad character '{}' used ({} axis is not configured on this machine)",
-            (letter as char).to_ascii_lowercase(),
-            letter as char
-        )
+        bad_axis_message(letter)
     }
+}
+
+/// LinuxCNC's wording for an axis the machine lacks: its reader does not know the letter.
+fn bad_axis_message(letter: u8) -> String {
+    format!(
+        "Bad character '{}' used ({} axis is not configured on this machine)",
+        (letter as char).to_ascii_lowercase(),
+        letter as char
+    )
 }
 
 /// How RS274/NGC sorts words: a repeated letter is an error.
@@ -129,7 +133,12 @@ fn m_group(m: f64) -> Option<i8> {
 /// before that word count — and a repeated letter at it (LinuxCNC checks the letter before it
 /// evaluates the value); else any conflict in the block comes first.
 #[cold]
-fn first_reading_error(block: &Block, e: Diagnostic, at_word: bool) -> Diagnostic {
+fn first_reading_error(
+    block: &Block,
+    axes: &[bool; 9],
+    e: Diagnostic,
+    at_word: bool,
+) -> Diagnostic {
     use stanok_syntax::{Address, Value};
     let mut letters = 0u32;
     let mut g_groups = Vec::new();
@@ -143,7 +152,14 @@ fn first_reading_error(block: &Block, e: Diagnostic, at_word: bool) -> Diagnosti
         if at_word && span.start > e.span.start {
             break;
         }
+        let axis = stanok_interp_core::ctx::AXIS_WORDS
+            .iter()
+            .position(|&a| a == l);
         let conflict = match (l, w.value) {
+            // An axis the machine lacks: LinuxCNC's reader stops at the letter.
+            _ if axis.is_some_and(|i| !axes[i]) => {
+                Some(("interp::axis-not-configured", bad_axis_message(l)))
+            }
             (b'G', _) | (b'M', _) if at_error => None,
             (b'G', Value::Number(v)) => {
                 crate::group_of((v * 10.0).round() as u32).and_then(|group| {
@@ -478,24 +494,25 @@ impl FrontEnd for Rs274 {
                 .words
                 .fill(parts.block, &eval, &WORD_RULES, parts.warnings);
             if let Err(e) = filled {
-                return Err(first_reading_error(parts.block, e, true));
+                return Err(first_reading_error(parts.block, &parts.opts.axes, e, true));
             }
             // Assignments are evaluated with the old values and applied after the line.
             self.pending.clear();
             for a in &parts.block.assignments {
                 let v = eval
                     .eval(a.value)
-                    .map_err(|e| first_reading_error(parts.block, e, true))?;
+                    .map_err(|e| first_reading_error(parts.block, &parts.opts.axes, e, true))?;
                 let slot = eval
                     .assignment_slot(&a.target, a.value)
-                    .map_err(|e| first_reading_error(parts.block, e, true))?;
+                    .map_err(|e| first_reading_error(parts.block, &parts.opts.axes, e, true))?;
                 self.pending.push((slot, v));
             }
             self.comment(parts.block, &mut parts.out, &eval);
         }
-        let block = parts.block;
+        let (block, axes) = (parts.block, &parts.opts.axes);
         let mut cx = parts.with(&mut self.part);
-        crate::execute(&mut cx, &mut self.params).map_err(|e| first_reading_error(block, e, false))
+        crate::execute(&mut cx, &mut self.params)
+            .map_err(|e| first_reading_error(block, axes, e, false))
     }
 
     #[cold]

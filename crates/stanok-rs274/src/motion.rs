@@ -320,6 +320,21 @@ fn arc_block(
     };
     let has_ijk = cx.words.any(&offset_letters);
     let r_word = cx.words.take(b'R');
+    // A G7x profile's arcs are read by LinuxCNC's lathe-cycle reader, with its own words.
+    if cx.fe.modes.in_profile && r_word.is_none() && !has_ijk {
+        return Err(cx.err(
+            "rs274::g7x-arc-centre",
+            "G7X error: either I or K must be present for arc",
+            span,
+        ));
+    }
+    if cx.fe.modes.in_profile && r_word.is_some() && has_ijk {
+        return Err(cx.err(
+            "rs274::g7x-arc-centre",
+            "G7X error: both R and I or K flag used for arc",
+            span,
+        ));
+    }
     if r_word.is_none() && !has_ijk {
         return Err(cx.err(
             "rs274::arc-r-ijk-missing",

@@ -348,6 +348,7 @@ own_tests! {
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
+    err_parity_g7x_arc_centre: "stanok-err-parity-g7x-arc-centre";
     err_parity_g76_spindle: "stanok-err-parity-g76-spindle";
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";
@@ -694,4 +695,21 @@ fn reading_errors_are_reported_in_text_order_as_linuxcnc() {
         assert_eq!(err.message, message, "{block}");
         assert_eq!(err.span.line, 2, "{block}");
     }
+}
+
+/// An axis the machine lacks stops LinuxCNC's reader at its letter, before any later error of the
+/// block: on rs274's XYZABC machine `w100 f-2000` is "Bad character 'w' used", not the negative F
+/// (mutant 78 of seed 11, the second style).
+#[test]
+fn an_axis_the_machine_lacks_is_the_first_error_of_its_block() {
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.axes = [true, true, true, true, true, true, false, false, false];
+    let (_, err) = run_with("G21\nG0 X1\nw100 f-2000\nM2\n", opts);
+    let err = err.expect("refused");
+    assert!(
+        err.message.starts_with("Bad character 'w' used"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.span.line, 3);
 }

@@ -562,14 +562,22 @@ fn hole(
         G73 | G83 => {
             let q = w.q.unwrap_or(f.r - f.bottom);
             let up = peck_clearance(cx);
-            let mut depth = f.r - q;
-            while depth > f.bottom {
+            // LinuxCNC steps the depth in program units, R − Q, R − 2Q, … while above the bottom:
+            // where R − nQ is the bottom in decimal its rounding decides whether one more peck
+            // comes, so the levels are stepped here as it does, from the values as written (mm
+            // values read back to program units on a 10⁻⁹ grid).
+            let k = cx.st.units.mm_per_unit();
+            let written = |mm: f64| (mm / k * 1e9).round() / 1e9;
+            let (r_u, q_u, bottom_u) = (written(f.r), written(q), written(f.bottom));
+            let mut depth_u = r_u - q_u;
+            while depth_u > bottom_u {
+                let depth = depth_u * k;
                 feed(cx, f, aa, bb, depth);
                 if code == G83 {
                     traverse(cx, f, aa, bb, f.r);
                 }
                 traverse(cx, f, aa, bb, depth + up);
-                depth -= q;
+                depth_u -= q_u;
             }
             feed(cx, f, aa, bb, f.bottom);
             traverse(cx, f, aa, bb, f.clear);

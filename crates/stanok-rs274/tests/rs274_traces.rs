@@ -380,6 +380,7 @@ own_tests! {
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
     parity_g5_2_inverse_time: "stanok-parity-g5-2-inverse-time";
     parity_g53_tlo: "stanok-parity-g53-tlo";
+    parity_g73_peck_rounding: "stanok-parity-g73-peck-rounding";
     parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";
     parity_g93_rotary: "stanok-parity-g93-rotary";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";

@@ -257,7 +257,7 @@ pub(super) fn comp_on(
         return Err(err(
             cx,
             "rs274::comp-plane",
-            "Cannot turn cutter radius comp on out of XY or XZ plane",
+            "Cutter radius compensation allowed only in XY, XZ planes",
             span,
         ));
     }

@@ -387,7 +387,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     let f_word = cx.words.take(b'F');
     if let Some(f) = f_word {
         if f.v < 0.0 {
-            return Err(cx.err("rs274::negative-f", "Negative F word found", f.span));
+            return Err(cx.err("rs274::negative-f", "Negative f word used", f.span));
         }
         let feed = cx.mm(f.v);
         cx.fe.modes.feed_units = Some(cx.st.units);

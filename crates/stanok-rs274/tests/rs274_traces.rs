@@ -346,6 +346,7 @@ macro_rules! own_tests {
 own_tests! {
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_comp_plane: "stanok-err-parity-comp-plane";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
     err_parity_g7x_arc_centre: "stanok-err-parity-g7x-arc-centre";
@@ -364,6 +365,7 @@ own_tests! {
     err_parity_unknown_operation: "stanok-err-parity-unknown-operation";
     err_parity_g5_1: "stanok-err-parity-g5-1";
     err_parity_mod_zero: "stanok-err-parity-mod-zero";
+    err_parity_negative_f: "stanok-err-parity-negative-f";
     err_parity_nested_comment: "stanok-err-parity-nested-comment";
     err_parity_pow: "stanok-err-parity-pow";
     err_parity_unclosed_comment: "stanok-err-parity-unclosed-comment";

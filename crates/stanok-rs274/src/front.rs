@@ -140,6 +140,11 @@ fn first_reading_error(
     at_word: bool,
 ) -> Diagnostic {
     use stanok_syntax::{Address, Value};
+    // The reader's own errors (a line it could not read whole, a bound) come first.
+    let code = e.code.to_string();
+    if code.starts_with("syntax::") || code.starts_with("flow::") {
+        return e;
+    }
     let mut letters = 0u32;
     let mut g_groups = Vec::new();
     let mut m_groups = Vec::new();

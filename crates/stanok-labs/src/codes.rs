@@ -146,6 +146,7 @@ pub mod nc31 {
 pub mod iso {
     use stanok_canon::Plane;
     use stanok_interp_core::code_table;
+    use stanok_interp_core::state::MotionMode;
 
     /// The modal groups (§4.4); two codes of one group in a block are `lab::g-group`.
     #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -191,7 +192,7 @@ pub mod iso {
     #[derive(Debug, Clone, Copy, PartialEq, Eq)]
     pub enum Handler {
         /// The motion mode 0…3.
-        SetMotion(u8),
+        SetMotion(MotionMode),
         /// The plane.
         SetPlane(Plane),
         /// Incremental (true) or absolute.
@@ -224,13 +225,13 @@ pub mod iso {
         /// Every G code of the word-address lab controls.
         pub G_CODES, pub fn g_code -> Code<Group, Handler>;
         /// Rapid (2P32: also a bare `G`).
-        G0 = 0, "G0", Motion, SetMotion(0);
+        G0 = 0, "G0", Motion, SetMotion(MotionMode::Rapid);
         /// Straight feed.
-        G1 = 10, "G1", Motion, SetMotion(1);
+        G1 = 10, "G1", Motion, SetMotion(MotionMode::Linear);
         /// Clockwise arc.
-        G2 = 20, "G2", Motion, SetMotion(2);
+        G2 = 20, "G2", Motion, SetMotion(MotionMode::ArcCw);
         /// Counter-clockwise arc.
-        G3 = 30, "G3", Motion, SetMotion(3);
+        G3 = 30, "G3", Motion, SetMotion(MotionMode::ArcCcw);
         /// Dwell.
         G4 = 40, "G4", OneShot, Dwell;
         /// Exact stop, this block.

@@ -25,6 +25,7 @@ use super::{Emit, LabState, Program, MAX_JUMPS};
 use crate::codes::{self, iso as iso_codes, iso::Handler, iso::MHandler};
 use crate::LabOptions;
 use stanok_canon::{AuxTiming, Canon, Diagnostic, PathMode, Plane, Span, Spanned};
+use stanok_interp_core::state::MotionMode;
 use stanok_syntax::labs::words::{parse_line, Item, LabBlock, Profile, Word};
 use stanok_syntax::Dialect;
 
@@ -237,7 +238,7 @@ pub(super) struct Exec<'a> {
 /// The G codes of a block, by group.
 #[derive(Default)]
 pub(super) struct Gs {
-    pub(super) motion: Option<u8>,
+    pub(super) motion: Option<MotionMode>,
     pub(super) plane: Option<Plane>,
     pub(super) incremental: Option<bool>,
     pub(super) work: Option<u8>,

@@ -83,9 +83,9 @@ pub struct BaltState {
     pub local: Option<[f64; 3]>,
     /// Tool length of the active corrector, mm.
     pub length: f64,
-    /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (balt_arc.rs).
+    /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (arc.rs).
     pub plane_reversed: bool,
-    /// G06 (spline nodes, balt_spline.rs) until G00–G03.
+    /// G06 (spline nodes, spline.rs) until G00–G03.
     pub spline: bool,
 }
 

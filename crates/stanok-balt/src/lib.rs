@@ -203,7 +203,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(cx.err(
                     "interp::unsupported",
                     format!(
-                        "({} …) is not supported (CVU splines are not built)",
+                        "({} …) is not supported by the Balt-System front end",
                         clipped(&name, 32)
                     ),
                     c.text,

@@ -1,12 +1,15 @@
-//! Balt-System's G codes (spec cvu-five-axis §3, the words table and §3.3.1): one table — the
-//! value × 10, the name, the modal group and what executes it. `execute` (lib.rs) looks every G
-//! word of a block up in [`g_code`] and runs its handler in written order; a code the table lacks
-//! is not supported. Everywhere else a code is named by its constant (`G06`), never by its number.
+//! Balt-System's G and M codes (spec cvu-five-axis §3, the words table and §3.3.1): one table
+//! each — the value (G: × 10; M: the number, M codes have no decimals), the name, the group and
+//! what executes it. `execute` (lib.rs) looks every G word of a block up in [`g_code`] and runs
+//! its handler in written order, and every M word up in [`m_code`] and runs its handler in its
+//! phase (before the block's motion or after it); a code a table lacks is not supported.
+//! Everywhere else a code is named by its constant (`G06`, `M6`), never by its number.
 //!
 //! The codes the manual prohibits under CVU=1 (§3.3.1) are rows too (`Handler::ProhibitedInCvu`):
 //! the front end recognises them — under CVU they are `balt::prohibited-in-cvu`, outside it they
 //! are not supported, like any code it does not build.
 
+use stanok_canon::SpindleDirection;
 use stanok_interp_core::code_table;
 use stanok_interp_core::state::{DistanceMode, MotionMode};
 
@@ -104,6 +107,79 @@ code_table! {
     G89 = 890, "G89", Cycle, ProhibitedInCvu;
 }
 
+/// The groups of the M functions the front end executes. The manual uses M3, M6 and M30 in its
+/// programs without defining them (spec §3: "used but not defined"); the others are the usual
+/// meanings of the control family.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MGroup {
+    /// M0, M1, M2, M30: program stop and end.
+    Stop,
+    /// M3–M5: the spindle.
+    Spindle,
+    /// M6: tool change.
+    ToolChange,
+}
+
+/// When an M function acts within its block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// Before the block's motion (spindle, tool).
+    BeforeMotion,
+    /// After it (stop, end).
+    AfterMotion,
+}
+
+/// What executes an M function.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MHandler {
+    /// M3/M4: start the spindle.
+    StartSpindle(SpindleDirection),
+    /// M5: stop the spindle.
+    StopSpindle,
+    /// M6: change to tool t with corrector c of the block's `T t.c` (required).
+    ToolChange,
+    /// M0 (false) / M1 (true, optional): program stop.
+    Stop {
+        /// M1.
+        optional: bool,
+    },
+    /// M2/M30: program end.
+    End,
+}
+
+impl MHandler {
+    /// Before or after the block's motion.
+    pub const fn phase(self) -> Phase {
+        match self {
+            MHandler::StartSpindle(_) | MHandler::StopSpindle | MHandler::ToolChange => {
+                Phase::BeforeMotion
+            }
+            MHandler::Stop { .. } | MHandler::End => Phase::AfterMotion,
+        }
+    }
+}
+
+code_table! {
+    /// Every M function the Balt-System front end executes (the value is the M number).
+    pub M_CODES, pub fn m_code -> Code<MGroup, MHandler>;
+    /// Program stop.
+    M0 = 0, "M0", MGroup::Stop, MHandler::Stop { optional: false };
+    /// Optional stop.
+    M1 = 1, "M1", MGroup::Stop, MHandler::Stop { optional: true };
+    /// Program end.
+    M2 = 2, "M2", MGroup::Stop, MHandler::End;
+    /// Spindle clockwise.
+    M3 = 3, "M3", MGroup::Spindle, MHandler::StartSpindle(SpindleDirection::Clockwise);
+    /// Spindle counter-clockwise.
+    M4 = 4, "M4", MGroup::Spindle, MHandler::StartSpindle(SpindleDirection::CounterClockwise);
+    /// Spindle stop.
+    M5 = 5, "M5", MGroup::Spindle, MHandler::StopSpindle;
+    /// Tool change (`T t.c M6`, in either order).
+    M6 = 6, "M6", MGroup::ToolChange, MHandler::ToolChange;
+    /// Program end.
+    M30 = 30, "M30", MGroup::Stop, MHandler::End;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -125,6 +201,27 @@ mod tests {
         assert_eq!(g_code(G06).map(|c| c.handler), Some(SplineNodes));
         for absent in [40, 50, 70, 170, 800, 870, 880, 921] {
             assert_eq!(g_code(absent), None, "{absent}");
+        }
+    }
+
+    #[test]
+    fn every_m_code_once_named_as_written_with_its_phase() {
+        let mut seen = std::collections::HashSet::new();
+        for c in M_CODES {
+            assert!(seen.insert(c.code), "{} twice", c.name);
+            assert_eq!(c.name, format!("M{}", c.code));
+            assert_eq!(m_code(c.code), Some(*c));
+            let before = matches!(c.group, MGroup::Spindle | MGroup::ToolChange);
+            assert_eq!(
+                c.handler.phase() == Phase::BeforeMotion,
+                before,
+                "{}",
+                c.name
+            );
+        }
+        assert_eq!(m_code(M6).map(|c| c.handler), Some(MHandler::ToolChange));
+        for absent in [7, 8, 9, 19, 99, 300] {
+            assert_eq!(m_code(absent), None, "M{absent}");
         }
     }
 }

@@ -30,7 +30,8 @@
 //!   `(LCS,0)` cancels the frame. Decision (the spec proposes otherwise): the frame maps X Y Z
 //!   only while CVU=3 is on; under CVU=0 the words are the machine's linear axes.
 //!
-//! * The G codes, their groups and handlers: codes.rs (`code_table!`).
+//! * The G and M codes, their groups and handlers (an M code's with its phase: before or after
+//!   the block's motion): codes.rs (`code_table!`).
 //!
 //! * G02/G03 with R in the `(DPI,…)` plane: arc.rs.
 //!
@@ -56,10 +57,11 @@ use stanok_interp_core::state;
 pub use front::{Balt, BaltPart};
 pub use spline::SplineBuffer;
 
-use crate::codes::Handler;
+use crate::codes::{Handler, MHandler, Phase};
 use crate::ctx::Ctx;
 use crate::state::{DistanceMode, MotionMode};
 use stanok_canon::{Canon, Diagnostic, Pose};
+use stanok_interp_core::words::Val;
 use stanok_interp_core::Outcome;
 use stanok_kin::{FiveAxis, Kinematics};
 use stanok_syntax::{ColSpan, CommentKind, Keyword};
@@ -81,9 +83,9 @@ pub struct BaltState {
     pub local: Option<[f64; 3]>,
     /// Tool length of the active corrector, mm.
     pub length: f64,
-    /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (balt_arc.rs).
+    /// `(DPI,…)` names the plane's axes in the reverse of Canon's order (arc.rs).
     pub plane_reversed: bool,
-    /// G06 (spline nodes, balt_spline.rs) until G00–G03.
+    /// G06 (spline nodes, spline.rs) until G00–G03.
     pub spline: bool,
 }
 
@@ -201,7 +203,7 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
                 return Err(cx.err(
                     "interp::unsupported",
                     format!(
-                        "({} …) is not supported (CVU splines are not built)",
+                        "({} …) is not supported by the Balt-System front end",
                         clipped(&name, 32)
                     ),
                     c.text,
@@ -272,51 +274,24 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
             rpm: s.v,
         });
     }
+    // M codes through the table (codes.rs), in written order: a code the table lacks is refused
+    // where it stands, the spindle and tool rows run before the motion, stop and end after it.
     // T t.c: tool t, corrector c (AMB-6: the corrector is the tool table entry of the length).
     let tool = cx.words.take(b'T');
     let ms = cx.words.m.clone();
+    let mut rows = Vec::with_capacity(ms.len());
     for &(m, span) in &ms {
-        match m {
-            6 => {
-                let Some(t) = tool else {
-                    return Err(cx.err("balt::m6-without-t", "M6 needs T<tool>.<corrector>", span));
-                };
-                let number = t.v.trunc() as u32;
-                let corrector = ((t.v.fract() * 10.0).round()) as u32;
-                cx.out.push(Canon::ChangeTool {
-                    tool: number,
-                    slot: number,
-                });
-                cx.st.current_tool = number;
-                cx.fe.modes.length = cx
-                    .opts
-                    .control
-                    .tools
-                    .get(corrector)
-                    .and_then(|t| t.edges.first())
-                    .map_or(0.0, |e| e.length[0] + e.length_wear[0]);
-                if !cx.fe.modes.cvu {
-                    set_length_offset(cx, cx.fe.modes.length);
-                }
-            }
-            3 | 4 => cx.out.push(Canon::StartSpindle {
-                spindle: 0,
-                direction: if m == 3 {
-                    stanok_canon::SpindleDirection::Clockwise
-                } else {
-                    stanok_canon::SpindleDirection::CounterClockwise
-                },
-            }),
-            5 => cx.out.push(Canon::StopSpindle { spindle: 0 }),
-            0 | 1 | 2 | 30 => {}
-            _ => {
-                return Err(cx.err(
-                    "interp::unsupported",
-                    format!("M{m} is not supported by the Balt-System front end"),
-                    span,
-                ))
-            }
+        let Some(row) = codes::m_code(m) else {
+            return Err(cx.err(
+                "interp::unsupported",
+                format!("M{m} is not supported by the Balt-System front end"),
+                span,
+            ));
+        };
+        if row.handler.phase() == Phase::BeforeMotion {
+            m_function(cx, row.handler, tool, span)?;
         }
+        rows.push((row.handler, span));
     }
     if let Some((v, span)) = cvu_word {
         switch(cx, v, span)?;
@@ -324,18 +299,57 @@ pub(crate) fn execute(cx: &mut Ctx<'_>) -> Result<Outcome, Diagnostic> {
         motion(cx)?;
     }
     let mut outcome = Outcome::Continue;
-    for &(m, _) in &ms {
-        match m {
-            0 | 1 => cx.out.push(Canon::ProgramStop { optional: m == 1 }),
-            2 | 30 => {
-                cx.out.push(Canon::ProgramEnd);
-                outcome = Outcome::End;
-            }
-            _ => {}
+    for &(handler, span) in &rows {
+        if handler.phase() == Phase::AfterMotion && m_function(cx, handler, tool, span)? {
+            outcome = Outcome::End;
         }
     }
     cx.check_all_used()?;
     Ok(outcome)
+}
+
+/// Runs one M function's row (codes.rs); true when it ends the program.
+fn m_function(
+    cx: &mut Ctx<'_>,
+    handler: MHandler,
+    tool: Option<Val>,
+    span: ColSpan,
+) -> Result<bool, Diagnostic> {
+    match handler {
+        MHandler::ToolChange => {
+            let Some(t) = tool else {
+                return Err(cx.err("balt::m6-without-t", "M6 needs T<tool>.<corrector>", span));
+            };
+            let number = t.v.trunc() as u32;
+            let corrector = ((t.v.fract() * 10.0).round()) as u32;
+            cx.out.push(Canon::ChangeTool {
+                tool: number,
+                slot: number,
+            });
+            cx.st.current_tool = number;
+            cx.fe.modes.length = cx
+                .opts
+                .control
+                .tools
+                .get(corrector)
+                .and_then(|t| t.edges.first())
+                .map_or(0.0, |e| e.length[0] + e.length_wear[0]);
+            if !cx.fe.modes.cvu {
+                set_length_offset(cx, cx.fe.modes.length);
+            }
+        }
+        MHandler::StartSpindle(direction) => cx.out.push(Canon::StartSpindle {
+            spindle: 0,
+            direction,
+        }),
+        MHandler::StopSpindle => cx.out.push(Canon::StopSpindle { spindle: 0 }),
+        MHandler::Stop { optional } => cx.out.push(Canon::ProgramStop { optional }),
+        MHandler::End => {
+            cx.out.push(Canon::ProgramEnd);
+            return Ok(true);
+        }
+    }
+    Ok(false)
 }
 
 /// 3-axis tool length compensation along Z (§5.1): with the rotary axes at 0 the tip is the gauge

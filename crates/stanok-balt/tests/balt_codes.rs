@@ -1,9 +1,10 @@
-//! The Balt-System code table (`stanok_balt::codes`) and the front end agree: every G code the
+//! The Balt-System code tables (`stanok_balt::codes`) and the front end agree: every G code the
 //! front end accepts is a row, every row is recognised, the prohibited rows (spec §3.3.1) are
 //! refused under CVU=1 as prohibited and outside it as unsupported, and `g_code` finds exactly
-//! the rows.
+//! the rows; every M code the front end accepts is a row of the M table, every row is accepted,
+//! runs in its phase (before or after the block's motion) and does what its handler says.
 
-use stanok_balt::codes::{g_code, Handler, G_CODES};
+use stanok_balt::codes::{g_code, m_code, Handler, MHandler, Phase, G_CODES, M_CODES};
 use stanok_canon::{Canon, Diagnostic};
 use stanok_interp::{InterpOptions, Interpreter};
 use stanok_syntax::Dialect;
@@ -114,4 +115,63 @@ fn each_handler_does_what_its_row_says() {
     // G06 outside a (BSP …) definition: a spline node, which needs the definition.
     let (_, err) = run("F100\nG06 X10 Y5\nM30\n");
     assert!(err.is_some(), "a G06 node without (BSP …) is refused");
+}
+
+#[test]
+fn m_code_finds_exactly_the_rows_and_the_front_end_accepts_exactly_them() {
+    for m in 0..200u32 {
+        let row = M_CODES.iter().find(|c| c.code == m).copied();
+        assert_eq!(m_code(m), row, "M{m}");
+        // `T` beside every code: M6 needs it, the others leave it used (it is read first).
+        let (_, err) = run(&format!("T1.1 M{m}\nM30\n"));
+        let unsupported = err
+            .as_ref()
+            .is_some_and(|d| d.code.to_string() == "interp::unsupported");
+        assert_eq!(!unsupported, row.is_some(), "M{m}: {err:?}");
+        if row.is_some() {
+            assert!(err.is_none(), "M{m}: {err:?}");
+        }
+    }
+}
+
+#[test]
+fn each_m_row_runs_in_its_phase_and_does_what_it_says() {
+    for row in M_CODES {
+        let (cmds, err) = run(&format!("F100\nT1.1 G01 X10 {}\nX20\nM30\n", row.name));
+        assert!(err.is_none(), "{}: {err:?}", row.name);
+        let first_move = cmds
+            .iter()
+            .position(|c| matches!(c, Canon::StraightFeed(_)))
+            .expect("the block's move");
+        let effect = cmds.iter().position(|c| match (row.handler, c) {
+            (MHandler::StartSpindle(d), Canon::StartSpindle { direction, .. }) => *direction == d,
+            (MHandler::StopSpindle, Canon::StopSpindle { .. }) => true,
+            (MHandler::ToolChange, Canon::ChangeTool { tool, .. }) => *tool == 1,
+            (MHandler::Stop { optional }, Canon::ProgramStop { optional: o }) => *o == optional,
+            (MHandler::End, Canon::ProgramEnd) => true,
+            _ => false,
+        });
+        let effect = effect.unwrap_or_else(|| panic!("{}: no effect in {cmds:?}", row.name));
+        match row.handler.phase() {
+            Phase::BeforeMotion => assert!(effect < first_move, "{}", row.name),
+            Phase::AfterMotion => assert!(effect > first_move, "{}", row.name),
+        }
+        // M2/M30 end the run at their block: the next block's move never runs.
+        let moves = cmds
+            .iter()
+            .filter(|c| matches!(c, Canon::StraightFeed(_)))
+            .count();
+        assert_eq!(
+            moves,
+            if row.handler == MHandler::End { 1 } else { 2 },
+            "{}",
+            row.name
+        );
+    }
+    // M6 without T is refused, as before the table.
+    let (_, err) = run("M6\nM30\n");
+    assert_eq!(
+        err.map(|d| d.code.to_string()).as_deref(),
+        Some("balt::m6-without-t")
+    );
 }

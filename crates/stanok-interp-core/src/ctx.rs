@@ -14,7 +14,7 @@
 use crate::arc::PlanarArc;
 use crate::options::CoreOptions;
 use crate::state::{DistanceMode, ModalState};
-use crate::words::{Val, Words};
+use crate::words::{letter_bit, Val, Words};
 use stanok_canon::{ArcMove, Canon, Diagnostic, FeedMode, LineMove, Plane, Pose, Span, Spanned};
 use stanok_syntax::{Block, ColSpan};
 use std::collections::VecDeque;
@@ -84,6 +84,28 @@ impl<'a> Emitter<'a> {
 
 /// Letters of the nine axes, in `Pose` order.
 pub const AXIS_WORDS: [u8; 9] = [b'X', b'Y', b'Z', b'A', b'B', b'C', b'U', b'V', b'W'];
+
+/// Each axis word's bit in `Words::written`, and all of them.
+const AXIS_BITS: [u32; 9] = {
+    let mut bits = [0; 9];
+    let mut i = 0;
+    while i < 9 {
+        bits[i] = letter_bit(AXIS_WORDS[i]);
+        i += 1;
+    }
+    bits
+};
+const AXIS_BITS_ALL: u32 = {
+    let mut all = 0;
+    let mut i = 0;
+    while i < 9 {
+        all |= AXIS_BITS[i];
+        i += 1;
+    }
+    all
+};
+/// LinuxCNC's polar words `@` and `^`.
+const POLAR_BITS: u32 = letter_bit(b'@') | letter_bit(b'^');
 
 /// True for the linear axes (converted by the length unit).
 pub fn is_linear(axis: usize) -> bool {
@@ -214,9 +236,10 @@ impl<X: Hooks> Ctx<'_, X> {
         let mut given = [false; 9];
         // LinuxCNC polar words: `@` radius, `^` angle (degrees) about the origin of the XY
         // plane; under G91 they add to the current point's own radius and angle.
-        let radius = self.words.take(b'@');
-        let angle = self.words.take(b'^');
-        if radius.is_some() || angle.is_some() {
+        let written = self.words.written();
+        if written & POLAR_BITS != 0 {
+            let radius = self.words.take(b'@');
+            let angle = self.words.take(b'^');
             if let Some(w) = self.words.take(b'X').or_else(|| self.words.take(b'Y')) {
                 return Err(self.err(
                     "rs274::polar-and-xy",
@@ -236,7 +259,14 @@ impl<X: Hooks> Ctx<'_, X> {
             given[0] = true;
             given[1] = true;
         }
+        // In axis order (the first unconfigured axis is the one reported), stopping after the
+        // last written one: a block writes two or three of the nine.
+        let mut left = written & AXIS_BITS_ALL;
         for (i, &l) in AXIS_WORDS.iter().enumerate() {
+            if left == 0 {
+                break;
+            }
+            left &= !AXIS_BITS[i];
             let Some(val) = self.words.take(l) else {
                 continue;
             };
@@ -404,7 +434,18 @@ impl<X: Hooks> Ctx<'_, X> {
     }
 
     /// Reports the first word nothing consumed (LinuxCNC: "… word with no G code that uses it").
+    /// Inlined test, out-of-line report: every block of every dialect ends here.
+    #[inline(always)]
     pub fn check_all_used(&self) -> Result<(), Diagnostic> {
+        if self.words.all_used() {
+            return Ok(());
+        }
+        self.report_unused()
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn report_unused(&self) -> Result<(), Diagnostic> {
         if let Some((l, v)) = self.words.first_unused() {
             let msg = self.fe.unused_word_message(l);
             return Err(self.err("interp::unused-word", msg, v.span));

@@ -278,6 +278,7 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
     }
 
     /// The same, mutable.
+    #[inline(always)]
     pub fn core_mut(&mut self) -> &mut Core<R> {
         &mut self.core
     }
@@ -410,27 +411,39 @@ impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
     }
 }
 
-impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
-    type Item = Result<Spanned<Canon>, Diagnostic>;
+/// What the next command of a run is, once [`Driver::advance`] has made it ready.
+#[derive(Debug)]
+pub enum Next {
+    /// The front of `Core::queue` (its feed law stamped, the front end told): pop it.
+    Command,
+    /// The run has ended.
+    Done,
+    /// An error; the run goes on after it or not (`continue_after_error`).
+    Error(Diagnostic),
+}
 
+impl<R: BufRead + Seek, F: FrontEnd> Driver<R, F> {
+    /// Runs units until a command is releasable (then says [`Next::Command`] and leaves it at the
+    /// front of `core.queue`), the run ends, or an error comes. The iterator's `next` is this and
+    /// a `pop_front`; the registry (`stanok-interp`) calls the two apart, so that the one pop it
+    /// writes for every dialect moves the command straight into its caller's result (a pop in each
+    /// dialect's arm left five results to merge: one more copy of the ~280-byte `Spanned<Canon>`
+    /// per command, measured with callgrind).
     #[inline(always)]
-    fn next(&mut self) -> Option<Self::Item> {
+    pub fn advance(&mut self) -> Next {
         loop {
             if self.core.queue.len() > self.held() {
                 // The front end's bookkeeping and the feed law first, the law stamped in place
                 // at the front of the queue: with nothing between pop_front and the return, the
-                // command moves straight into the result (no extra copy of the ~330-byte
-                // Spanned<Canon> per command, measured with callgrind).
+                // command moves straight into the result (no extra copy per command).
                 self.fe.released();
                 if let Some(front) = self.core.queue.front_mut() {
                     self.laws.stamp(&mut front.value);
                 }
-                if let Some(c) = self.core.queue.pop_front() {
-                    return Some(Ok(c));
-                }
+                return Next::Command;
             }
             match self.phase {
-                Phase::Done => return None,
+                Phase::Done => return Next::Done,
                 Phase::Start => {
                     self.phase = Phase::Running;
                     let init = self.init_command();
@@ -441,9 +454,23 @@ impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
                 Phase::Running => match self.step_admitting_warnings() {
                     Ok(true) => self.phase = Phase::Done,
                     Ok(false) => {}
-                    Err(d) => return Some(Err(self.fail(d))),
+                    Err(d) => return Next::Error(self.fail(d)),
                 },
             }
+        }
+    }
+}
+
+impl<R: BufRead + Seek, F: FrontEnd> Iterator for Driver<R, F> {
+    type Item = Result<Spanned<Canon>, Diagnostic>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Self::Item> {
+        match self.advance() {
+            // `held() < len`: the queue is not empty.
+            Next::Command => self.core.queue.pop_front().map(Ok),
+            Next::Done => None,
+            Next::Error(d) => Some(Err(d)),
         }
     }
 }

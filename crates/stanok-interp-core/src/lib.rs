@@ -55,7 +55,7 @@ mod warnings;
 pub mod words;
 
 pub use ctx::{is_linear, Ctx, Emitter, Hooks, Parts, AXIS_WORDS};
-pub use driver::{Core, Driver, Stats};
+pub use driver::{Core, Driver, Next, Stats};
 pub use feed_law::FeedLaws;
 pub use frontend::{FrontEnd, Outcome, Unit};
 pub use options::{

@@ -120,15 +120,69 @@ impl Default for Words {
     }
 }
 
-/// Slot of a letter: A–Z, then LinuxCNC's polar words `@` (radius) and `^` (angle) and its
-/// spindle selection `$`.
-fn idx(letter: u8) -> usize {
-    match letter {
-        b'@' => 26,
-        b'^' => 27,
-        b'$' => 28,
-        l => (l.to_ascii_uppercase() - b'A') as usize,
+/// `x.round()` (halves away from zero) without a call: x86-64 has no rounding instruction before
+/// SSE4.1, so `f64::round` is a libm call (≈ 24 instructions on every G word). Below 2^52 the
+/// truncating conversion `x as i64` is exact and so is `x − trunc(x)`; at and above 2^52 every
+/// `f64` is an integer already. Equal to `f64::round` for every finite `x` except that it may
+/// return `+0.0` for `round` = `-0.0` (the codes compare and convert zero the same either way);
+/// the proptest in this file checks it.
+#[inline(always)]
+fn round_half_away(x: f64) -> f64 {
+    if x.abs() >= 4_503_599_627_370_496.0 || x.is_nan() {
+        return x;
     }
+    let t = x as i64 as f64;
+    let f = x - t;
+    if f >= 0.5 {
+        t + 1.0
+    } else if f <= -0.5 {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
+/// Slot of a letter: A–Z (either case), then LinuxCNC's polar words `@` (radius) and `^` (angle)
+/// and its spindle selection `$`; 31 for any other byte (no word has it). A table: one load per
+/// word of every block, where a `match` and a case fold cost four more instructions.
+const SLOT: [u8; 256] = {
+    let mut t = [31u8; 256];
+    let mut i = 0;
+    while i < 26 {
+        t[b'A' as usize + i] = i as u8;
+        t[b'a' as usize + i] = i as u8;
+        i += 1;
+    }
+    t[b'@' as usize] = 26;
+    t[b'^' as usize] = 27;
+    t[b'$' as usize] = 28;
+    t
+};
+
+#[inline(always)]
+const fn idx(letter: u8) -> usize {
+    SLOT[letter as usize] as usize
+}
+
+/// The fast path of [`Words::fill`]: the bit of each letter stored as a value (upper-case A–Z
+/// but G and M, and `@ ^ $`), 0 for every other byte; one load for the four tests.
+const PLAIN_BIT: [u32; 256] = {
+    let mut t = [0u32; 256];
+    let mut c = 0;
+    while c < 256 {
+        let l = c as u8;
+        if (l.is_ascii_uppercase() && l != b'G' && l != b'M') || l == b'@' || l == b'^' || l == b'$'
+        {
+            t[c] = 1 << idx(l);
+        }
+        c += 1;
+    }
+    t
+};
+
+/// The bit of `letter` in [`Words::written`].
+pub const fn letter_bit(letter: u8) -> u32 {
+    1 << idx(letter)
 }
 
 fn letter_of(i: usize) -> u8 {
@@ -177,6 +231,20 @@ impl Words {
             .with_note("split the block: no control reads a block this long"));
         }
         for w in &block.words {
+            // The bulk of every program: an upper-case letter other than G and M (or `@ ^ $`)
+            // with a finite literal number, the first of its letter in the block. Stored here
+            // with the tests the general path below makes, in fewer branches; anything else
+            // (codes, expressions, repeats, errors) takes the general path.
+            if let Address::Letter(l) = w.address {
+                if let Value::Number(v) = w.value {
+                    let bit = PLAIN_BIT[l as usize];
+                    if bit != 0 && self.present & bit == 0 && v.is_finite() {
+                        self.letter[idx(l)] = Val { v, span: w.span };
+                        self.present |= bit;
+                        continue;
+                    }
+                }
+            }
             let value = match w.value {
                 Value::None => None,
                 Value::Number(v) => Some(v),
@@ -206,7 +274,7 @@ impl Words {
                     }
                     match l {
                         b'G' => {
-                            let code = (val.v * 10.0).round();
+                            let code = round_half_away(val.v * 10.0);
                             if (val.v * 10.0 - code).abs() > 1e-3 || !(0.0..=9999.0).contains(&code)
                             {
                                 return Err(Diagnostic::error(
@@ -218,7 +286,7 @@ impl Words {
                             self.g.push((code as u32, w.span));
                         }
                         b'M' => {
-                            let code = val.v.round();
+                            let code = round_half_away(val.v);
                             if (val.v - code).abs() > 1e-6 || !(0.0..=9999.0).contains(&code) {
                                 return Err(Diagnostic::error(
                                     "interp::unknown-m-code",
@@ -322,6 +390,18 @@ impl Words {
         self.present & (1 << idx(letter)) != 0
     }
 
+    /// The letters written in the block, one bit each ([`letter_bit`]).
+    #[inline(always)]
+    pub fn written(&self) -> u32 {
+        self.present
+    }
+
+    /// True when every written letter was consumed (the usual end of a block).
+    #[inline(always)]
+    pub fn all_used(&self) -> bool {
+        self.present & !self.used == 0
+    }
+
     /// The first letter that was written but never consumed, if any.
     pub fn first_unused(&self) -> Option<(u8, Val)> {
         let left = self.present & !self.used;
@@ -340,5 +420,65 @@ impl Words {
     /// True if any of the given letters was written.
     pub fn any(&self, letters: &[u8]) -> bool {
         letters.iter().any(|&l| self.has(l))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::round_half_away;
+    use proptest::prelude::*;
+
+    #[test]
+    fn rounds_halves_away_from_zero_like_f64_round() {
+        for x in [
+            0.0,
+            0.49,
+            0.5,
+            1.5,
+            2.5,
+            -0.5,
+            -1.5,
+            -2.49,
+            9999.4999,
+            9999.5,
+            330.0004,
+            329.9996,
+            0.49999999999999994,
+            -0.49999999999999994,
+            4_503_599_627_370_495.5,
+            4_503_599_627_370_496.0,
+            1e300,
+            -1e300,
+            f64::MAX,
+            f64::MIN,
+        ] {
+            assert_eq!(round_half_away(x), x.round(), "{x}");
+        }
+        assert!(round_half_away(f64::NAN).is_nan());
+    }
+
+    #[test]
+    fn slots_fold_case_and_stay_distinct() {
+        let letters: Vec<u8> = (b'A'..=b'Z').chain(*b"@^$").collect();
+        for (i, &l) in letters.iter().enumerate() {
+            assert_eq!(super::idx(l), i, "{}", l as char);
+            assert_eq!(super::letter_of(i), l);
+            assert_eq!(super::idx(l.to_ascii_lowercase()), super::idx(l));
+        }
+        assert_eq!(super::idx(b'1'), 31);
+    }
+
+    proptest! {
+        #[test]
+        fn equals_f64_round(x in any::<f64>()) {
+            let (got, want) = (round_half_away(x), x.round());
+            prop_assert!(got == want || (got.is_nan() && want.is_nan()), "{x}: {got} vs {want}");
+        }
+
+        #[test]
+        fn equals_f64_round_near_codes(code in 0u32..100_000, off in -0.6f64..0.6) {
+            let x = code as f64 + off;
+            prop_assert_eq!(round_half_away(x), x.round(), "{}", x);
+        }
     }
 }

@@ -51,7 +51,7 @@ pub use stanok_rs274::{normalise_name, Parameters, MAX_PARAMETERS};
 use stanok_axioma::Axioma;
 use stanok_balt::Balt;
 use stanok_canon::{Canon, Diagnostic, Spanned};
-use stanok_interp_core::{Core, Driver, ModalState as State};
+use stanok_interp_core::{Core, Driver, ModalState as State, Next};
 use stanok_labs::Labs;
 use stanok_mazatrol::Mazatrol;
 use stanok_rs274::Rs274;
@@ -78,10 +78,20 @@ macro_rules! registry {
                 }
             }
 
+            /// `Driver::next` split at its pop (`Driver::advance`): the dialect's arm makes the
+            /// command ready, the one pop below moves it into the result (no copy per arm).
             #[inline(always)]
             fn next(&mut self) -> Option<Result<Spanned<Canon>, Diagnostic>> {
-                match self {
-                    $(Run::$variant(d) => d.next(),)*
+                let next = match self {
+                    $(Run::$variant(d) => d.advance(),)*
+                };
+                match next {
+                    Next::Command => match self.core_mut().queue.pop_front() {
+                        Some(c) => Some(Ok(c)),
+                        None => None,
+                    },
+                    Next::Done => None,
+                    Next::Error(d) => Some(Err(d)),
                 }
             }
 
@@ -91,6 +101,7 @@ macro_rules! registry {
                 }
             }
 
+            #[inline(always)]
             fn core_mut(&mut self) -> &mut Core<R> {
                 match self {
                     $(Run::$variant(d) => d.core_mut(),)*

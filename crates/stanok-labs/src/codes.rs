@@ -1,5 +1,6 @@
-//! The lab controls' G codes, one table per language (`code_table!`: the value × 10, the name,
-//! the modal group, what executes it):
+//! The lab controls' G and M codes, tables per language (`code_table!`: the value — G × 10, M
+//! as written —, the name, the group, what executes it; an M number without a row is a machine
+//! function, `Canon::AuxiliaryFunction`):
 //!
 //! * [`nc31`] — the Elektronika NC-31 (spec lab-collection §2): a G frame either sets a mode on
 //!   its own or starts a `*` group; `nc31.rs` dispatches both through the table.
@@ -83,12 +84,69 @@ pub mod nc31 {
         /// F in mm/rev.
         G95 = 950, "G95", FeedUnit, SetFeedUnit(FeedMode::UnitsPerRevolution);
     }
+
+    /// What an NC-31 M function does. Executed where its frame stands (a frame holds one word);
+    /// an M number without a row is a machine function (`Canon::AuxiliaryFunction`).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum MHandler {
+        /// M3/M4.
+        StartSpindle(stanok_canon::SpindleDirection),
+        /// M5.
+        StopSpindle,
+        /// M0: program stop.
+        Stop,
+        /// M17: back from a subprogram.
+        Return,
+        /// M2/M30: program end.
+        End,
+        /// M38–M41: the gearbox range (the next S is its code); also a machine function.
+        GearRange,
+    }
+
+    /// The NC-31's M groups.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum MGroup {
+        /// M0, M2, M17, M30.
+        Program,
+        /// M3–M5.
+        Spindle,
+        /// M38–M41.
+        Gearbox,
+    }
+
+    code_table! {
+        /// The NC-31's M functions with a meaning of their own (the value is the M number).
+        pub M_CODES, pub fn m_code -> Code<MGroup, MHandler>;
+        /// Program stop.
+        M0 = 0, "M0", MGroup::Program, MHandler::Stop;
+        /// Program end.
+        M2 = 2, "M2", MGroup::Program, MHandler::End;
+        /// Spindle clockwise.
+        M3 = 3, "M3", MGroup::Spindle, MHandler::StartSpindle(stanok_canon::SpindleDirection::Clockwise);
+        /// Spindle counter-clockwise.
+        M4 = 4, "M4", MGroup::Spindle, MHandler::StartSpindle(stanok_canon::SpindleDirection::CounterClockwise);
+        /// Spindle stop.
+        M5 = 5, "M5", MGroup::Spindle, MHandler::StopSpindle;
+        /// End of subprogram.
+        M17 = 17, "M17", MGroup::Program, MHandler::Return;
+        /// Program end.
+        M30 = 30, "M30", MGroup::Program, MHandler::End;
+        /// Gearbox range 1.
+        M38 = 38, "M38", MGroup::Gearbox, MHandler::GearRange;
+        /// Gearbox range 2.
+        M39 = 39, "M39", MGroup::Gearbox, MHandler::GearRange;
+        /// Gearbox range 3.
+        M40 = 40, "M40", MGroup::Gearbox, MHandler::GearRange;
+        /// Gearbox range 4.
+        M41 = 41, "M41", MGroup::Gearbox, MHandler::GearRange;
+    }
 }
 
 /// The G codes of the word-address lab controls: GOST-20999, 2P32, MC2101 (spec §3.4, §4.4).
 pub mod iso {
     use stanok_canon::Plane;
     use stanok_interp_core::code_table;
+    use stanok_interp_core::state::MotionMode;
 
     /// The modal groups (§4.4); two codes of one group in a block are `lab::g-group`.
     #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -134,7 +192,7 @@ pub mod iso {
     #[derive(Debug, Clone, Copy, PartialEq, Eq)]
     pub enum Handler {
         /// The motion mode 0…3.
-        SetMotion(u8),
+        SetMotion(MotionMode),
         /// The plane.
         SetPlane(Plane),
         /// Incremental (true) or absolute.
@@ -167,13 +225,13 @@ pub mod iso {
         /// Every G code of the word-address lab controls.
         pub G_CODES, pub fn g_code -> Code<Group, Handler>;
         /// Rapid (2P32: also a bare `G`).
-        G0 = 0, "G0", Motion, SetMotion(0);
+        G0 = 0, "G0", Motion, SetMotion(MotionMode::Rapid);
         /// Straight feed.
-        G1 = 10, "G1", Motion, SetMotion(1);
+        G1 = 10, "G1", Motion, SetMotion(MotionMode::Linear);
         /// Clockwise arc.
-        G2 = 20, "G2", Motion, SetMotion(2);
+        G2 = 20, "G2", Motion, SetMotion(MotionMode::ArcCw);
         /// Counter-clockwise arc.
-        G3 = 30, "G3", Motion, SetMotion(3);
+        G3 = 30, "G3", Motion, SetMotion(MotionMode::ArcCcw);
         /// Dwell.
         G4 = 40, "G4", OneShot, Dwell;
         /// Exact stop, this block.
@@ -213,6 +271,87 @@ pub mod iso {
         /// Set the position.
         G92 = 920, "G92", OneShot, SetPosition;
     }
+
+    /// What a word-address control's M function does, and when: [`MHandler::phase`]. An M number
+    /// without a row is a machine function (`Canon::AuxiliaryFunction`, before the motion).
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum MHandler {
+        /// M3/M4.
+        StartSpindle(stanok_canon::SpindleDirection),
+        /// M5.
+        StopSpindle,
+        /// M7.
+        Mist,
+        /// M8.
+        Flood,
+        /// M9: mist and flood off.
+        CoolantOff,
+        /// M0 (false) / M1 (true): program stop.
+        Stop(bool),
+        /// M2/M30: program end.
+        End,
+        /// M17: end of a subprogram (§4.10).
+        SubprogramEnd,
+        /// M89 (true) / M90 (false): on the 2P32 the servo spindle (Y is the C axis while on,
+        /// §3); on every control also the machine function.
+        ServoSpindle(bool),
+    }
+
+    impl MHandler {
+        /// After the block's motion (stops, ends, spindle stop, coolant off), else before it.
+        pub const fn after_motion(self) -> bool {
+            matches!(
+                self,
+                MHandler::StopSpindle
+                    | MHandler::CoolantOff
+                    | MHandler::Stop(_)
+                    | MHandler::End
+                    | MHandler::SubprogramEnd
+            )
+        }
+    }
+
+    /// The word-address controls' M groups.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    pub enum MGroup {
+        /// M0–M2, M17, M30.
+        Program,
+        /// M3–M5, M89/M90.
+        Spindle,
+        /// M7–M9.
+        Coolant,
+    }
+
+    code_table! {
+        /// The M functions with a meaning of their own (the value is the M number).
+        pub M_CODES, pub fn m_code -> Code<MGroup, MHandler>;
+        /// Program stop.
+        M0 = 0, "M0", MGroup::Program, MHandler::Stop(false);
+        /// Optional stop.
+        M1 = 1, "M1", MGroup::Program, MHandler::Stop(true);
+        /// Program end.
+        M2 = 2, "M2", MGroup::Program, MHandler::End;
+        /// Spindle clockwise.
+        M3 = 3, "M3", MGroup::Spindle, MHandler::StartSpindle(stanok_canon::SpindleDirection::Clockwise);
+        /// Spindle counter-clockwise.
+        M4 = 4, "M4", MGroup::Spindle, MHandler::StartSpindle(stanok_canon::SpindleDirection::CounterClockwise);
+        /// Spindle stop.
+        M5 = 5, "M5", MGroup::Spindle, MHandler::StopSpindle;
+        /// Mist on.
+        M7 = 7, "M7", MGroup::Coolant, MHandler::Mist;
+        /// Flood on.
+        M8 = 8, "M8", MGroup::Coolant, MHandler::Flood;
+        /// Coolant off.
+        M9 = 9, "M9", MGroup::Coolant, MHandler::CoolantOff;
+        /// End of subprogram.
+        M17 = 17, "M17", MGroup::Program, MHandler::SubprogramEnd;
+        /// Program end.
+        M30 = 30, "M30", MGroup::Program, MHandler::End;
+        /// 2P32: servo spindle on.
+        M89 = 89, "M89", MGroup::Spindle, MHandler::ServoSpindle(true);
+        /// 2P32: servo spindle off.
+        M90 = 90, "M90", MGroup::Spindle, MHandler::ServoSpindle(false);
+    }
 }
 
 #[cfg(test)]
@@ -243,5 +382,23 @@ mod tests {
         assert_eq!(lookup(-2, iso::g_code), None);
         assert_eq!(lookup(i64::MAX, nc31::g_code), None);
         assert_eq!(lookup(429_496_730, iso::g_code), None);
+    }
+
+    #[test]
+    fn every_m_code_once_named_as_written_and_found() {
+        let mut seen = std::collections::HashSet::new();
+        for c in nc31::M_CODES {
+            assert!(seen.insert(c.code), "{} twice", c.name);
+            assert_eq!(c.name, format!("M{}", c.code));
+            assert_eq!(nc31::m_code(c.code), Some(*c));
+        }
+        seen.clear();
+        for c in iso::M_CODES {
+            assert!(seen.insert(c.code), "{} twice", c.name);
+            assert_eq!(c.name, format!("M{}", c.code));
+            assert_eq!(iso::m_code(c.code), Some(*c));
+        }
+        assert_eq!(nc31::m_code(1), None, "NC-31 M1 is a machine function");
+        assert_eq!(iso::m_code(6), None);
     }
 }

@@ -22,11 +22,10 @@
 use super::iso_comp::{BlockComp, Comp};
 use super::iso_words::{code, dimension, err, number, Pending};
 use super::{Emit, LabState, Program, MAX_JUMPS};
-use crate::codes::{self, iso as iso_codes, iso::Handler};
+use crate::codes::{self, iso as iso_codes, iso::Handler, iso::MHandler};
 use crate::LabOptions;
-use stanok_canon::{
-    AuxTiming, Canon, Diagnostic, PathMode, Plane, Span, Spanned, SpindleDirection,
-};
+use stanok_canon::{AuxTiming, Canon, Diagnostic, PathMode, Plane, Span, Spanned};
+use stanok_interp_core::state::MotionMode;
 use stanok_syntax::labs::words::{parse_line, Item, LabBlock, Profile, Word};
 use stanok_syntax::Dialect;
 
@@ -239,7 +238,7 @@ pub(super) struct Exec<'a> {
 /// The G codes of a block, by group.
 #[derive(Default)]
 pub(super) struct Gs {
-    pub(super) motion: Option<u8>,
+    pub(super) motion: Option<MotionMode>,
     pub(super) plane: Option<Plane>,
     pub(super) incremental: Option<bool>,
     pub(super) work: Option<u8>,
@@ -534,42 +533,50 @@ impl Exec<'_> {
         Ok(())
     }
 
+    /// One M word, through the table (`codes::iso::M_CODES`): `before` runs the rows that act
+    /// before the block's motion (and the machine functions without a row), else those after it.
     fn m_function(&mut self, w: &Word, before: bool) -> Result<(), Diagnostic> {
         let m = code(w, self.st)?;
-        let after_motion = matches!(m, 0 | 1 | 2 | 5 | 9 | 17 | 30);
+        let row = u32::try_from(m).ok().and_then(iso_codes::m_code);
+        let after_motion = row.is_some_and(|c| c.handler.after_motion());
         if before == after_motion {
             return Ok(());
         }
-        match m {
-            3 | 4 => {
-                let direction = if m == 3 {
-                    SpindleDirection::Clockwise
-                } else {
-                    SpindleDirection::CounterClockwise
-                };
+        let Some(row) = row else {
+            if m < 0 {
+                return Err(err("lab::bad-m", "M must not be negative", w.span));
+            }
+            self.out.push(Canon::AuxiliaryFunction {
+                number: m as u32,
+                timing: AuxTiming::Prefix,
+            });
+            return Ok(());
+        };
+        match row.handler {
+            MHandler::StartSpindle(direction) => {
                 self.st.spindle = Some(direction);
                 self.out.push(Canon::StartSpindle {
                     spindle: 0,
                     direction,
                 });
             }
-            5 => {
+            MHandler::StopSpindle => {
                 self.st.spindle = None;
                 self.out.push(Canon::StopSpindle { spindle: 0 });
             }
-            7 => self.out.push(Canon::Mist { on: true }),
-            8 => self.out.push(Canon::Flood { on: true }),
-            9 => {
+            MHandler::Mist => self.out.push(Canon::Mist { on: true }),
+            MHandler::Flood => self.out.push(Canon::Flood { on: true }),
+            MHandler::CoolantOff => {
                 self.out.push(Canon::Mist { on: false });
                 self.out.push(Canon::Flood { on: false });
             }
-            0 | 1 => self.out.push(Canon::ProgramStop { optional: m == 1 }),
-            2 | 30 => {
+            MHandler::Stop(optional) => self.out.push(Canon::ProgramStop { optional }),
+            MHandler::End => {
                 self.st.spindle = None;
                 self.out.push(Canon::ProgramEnd);
                 *self.ctl = Control::End;
             }
-            17 => {
+            MHandler::SubprogramEnd => {
                 if !self.in_sub {
                     return Err(err(
                         "lab::m17-in-main",
@@ -595,19 +602,15 @@ impl Exec<'_> {
                 }
                 *self.ctl = Control::Return(w.span);
             }
-            m if m >= 0 => {
-                if m == 89 && self.dialect == Dialect::P2p32 {
-                    self.st.servo_spindle = true;
-                }
-                if m == 90 && self.dialect == Dialect::P2p32 {
-                    self.st.servo_spindle = false;
+            MHandler::ServoSpindle(on) => {
+                if self.dialect == Dialect::P2p32 {
+                    self.st.servo_spindle = on;
                 }
                 self.out.push(Canon::AuxiliaryFunction {
                     number: m as u32,
                     timing: AuxTiming::Prefix,
                 });
             }
-            _ => return Err(err("lab::bad-m", "M must not be negative", w.span)),
         }
         Ok(())
     }

@@ -6,6 +6,7 @@ use super::iso_arcs::{arc, ArcInput};
 use super::iso_words::{axis_index, checked_dimension, code, correction, err, number, Pending};
 use crate::codes::{self, iso as iso_codes, iso::Handler};
 use stanok_canon::{ArcMove, Canon, Diagnostic, LineMove, Pose, Span};
+use stanok_interp_core::state::MotionMode;
 use stanok_syntax::labs::words::{Item, Word};
 use stanok_syntax::Dialect;
 
@@ -189,7 +190,7 @@ impl Exec<'_> {
                 self.block.span,
             ));
         }
-        let circular = matches!(self.st.motion, 2 | 3);
+        let circular = matches!(self.st.motion, MotionMode::ArcCw | MotionMode::ArcCcw);
         if circular && gs.lengths {
             return Err(err(
                 "lab::correction-in-arc",
@@ -290,8 +291,8 @@ impl Exec<'_> {
         }
         let end = Pose::from_array(end);
         match self.st.motion {
-            0 => self.traverse(end),
-            1 => {
+            MotionMode::Rapid | MotionMode::None => self.traverse(end),
+            MotionMode::Linear => {
                 let feed = self.st.feed;
                 let f = self.st.path_feed(feed, self.block.span, self.warnings);
                 self.out.push(Canon::StraightFeed(LineMove {
@@ -302,7 +303,7 @@ impl Exec<'_> {
                 }));
                 self.st.position = end;
             }
-            m => self.arc_move(m == 3, end)?,
+            m => self.arc_move(m == MotionMode::ArcCcw, end)?,
         }
         Ok(())
     }

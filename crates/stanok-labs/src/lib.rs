@@ -44,6 +44,7 @@ mod nc31;
 mod nc31_moves;
 
 use stanok_canon::{Canon, Diagnostic, FeedMode, Plane, Pose, Span, Spanned, SpindleDirection};
+use stanok_interp_core::state::MotionMode;
 use stanok_interp_core::{Core, CoreOptions, FrontEnd, Outcome, Parts, Unit};
 use stanok_syntax::labs::LineAt;
 use stanok_syntax::Dialect;
@@ -215,8 +216,8 @@ pub struct LabState {
     /// Variables R<n> as written (GOST-20999 `R1#39.`, 2P32 `R27 - 4910`): value and whether it
     /// was written with a decimal point.
     pub variables: BTreeMap<u32, (f64, bool)>,
-    /// ISO dialects: motion mode 0…3 (G0…G3).
-    pub motion: u8,
+    /// ISO dialects: the motion mode (G0…G3).
+    pub motion: MotionMode,
     /// ISO dialects: plane.
     pub plane: Plane,
     /// ISO dialects: G91.
@@ -256,7 +257,7 @@ impl LabState {
             tool: None,
             turret_position: opts.labs.turret_position,
             variables: BTreeMap::new(),
-            motion: 0,
+            motion: MotionMode::Rapid,
             plane: Plane::XY,
             incremental: dialect == Dialect::Mc2101,
             work_system: 1,

@@ -27,9 +27,9 @@ use super::nc31_moves::{
     arc_group, axis_target, feed_line, get, line_group, rounding_group, set, traverse,
 };
 use super::{Emit, LabState, Program, MAX_JUMPS};
-use crate::codes::{self, nc31 as nc31_codes, nc31::Handler};
+use crate::codes::{self, nc31 as nc31_codes, nc31::Handler, nc31::MHandler};
 use crate::LabOptions;
-use stanok_canon::{Canon, Diagnostic, FeedMode, Span, SpindleDirection};
+use stanok_canon::{Canon, Diagnostic, FeedMode, Span};
 use stanok_syntax::labs::nc31::{parse_line, Body, Chamfer, Line};
 
 /// Radius mm per unit of an X (diameter) value.
@@ -572,33 +572,31 @@ fn single(
             out.push(Canon::SetSpindleSpeed { spindle: 0, rpm });
         }
         b'M' => {
+            // Through the table (`codes::nc31::M_CODES`); a number without a row is a machine
+            // function.
             let m = value_of(f)?;
-            match m {
-                3 | 4 => {
-                    let direction = if m == 3 {
-                        SpindleDirection::Clockwise
-                    } else {
-                        SpindleDirection::CounterClockwise
-                    };
+            let row = u32::try_from(m).ok().and_then(nc31_codes::m_code);
+            match row.map(|c| c.handler) {
+                Some(MHandler::StartSpindle(direction)) => {
                     st.spindle = Some(direction);
                     out.push(Canon::StartSpindle {
                         spindle: 0,
                         direction,
                     });
                 }
-                5 => {
+                Some(MHandler::StopSpindle) => {
                     st.spindle = None;
                     out.push(Canon::StopSpindle { spindle: 0 });
                 }
-                0 => out.push(Canon::ProgramStop { optional: false }),
-                17 => *ctl = Control::Return(f.span),
-                30 | 2 => {
+                Some(MHandler::Stop) => out.push(Canon::ProgramStop { optional: false }),
+                Some(MHandler::Return) => *ctl = Control::Return(f.span),
+                Some(MHandler::End) => {
                     st.spindle = None;
                     out.push(Canon::ProgramEnd);
                     *ctl = Control::End;
                 }
-                m => {
-                    if (38..=41).contains(&m) {
+                Some(MHandler::GearRange) | None => {
+                    if row.is_some() {
                         st.gear_range = Some(m as u32);
                     }
                     out.push(Canon::AuxiliaryFunction {

@@ -99,3 +99,77 @@ fn nc31_accepts_exactly_the_rows_alone_and_as_group_starts() {
         assert_eq!(!refused, starter, "G{g}* group: {:?}", group.errors);
     }
 }
+
+#[test]
+fn word_address_m_codes_run_their_row_in_its_phase_or_are_machine_functions() {
+    use stanok_canon::Canon;
+    for m in 0..100u32 {
+        let r = run_text(
+            &format!("N1 G1 G90 X10. F100 M{m}\nN2 X20.\nN3 M2\n"),
+            Dialect::Gost20999,
+            |_| {},
+        );
+        let row = iso::m_code(m);
+        if m == 17 {
+            // M17 ends a subprogram only.
+            assert_eq!(first_error(&r).as_deref(), Some("lab::m17-in-main"));
+            continue;
+        }
+        assert!(r.errors.is_empty(), "M{m}: {:?}", r.errors);
+        let cmds = r.commands_of(1);
+        let at_move = cmds
+            .iter()
+            .position(|c| matches!(c, Canon::StraightFeed(_)))
+            .expect("the block's move");
+        let effect = cmds.iter().position(|c| match (row.map(|c| c.handler), c) {
+            (Some(iso::MHandler::StartSpindle(d)), Canon::StartSpindle { direction, .. }) => {
+                *direction == d
+            }
+            (Some(iso::MHandler::StopSpindle), Canon::StopSpindle { .. }) => true,
+            (Some(iso::MHandler::Mist), Canon::Mist { on }) => *on,
+            (Some(iso::MHandler::Flood), Canon::Flood { on }) => *on,
+            (Some(iso::MHandler::CoolantOff), Canon::Flood { on }) => !*on,
+            (Some(iso::MHandler::Stop(o)), Canon::ProgramStop { optional }) => *optional == o,
+            (Some(iso::MHandler::End), Canon::ProgramEnd) => true,
+            (
+                Some(iso::MHandler::ServoSpindle(_)) | None,
+                Canon::AuxiliaryFunction { number, .. },
+            ) => *number == m,
+            _ => false,
+        });
+        let effect = effect.unwrap_or_else(|| panic!("M{m}: no effect in {cmds:?}"));
+        let after = row.is_some_and(|c| c.handler.after_motion());
+        assert_eq!(effect > at_move, after, "M{m}: {cmds:?}");
+    }
+}
+
+#[test]
+fn nc31_m_codes_run_their_row_or_are_machine_functions() {
+    use stanok_canon::Canon;
+    for m in 0..100u32 {
+        if m == 17 {
+            continue; // a return needs a call
+        }
+        let r = run_text(&format!("N1 M{m}\nN2 M2\n"), Dialect::Nc31, |_| {});
+        assert!(r.errors.is_empty(), "M{m}: {:?}", r.errors);
+        let cmds = r.commands_of(1);
+        let ok = cmds
+            .iter()
+            .any(|c| match (nc31::m_code(m).map(|c| c.handler), c) {
+                (Some(nc31::MHandler::StartSpindle(d)), Canon::StartSpindle { direction, .. }) => {
+                    *direction == d
+                }
+                (Some(nc31::MHandler::StopSpindle), Canon::StopSpindle { .. }) => true,
+                (Some(nc31::MHandler::Stop), Canon::ProgramStop { optional }) => !*optional,
+                (Some(nc31::MHandler::End), Canon::ProgramEnd) => true,
+                (
+                    Some(nc31::MHandler::GearRange) | None,
+                    Canon::AuxiliaryFunction { number, .. },
+                ) => *number == m,
+                _ => false,
+            });
+        assert!(ok, "M{m}: {cmds:?}");
+        let gear = r.state.gear_range;
+        assert_eq!(gear, (38..=41).contains(&m).then_some(m), "M{m}");
+    }
+}

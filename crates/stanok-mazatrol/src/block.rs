@@ -14,6 +14,7 @@
 
 use crate::codes::{g_def, g_name, Group};
 use crate::ctx::Ctx;
+use crate::mcodes::{m_code, MHandler, Phase};
 use crate::modes::Turning;
 use crate::rules::{dimension, scaled};
 use crate::TtpcMode;
@@ -277,7 +278,12 @@ fn run(cx: &mut Ctx<'_>, codes: &Codes) -> Result<Outcome, Diagnostic> {
         }
     }
     crate::spindle::speed(cx, codes)?;
-    let m6 = cx.words.m.iter().find(|(m, _)| *m == 6).map(|(_, s)| *s);
+    let m6 = cx
+        .words
+        .m
+        .iter()
+        .find(|(m, _)| m_code(*m).is_some_and(|c| c.handler.phase() == Phase::Tool))
+        .map(|(_, s)| *s);
     if let Some(span) = m6 {
         crate::tools::tool_change(cx, span)?;
     } else {
@@ -287,12 +293,13 @@ fn run(cx: &mut Ctx<'_>, codes: &Codes) -> Result<Outcome, Diagnostic> {
     let ms: Vec<(u32, ColSpan)> = cx.words.m.clone();
     check_m_codes(cx, &ms)?;
     for &(m, span) in &ms {
-        match m {
-            3 | 4 | 203 | 204 => crate::spindle::start(cx, m, span)?,
-            7 | 8 => cx.coolant(m),
-            19 => crate::spindle::orient(cx, span)?,
-            29 => cx.fe.m.rigid = true,
-            _ => {}
+        let Some(row) = m_code(m) else { continue };
+        match row.handler {
+            MHandler::StartSpindle => crate::spindle::start(cx, m, span)?,
+            MHandler::CoolantOn => cx.coolant(m),
+            MHandler::Orient => crate::spindle::orient(cx, span)?,
+            MHandler::RigidTapping => cx.fe.m.rigid = true,
+            h => debug_assert_ne!(h.phase(), Phase::BeforeMotion),
         }
     }
     // 7. Offsets, compensation, frames, interpolation modes.
@@ -395,24 +402,29 @@ fn finish(cx: &mut Ctx<'_>, codes: &Codes, moved: bool) -> Result<Outcome, Diagn
     let mut outcome = Outcome::Continue;
     let ms: Vec<(u32, ColSpan)> = cx.words.m.clone();
     for &(m, span) in &ms {
-        match m {
-            5 | 205 => crate::spindle::stop(cx, m),
-            9 => cx.coolant(9),
-            0 => cx.out.push(Canon::ProgramStop { optional: false }),
-            1 => {
+        let Some(row) = m_code(m) else {
+            crate::spindle::machine_m(cx, m, span);
+            continue;
+        };
+        match row.handler {
+            MHandler::StopSpindle => crate::spindle::stop(cx, m),
+            MHandler::CoolantOff => cx.coolant(m),
+            MHandler::Stop { optional: false } => {
+                cx.out.push(Canon::ProgramStop { optional: false })
+            }
+            MHandler::Stop { optional: true } => {
                 if cx.opts.optional_stop {
                     cx.out.push(Canon::ProgramStop { optional: true })
                 }
             }
-            2 | 30 => {
+            MHandler::End => {
                 crate::spindle::program_end(cx);
                 cx.out.push(Canon::ProgramEnd);
                 outcome = Outcome::End;
             }
-            98 => crate::macros::subprogram_call(cx, span)?,
-            99 => crate::macros::subprogram_return(cx, span)?,
-            3 | 4 | 6 | 7 | 8 | 19 | 29 | 203 | 204 => {}
-            other => crate::spindle::machine_m(cx, other, span),
+            MHandler::Call => crate::macros::subprogram_call(cx, span)?,
+            MHandler::Return => crate::macros::subprogram_return(cx, span)?,
+            h => debug_assert_ne!(h.phase(), Phase::AfterMotion),
         }
     }
     if moved && cx.fe.m.css.is_some() {

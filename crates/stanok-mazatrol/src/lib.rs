@@ -37,6 +37,7 @@ pub mod flow;
 mod front;
 pub mod macro_b;
 mod macros;
+pub mod mcodes;
 pub mod modes;
 mod motion;
 pub mod polar;

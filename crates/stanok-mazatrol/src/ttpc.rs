@@ -62,7 +62,7 @@ pub struct MazatrolState {
     pub length: f64,
     /// The last type-2 tool vector (table frame, unit).
     pub vector: Option<[f64; 3]>,
-    /// G43/G44 in force (outside TTPC; mazatrol_tlo.rs).
+    /// G43/G44 in force (outside TTPC; tlo.rs).
     pub offset: crate::tlo::LengthOffset,
 }
 

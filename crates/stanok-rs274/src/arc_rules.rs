@@ -40,7 +40,11 @@ pub fn radius_format(
     turns: u32,
     tolerance: f64,
 ) -> Result<PlanarArc, ArcError> {
-    if dist(start, end) < 1e-9 {
+    // |E − S| < 1e-9 mm, squared: a test needs no `hypot` (a libm call of ≈ 30 instructions on
+    // every radius-format arc); squares of coordinates this small or large under- or overflow
+    // to the same answer.
+    let d = [end[0] - start[0], end[1] - start[1]];
+    if d[0] * d[0] + d[1] * d[1] < 1e-18 {
         return Err(ArcError::EndEqualsStart);
     }
     let centre = centre_from_radius(start, end, radius.abs(), ccw, radius < 0.0, tolerance)

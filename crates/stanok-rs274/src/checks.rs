@@ -5,15 +5,23 @@ use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::{GCodes, Group};
 use stanok_canon::Diagnostic;
+use stanok_interp_core::words::Val;
 
 /// LinuxCNC checks a block's L word before it runs anything: G74 (left-hand tapping) and G33.1
 /// take none, unlike the other canned cycles (`G74 … L2` is refused even with the spindle the
 /// wrong way round, which the cycle itself would report).
-#[cold]
+/// The test inlined, the check out of line: most blocks have no L word.
+#[inline(always)]
 pub(super) fn l_word_check(cx: &Ctx<'_>, g: &GCodes) -> Result<(), Diagnostic> {
-    let Some(l) = cx.words.peek(b'L') else {
-        return Ok(());
-    };
+    match cx.words.peek(b'L') {
+        None => Ok(()),
+        Some(l) => l_word_check_cold(cx, g, l),
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn l_word_check_cold(cx: &Ctx<'_>, g: &GCodes, l: Val) -> Result<(), Diagnostic> {
     let motion = match g.get(Group::Motion, cx) {
         Some((code, _)) => Some(code),
         None if cx.has_axis_words() => cx.fe.modes.motion_code,
@@ -36,11 +44,18 @@ pub(super) fn l_word_check(cx: &Ctx<'_>, g: &GCodes) -> Result<(), Diagnostic> {
 /// The `linuxcnc` machine has one spindle: `$0` (or `$-1`, all of them) changes nothing, any other
 /// number is refused with the message of the first word that would use it (S before the M codes,
 /// as LinuxCNC checks them), and a `$` nothing uses is refused.
-#[cold]
+/// The test inlined, the check out of line: most blocks have no `$` word.
+#[inline(always)]
 pub(super) fn spindle_selection(cx: &mut Ctx<'_>) -> Result<(), Diagnostic> {
-    let Some(sel) = cx.words.take(b'$') else {
-        return Ok(());
-    };
+    match cx.words.take(b'$') {
+        None => Ok(()),
+        Some(sel) => spindle_selection_cold(cx, sel),
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn spindle_selection_cold(cx: &mut Ctx<'_>, sel: Val) -> Result<(), Diagnostic> {
     let m_user = cx
         .words
         .m

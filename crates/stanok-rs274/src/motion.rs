@@ -174,10 +174,15 @@ fn motion_block_inner(
                 super::cutter_comp::straight(cx, rapid, end, feed, span)
             } else {
                 cx.straight(rapid, end, feed);
-                // The exit move after G40 has used the programmed point.
-                let comp = &mut cx.fe.modes.comp;
-                comp.program = None;
-                comp.arc_refused = false;
+                // The exit move after G40 has used the programmed point. Written only when set:
+                // the write journals (copies) the whole `Rs274State` (`state::Journalled`), which
+                // every straight move did (measured, docs/performance.md).
+                let comp = &cx.fe.modes.comp;
+                if comp.program.is_some() || comp.arc_refused {
+                    let comp = &mut cx.fe.modes.comp;
+                    comp.program = None;
+                    comp.arc_refused = false;
+                }
                 Ok(())
             }
         }

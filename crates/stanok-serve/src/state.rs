@@ -231,21 +231,23 @@ fn code(group: &str, code: impl Into<String>) -> ActiveCode {
     }
 }
 
+/// The G code of a motion mode.
+fn motion_code(m: MotionMode) -> &'static str {
+    match m {
+        MotionMode::Rapid => "G0",
+        MotionMode::Linear => "G1",
+        MotionMode::ArcCw => "G2",
+        MotionMode::ArcCcw => "G3",
+        MotionMode::None => "G80",
+    }
+}
+
 /// The active G codes by modal group (module doc); `length_comp`: AxiOMA's tool length group
 /// (the others show G49).
 pub fn g_vector(s: &ModalState, length_comp: LengthComp, dialect: Dialect) -> Vec<ActiveCode> {
     let axioma = dialect == Dialect::Axioma;
     let mut v = vec![
-        code(
-            "motion",
-            match s.motion {
-                MotionMode::Rapid => "G0",
-                MotionMode::Linear => "G1",
-                MotionMode::ArcCw => "G2",
-                MotionMode::ArcCcw => "G3",
-                MotionMode::None => "G80",
-            },
-        ),
+        code("motion", motion_code(s.motion)),
         code(
             "plane",
             match s.plane {
@@ -337,7 +339,7 @@ pub fn g_vector_of<R: std::io::BufRead + std::io::Seek>(
         return g_vector(interp.state(), length_comp, dialect);
     };
     let mut v = vec![
-        code("motion", format!("G{}", lab.motion)),
+        code("motion", motion_code(lab.motion)),
         code(
             "plane",
             match lab.plane {

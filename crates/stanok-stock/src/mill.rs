@@ -16,9 +16,13 @@
 //!    axis each primitive is clipped to its own band and skipped on the lines where its lowest
 //!    possible point is above the material (`tilted.rs`, which states both bounds). The grid is tiled
 //!    ([`TILE`]² lines); each tile keeps an upper bound of its highest material point (recomputed
-//!    after a cut touched it), which culls the bodies' checks of step 4. A footprint of at least
-//!    [`PARALLEL_LINES`] lines is cut by two threads (`rayon::join`), each on its own half of the
-//!    tile rows, so they never share a line or a tile flag.
+//!    after a cut touched it), which culls the bodies' checks of step 4. A sweep whose clipped
+//!    rows hold at least [`PARALLEL_LINES`] lines is cut by two threads (`rayon::join`), each on
+//!    its own half of the tile rows, so they never share a line or a tile flag. The count is of
+//!    the lines the bands give (one pass over the rows, no line visited), not of the footprint's
+//!    box: a leaning tool's box is mostly air, and a join costs as much CPU as a few thousand
+//!    line visits (waking the other worker, its spinning; measured in docs/performance.md), so
+//!    only sweeps far larger than that are split.
 //! 3. Each remaining line: the union of its chords with the cutter's primitives (the vertical
 //!    fast path when the axis is +Z), removed; the removed length is volume × cell area, the
 //!    longest removed length the depth of cut, the lowest removed point the engagement of the tip.
@@ -69,8 +73,9 @@ impl SweepHits {
     }
 }
 
-/// Footprints of at least this many lines are cut by two threads (rows split in half).
-pub const PARALLEL_LINES: usize = 1500;
+/// Sweeps that can touch at least this many lines are cut by two threads (rows split in half;
+/// module doc, step 2).
+pub const PARALLEL_LINES: usize = 16_000;
 
 /// Where the lines are.
 #[derive(Debug, Clone, Copy)]
@@ -144,6 +149,53 @@ struct CutterPass<'a> {
 }
 
 impl CutterPass<'_> {
+    /// The lines of row `j` (at height `y`) the swept cutter can touch: with a vertical axis the
+    /// capsule of its widest radius around the tip's path; with a tilted one the union of each
+    /// primitive's band, which `prim_ir` receives (module doc, step 2). Empty when none.
+    #[inline]
+    fn row_lines(&self, y: f64, prim_ir: &mut [std::ops::Range<usize>]) -> std::ops::Range<usize> {
+        let g = self.grid;
+        let (p0, d) = (self.sw.p0, self.sw.d);
+        if self.vertical {
+            return match crate::lathe::capsule_chord(
+                [p0[1], p0[0]],
+                [p0[1] + d[1], p0[0] + d[0]],
+                self.radius,
+                y,
+            ) {
+                Some((xa, xb)) => g.index_range(xa, xb, self.ir.clone()),
+                None => 0..0,
+            };
+        }
+        let (mut a, mut b) = (usize::MAX, 0);
+        for (k, tp) in self.tilted.iter().enumerate() {
+            prim_ir[k] = match tp.x_range(y) {
+                Some((xa, xb)) => g.index_range(xa, xb, self.ir.clone()),
+                None => 0..0,
+            };
+            if !prim_ir[k].is_empty() {
+                a = a.min(prim_ir[k].start);
+                b = b.max(prim_ir[k].end);
+            }
+        }
+        if a >= b {
+            0..0
+        } else {
+            a..b
+        }
+    }
+
+    /// How many lines of rows `rows` [`CutterPass::row_lines`] gives: the work of the sweep.
+    fn count_lines(&self, rows: std::ops::Range<usize>) -> usize {
+        let g = self.grid;
+        let mut prim_ir: Vec<std::ops::Range<usize>> = vec![0..0; self.tilted.len()];
+        rows.map(|j| {
+            let y = g.origin[1] + (j as f64 + 0.5) * g.cell[1];
+            self.row_lines(y, &mut prim_ir).len()
+        })
+        .sum()
+    }
+
     /// Cuts the lines of rows `rows` (inside `band`).
     fn run(&self, band: Band<'_>, rows: std::ops::Range<usize>) -> SweepHits {
         let mut hits = SweepHits {
@@ -152,44 +204,14 @@ impl CutterPass<'_> {
         };
         let g = self.grid;
         let area = g.cell[0] * g.cell[1];
-        let (p0, d) = (self.sw.p0, self.sw.d);
         // Per row, the lines each tilted primitive's band covers.
         let mut prim_ir: Vec<std::ops::Range<usize>> = vec![0..0; self.tilted.len()];
         for j in rows {
             let y = g.origin[1] + (j as f64 + 0.5) * g.cell[1];
-            // A vertical tool covers the disk of its widest radius around the tip's path.
-            let ir = if self.vertical {
-                let Some((xa, xb)) = crate::lathe::capsule_chord(
-                    [p0[1], p0[0]],
-                    [p0[1] + d[1], p0[0] + d[0]],
-                    self.radius,
-                    y,
-                ) else {
-                    continue;
-                };
-                let r = g.index_range(xa, xb, self.ir.clone());
-                if r.is_empty() {
-                    continue;
-                }
-                r
-            } else {
-                // A tilted tool: each primitive's band, and the lines of any of them.
-                let (mut a, mut b) = (usize::MAX, 0);
-                for (k, tp) in self.tilted.iter().enumerate() {
-                    prim_ir[k] = match tp.x_range(y) {
-                        Some((xa, xb)) => g.index_range(xa, xb, self.ir.clone()),
-                        None => 0..0,
-                    };
-                    if !prim_ir[k].is_empty() {
-                        a = a.min(prim_ir[k].start);
-                        b = b.max(prim_ir[k].end);
-                    }
-                }
-                if a >= b {
-                    continue;
-                }
-                a..b
-            };
+            let ir = self.row_lines(y, &mut prim_ir);
+            if ir.is_empty() {
+                continue;
+            }
             let row = (j - band.j0) * g.n0;
             for i in ir {
                 let line = &mut band.lines[row + i];
@@ -213,7 +235,7 @@ impl CutterPass<'_> {
                         // Tilted: outside its band or above the material, a primitive cuts
                         // nothing the others do not (tilted.rs).
                         let tp = &self.tilted[k];
-                        if low > top || !prim_ir[k].contains(&i) || tp.bound.at(c) > top {
+                        if low > top || !prim_ir[k].contains(&i) || tp.bound.above(c, top) {
                             continue;
                         }
                         tp.chord(c)
@@ -478,14 +500,18 @@ impl MillModel {
                         tiles0: self.tiles[0],
                     },
                 };
-                // Two halves of the rows on two threads when the footprint is large enough.
-                let rows = jr.len() * cut.ir.len();
+                // Two halves of the rows on two threads when the lines the cutter can touch are
+                // many enough (counted on its clipped bands, not its box: a leaning tool's box is
+                // mostly air).
+                let parallel = jr.len() >= 2 * TILE
+                    && jr.len() * cut.ir.len() >= PARALLEL_LINES
+                    && cut.count_lines(jr.clone()) >= PARALLEL_LINES;
                 let band = Band {
                     lines: &mut self.grid.lines,
                     dirty: &mut self.tile_dirty,
                     j0: 0,
                 };
-                let part = if rows >= PARALLEL_LINES && jr.len() >= 2 * TILE {
+                let part = if parallel {
                     let mid = (jr.start + jr.len() / 2) / TILE * TILE;
                     let (a, b) = band.split(mid, cut.grid.n0, cut.grid.tiles0);
                     let (x, y) =
@@ -521,7 +547,7 @@ impl MillModel {
                     }
                     let chord = match &tp {
                         None => chord_vertical(p, sw, c[0], c[1]),
-                        Some(tp) if tp.bound.at(c) > top => None,
+                        Some(tp) if tp.bound.above(c, top) => None,
                         Some(tp) => tp.chord(c),
                     };
                     if let Some((a, b)) = chord {

@@ -180,6 +180,8 @@ pub struct StockSim {
     state: State,
     tools: HashMap<u32, ToolShape>,
     tool_now: Option<ToolShape>,
+    /// The kinematics with the tool offset in force, and that offset.
+    kin: Option<(V3, FiveAxis)>,
     chain: Option<Chain>,
     last: Option<(ToolPose, f64)>,
     per_tool: BTreeMap<u32, Tally>,
@@ -235,6 +237,7 @@ impl StockSim {
             },
             tools: HashMap::new(),
             tool_now: None,
+            kin: None,
             chain: None,
             chain_lines: Vec::new(),
             last: None,
@@ -382,16 +385,20 @@ impl StockSim {
     }
 
     /// The tool pose of a setpoint in the stock frame (module doc, step 1).
-    fn pose(&self, joints: &[f64; 9]) -> ToolPose {
+    fn pose(&mut self, joints: &[f64; 9]) -> ToolPose {
         let offset = self.state.tcp.unwrap_or(self.state.offset);
-        let (tip, axis) = match &self.config.kinematics {
-            Some(k) => {
-                let kin = k.clone().with_tool_offset(offset);
-                match kin.forward(joints) {
-                    Ok(p) => ([p.x, p.y, p.z], kin.tool_vector(&p)),
-                    Err(_) => ([joints[0], joints[1], joints[2]], [0.0, 0.0, 1.0]),
-                }
+        // The machine with this tool offset, made once per offset (not per setpoint: it owns
+        // its axes' vectors).
+        if let Some(k) = &self.config.kinematics {
+            if self.kin.as_ref().is_none_or(|(o, _)| *o != offset) {
+                self.kin = Some((offset, k.clone().with_tool_offset(offset)));
             }
+        }
+        let (tip, axis) = match &self.kin {
+            Some((_, kin)) => match kin.forward(joints) {
+                Ok(p) => ([p.x, p.y, p.z], kin.tool_vector(&p)),
+                Err(_) => ([joints[0], joints[1], joints[2]], [0.0, 0.0, 1.0]),
+            },
             None => (
                 sub([joints[0], joints[1], joints[2]], offset),
                 [0.0, 0.0, 1.0],

@@ -34,6 +34,15 @@
 //! 3. **The sphere** is the same solid whatever the axis: a ball of radius r centred at
 //!    `tip + hc·a` is swept by the vertical fast path (`sweep::chord_vertical`) as a sphere at
 //!    height 0 over a vertical axis through that centre.
+//! 4. **The sphere's floor** (the same role as item 2, per line, before the chord). With the
+//!    centre at `m(t) = m0 + t·d`, the swept ball's lowest point on the line at c is
+//!    `min_t (m_z(t) − √(r² − ρ(t)²))`, ρ(t) the horizontal distance of c from m(t). Each term is
+//!    bounded alone: `m_z(t) ≥ min(m_z(0), m_z(1))` (that is `k1 + r`) and `ρ(t) ≥ ρ_min`, the
+//!    distance of c from the centre's XY segment (one clamped projection). So every point of the
+//!    ball is above `k1 + r − √(r² − ρ_min²)`, and nothing at all when `ρ_min > r`: a dot product,
+//!    a clamp and one square root, against the two quadratics and up to six roots of the chord.
+//!    On a finishing path most lines under the ball were cut to its surface by the pass before
+//!    and the sweep before; their tops are above that floor only where this sweep cuts.
 //!
 //! `tests::tilted_sweeps_cut_what_the_brute_force_cuts` holds the culled sweep against every
 //! line of the grid cut by the generic chord of every primitive.
@@ -43,20 +52,63 @@ use crate::sweep::{chord, chord_vertical, Prim, Sweep};
 use crate::vec3::{add, scale, V3};
 
 /// The lowest height a swept primitive can have on the vertical line through `c` (module doc,
-/// item 2): `max(k1, k2 + dir·c)`.
+/// item 2): `max(k1, k2 + dir·c)`, and for a sphere the floor of item 4.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct HeightBound {
     k1: f64,
     k2: f64,
     dir: [f64; 2],
+    /// A sphere's centre path in XY (start, displacement, 1/|e|², 0 when it stands), its radius²
+    /// and its centre's lowest height less a nanometre (module doc, item 4); `r2 < 0` for a
+    /// frustum.
+    centre: [f64; 2],
+    e: [f64; 2],
+    inv_ee: f64,
+    r2: f64,
+    centre_z: f64,
 }
 
 impl HeightBound {
-    /// The bound at the line through `c`, mm.
-    #[inline]
+    /// The bound at the line through `c`, mm (∞: the primitive does not reach the line).
+    #[cfg(test)]
     pub(crate) fn at(&self, c: [f64; 2]) -> f64 {
+        if self.r2 >= 0.0 {
+            let rest = self.r2 - self.rho_min2(c);
+            return if rest < 0.0 {
+                f64::INFINITY
+            } else {
+                self.centre_z - rest.sqrt()
+            };
+        }
+        self.frustum_at(c)
+    }
+
+    #[inline]
+    fn frustum_at(&self, c: [f64; 2]) -> f64 {
         self.k1
             .max(self.k2 + self.dir[0] * c[0] + self.dir[1] * c[1])
+    }
+
+    /// Item 4: the square of the centre path's nearest approach ρ_min to the line at `c`.
+    #[inline]
+    fn rho_min2(&self, c: [f64; 2]) -> f64 {
+        let w = [c[0] - self.centre[0], c[1] - self.centre[1]];
+        let t = ((w[0] * self.e[0] + w[1] * self.e[1]) * self.inv_ee).clamp(0.0, 1.0);
+        let (x, y) = (w[0] - t * self.e[0], w[1] - t * self.e[1]);
+        x * x + y * y
+    }
+
+    /// Whether every point of the swept primitive on the line at `c` is above `top` (the bound
+    /// is above it). For a sphere without a root: `centre_z − √rest > top` ⟺ `rest < g²` with
+    /// `g = centre_z − top > 0`.
+    #[inline]
+    pub(crate) fn above(&self, c: [f64; 2], top: f64) -> bool {
+        if self.r2 >= 0.0 {
+            let rest = self.r2 - self.rho_min2(c);
+            let g = self.centre_z - top;
+            return rest < 0.0 || (g > 0.0 && rest < g * g);
+        }
+        self.frustum_at(c) > top
     }
 }
 
@@ -109,11 +161,20 @@ impl TiltedPrim {
             [yx(a0), yx(add(a0, sw.d))],
             [yx(a1), yx(add(a1, sw.d))],
         ];
-        // The slope term exists for a frustum on a leaning axis only.
+        // The slope term exists for a frustum on a leaning axis only; the floor for a sphere.
         let mut bound = HeightBound {
             k1,
             k2: f64::NEG_INFINITY,
             dir: [0.0; 2],
+            centre: [sweep.p0[0], sweep.p0[1]],
+            e: [sw.d[0], sw.d[1]],
+            inv_ee: match sw.d[0] * sw.d[0] + sw.d[1] * sw.d[1] {
+                ee if ee > 1e-18 => 1.0 / ee,
+                _ => 0.0,
+            },
+            r2: if vertical { radius * radius } else { -1.0 },
+            // A nanometre below, so that rounding cannot lift the bound above the chord's end.
+            centre_z: k1 + radius - 1e-9,
         };
         let sin = (a[0] * a[0] + a[1] * a[1]).sqrt();
         if !vertical && sin > 1e-6 {
@@ -279,6 +340,46 @@ mod tests {
                 }
             }
         }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+        /// The sphere's floor (module doc, item 4) is below the swept ball's lowest point on every
+        /// line it meets, and `above` says the same as the floor.
+        #[test]
+        fn the_sphere_floor_is_below_the_swept_ball(
+            hc in 0.5..5.0f64, r in 0.5..5.0f64,
+            axis in axis(120.0),
+            p0 in proptest::array::uniform3(-2.0..2.0f64),
+            d in proptest::array::uniform3(-3.0..3.0f64),
+            c in proptest::array::uniform2(-8.0..8.0f64),
+            top in -8.0..8.0f64,
+        ) {
+            let sw = Sweep { p0, d, axis };
+            let tp = super::TiltedPrim::new(&crate::sweep::Prim::Sphere { hc, r }, &sw);
+            let floor = tp.bound.at(c);
+            if let Some((lo, _)) = tp.chord(c) {
+                prop_assert!(floor <= lo + 1e-12, "{floor} > {lo}");
+            }
+            prop_assert_eq!(tp.bound.above(c, top), floor > top);
+        }
+    }
+
+    #[test]
+    fn a_standing_ball_has_its_floor_at_its_surface() {
+        // d = 0: the floor is the ball's lower surface (less a nanometre), ∞ beyond its radius.
+        let sw = Sweep {
+            p0: [1.0, 2.0, -3.0],
+            d: [0.0; 3],
+            axis: [0.0, 0.6, 0.8],
+        };
+        let tp = super::TiltedPrim::new(&crate::sweep::Prim::Sphere { hc: 2.0, r: 2.0 }, &sw);
+        // Centre (1, 3.2, −1.4); at 1.2 mm from it the surface is √(4 − 1.44) below.
+        let floor = tp.bound.at([2.2, 3.2]);
+        assert!((floor - (-1.4 - 2.56f64.sqrt())).abs() < 1e-8, "{floor}");
+        assert_eq!(tp.bound.at([3.3, 3.2]), f64::INFINITY);
+        let (lo, _) = tp.chord([2.2, 3.2]).unwrap();
+        assert!((floor - lo).abs() < 1e-8);
     }
 
     #[test]

@@ -153,7 +153,8 @@ impl Rs<'_> {
         }
         loop {
             self.plain_words();
-            let Some(c) = self.peek() else {
+            // `plain_words` leaves the cursor past blanks (no second `skip_blanks`).
+            let Some(c) = self.b.get(self.pos).copied() else {
                 return Ok(());
             };
             match c {

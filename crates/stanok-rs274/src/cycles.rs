@@ -504,16 +504,19 @@ fn stop_spindle(cx: &mut Ctx<'_>) {
     cx.out.push(Canon::StopSpindle { spindle: 0 });
 }
 
-/// Tapping switches the overrides off and back on, but not on if M49 had them off (LinuxCNC).
+/// Tapping switches both overrides off and then back on each one that was on before it:
+/// LinuxCNC keeps a feed and a speed flag (M50 P0 / M51 P0 / M49 clear them) and re-enables the
+/// feed override, then the speed override, only where its flag is set.
 fn overrides(cx: &mut Ctx<'_>, enabled: bool) {
-    if enabled && cx.fe.modes.feed_override_disabled {
-        return;
+    if !enabled || !cx.fe.modes.feed_override_disabled {
+        cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
     }
-    cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
-    cx.out.push(Canon::SetSpindleOverrideEnabled {
-        spindle: 0,
-        enabled,
-    });
+    if !enabled || !cx.fe.modes.speed_override_disabled {
+        cx.out.push(Canon::SetSpindleOverrideEnabled {
+            spindle: 0,
+            enabled,
+        });
+    }
 }
 
 /// G83's (and G73's) retract before re-entering a peck: 0.010 in, or 0.254 mm in G21 programs.

@@ -109,6 +109,9 @@ pub struct Rs274State {
     pub naive_cam_tolerance: f64,
     /// M50 P0 / M49 (or a G76) disabled the feed override.
     pub feed_override_disabled: bool,
+    /// M51 P0 / M49 disabled the spindle speed override (G84 leaves it off at its end; M2 does
+    /// not switch it back on).
+    pub speed_override_disabled: bool,
     /// G96 constant surface speed in force.
     pub css: bool,
     /// G96's cutting speed, mm/min (from S when G96 or S was programmed).

@@ -133,6 +133,7 @@ pub(super) fn overrides(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
         cx.out.push(Canon::SetFeedOverrideEnabled { enabled });
     }
     if matches!(code, 48 | 49 | 51) {
+        cx.fe.modes.speed_override_disabled = !enabled;
         cx.out.push(Canon::SetSpindleOverrideEnabled {
             spindle: 0,
             enabled,

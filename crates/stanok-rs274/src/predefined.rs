@@ -103,7 +103,7 @@ pub fn predefined(
         "_spindle_cw" => flag(rs.spindle_direction == Some(SpindleDirection::Clockwise)),
         "_mist" => flag(st.mist),
         "_flood" => flag(st.flood),
-        "_speed_override" => 1.0,
+        "_speed_override" => flag(!rs.speed_override_disabled),
         "_feed_override" => flag(!rs.feed_override_disabled),
         "_adaptive_feed" => 0.0,
         "_feed_hold" => 1.0,

@@ -390,6 +390,7 @@ own_tests! {
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";
+    parity_tap_overrides: "stanok-parity-tap-overrides";
     parity_m60: "stanok-parity-m60";
     parity_m72_coolant: "stanok-parity-m72-coolant";
     parity_m72_g92: "stanok-parity-m72-g92";

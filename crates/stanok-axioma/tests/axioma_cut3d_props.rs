@@ -256,27 +256,14 @@ fn run(case: &Case) -> Result<Vec<Spanned<Canon>>, stanok_canon::Diagnostic> {
 }
 
 /// A programmed element's tool-axis path in the plane, vertical tool (regime A): a line shifted
-/// by R to the compensation side, or an arc about the same centre with its radius ± R.
-#[derive(Debug, Clone, Copy)]
-enum Offset {
-    Line {
-        a: V3,
-        b: V3,
-    },
-    Arc {
-        c: V3,
-        rho: f64,
-        a0: f64,
-        sweep: f64,
-    },
-}
-
-fn offset(seg: &Seg, side: f64, r: f64) -> Option<Offset> {
+/// by R to the compensation side, or an arc about the same centre with its radius ± R (None
+/// when the arc shrinks to nothing).
+fn offset(seg: &Seg, side: f64, r: f64) -> Option<Seg> {
     match *seg {
         Seg::Line { a, b } => {
             let d = unit(sub(b, a));
             let n = scale([-d[1], d[0], 0.0], side * r);
-            Some(Offset::Line {
+            Some(Seg::Line {
                 a: add(a, n),
                 b: add(b, n),
             })
@@ -286,17 +273,25 @@ fn offset(seg: &Seg, side: f64, r: f64) -> Option<Offset> {
         } => {
             // Left of travel is towards the centre on a counterclockwise arc.
             let rho = rho - side * r * sweep.signum();
-            (rho > 1e-9).then_some(Offset::Arc { c, rho, a0, sweep })
+            let at = |x: f64| [c[0] + rho * x.cos(), c[1] + rho * x.sin(), 0.0];
+            (rho > 1e-9).then(|| Seg::Arc {
+                c,
+                rho,
+                a0,
+                sweep,
+                a: at(a0),
+                b: at(a0 + sweep),
+            })
         }
     }
 }
 
-impl Offset {
+impl Seg {
     /// Where `p` (on the element's carrier) lies along the element: 0 at its start, 1 at its end.
     fn param(&self, p: V3) -> f64 {
         match *self {
-            Offset::Line { a, b } => dot(sub(p, a), sub(b, a)) / dot(sub(b, a), sub(b, a)),
-            Offset::Arc { c, a0, sweep, .. } => {
+            Seg::Line { a, b } => dot(sub(p, a), sub(b, a)) / dot(sub(b, a), sub(b, a)),
+            Seg::Arc { c, a0, sweep, .. } => {
                 let ang = (p[1] - c[1]).atan2(p[0] - c[0]);
                 let rel = if sweep > 0.0 { ang - a0 } else { a0 - ang };
                 // Angles just before the start read as slightly negative, not as nearly 2π.
@@ -308,14 +303,14 @@ impl Offset {
     /// Line through (point, direction) or circle (centre, radius).
     fn carrier(&self) -> Result<(V3, V3), (V3, f64)> {
         match *self {
-            Offset::Line { a, b } => Ok((a, sub(b, a))),
-            Offset::Arc { c, rho, .. } => Err((c, rho)),
+            Seg::Line { a, b } => Ok((a, sub(b, a))),
+            Seg::Arc { c, rho, .. } => Err((c, rho)),
         }
     }
 }
 
 /// The points where two carriers (lines or circles in the plane) cross.
-fn crossings(e1: &Offset, e2: &Offset) -> Vec<V3> {
+fn crossings(e1: &Seg, e2: &Seg) -> Vec<V3> {
     let cross2 = |u: V3, v: V3| u[0] * v[1] - u[1] * v[0];
     let line_circle = |p: V3, d: V3, c: V3, rho: f64| -> Vec<V3> {
         let w = sub(p, c);
@@ -358,7 +353,7 @@ fn crossings(e1: &Offset, e2: &Offset) -> Vec<V3> {
 /// blocks, or a block whose two inner corners trim it from both ends past each other: the cases
 /// where §13.4 says the control finds no intersection of the blocks (vertical tool only).
 fn inner_corner_without_crossing(case: &Case) -> bool {
-    let offs: Vec<Option<Offset>> = case
+    let offs: Vec<Option<Seg>> = case
         .segs
         .iter()
         .map(|s| offset(s, case.side, case.radius))

@@ -48,8 +48,9 @@
 //! cuts it with the chord between the same tangent points, next to lines and arcs alike
 //! (`corners.rs`).
 //!
-//! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, feed to
-//! P0' and along profile', staying at its end (LinuxCNC 2.9).
+//! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, then
+//! the final pass from I — the entry I → P0' its first element — in the frame mirrored in l, where
+//! the profile rises as LinuxCNC's frame has it; the tool stays at its end (`away_from_start`).
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
 //! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
@@ -321,6 +322,14 @@ impl Frame {
         }
     }
 
+    /// The same frame mirrored in l (for moves computed in the mirrored canonical frame).
+    fn mirrored_l(self) -> Frame {
+        Frame {
+            sl: -self.sl,
+            ..self
+        }
+    }
+
     /// Whether the map reverses orientation (arcs change their sense).
     fn mirrors(self) -> bool {
         let det = self.sc * self.sl * if self.facing { -1.0 } else { 1.0 };
@@ -440,17 +449,16 @@ pub fn finish(
             moves.extend(pass.into_iter().map(Move::Feed));
         }
     } else {
-        // A profile running away from S (l only falls): LinuxCNC 2.9 cuts no level, it feeds from
-        // the entry point onto the profile and along it, and stays at its end.
         if !rising(&canon) && falling(&canon) {
             let prof = offset(call.d)?;
-            moves.push(Move::Rapid(entry));
-            let onto = Seg2::Line {
-                a: entry,
-                b: prof[0].start(),
-            };
-            pass(&mut moves, call, [&onto].into_iter().chain(prof.iter()));
-            return emit(cx, call, &f, &moves, at);
+            away_from_start(&mut moves, call, entry, &prof).ok_or_else(|| {
+                cx.err(
+                    "rs274::g7x-levels",
+                    format!("G7X error: more than {MAX_LEVELS} levels"),
+                    at,
+                )
+            })?;
+            return emit(cx, call, &f.mirrored_l(), &moves, at);
         }
         let prof = offset(call.d)?;
         rough(&mut moves, call, entry, s_c, &prof).ok_or_else(|| {
@@ -566,17 +574,69 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
     pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
 }
 
-/// Feeds along `elements`; G7x.1 (no pockets) feeds to every element's start first — LinuxCNC 2.9
-/// does, though the tool is there already.
-fn pass<'a>(moves: &mut Vec<Move>, call: &LatheCall, elements: impl Iterator<Item = &'a Seg2>) {
-    for seg in elements {
-        if matches!(call.code, G71_1 | G72_1) {
-            moves.push(Move::Feed(Seg2::Line {
-                a: seg.start(),
-                b: seg.start(),
-            }));
-        }
-        moves.push(Move::Feed(*seg));
+/// A profile running away from S (l only falls along it, canonical frame): LinuxCNC 2.9 cuts no
+/// level. Its own frame for such a profile has S *below* P0 and the profile rising, so this
+/// works in the canonical frame mirrored in l (the moves it leaves are in that frame: emit them
+/// with `Frame::mirrored_l`). There the cycle is the final pass alone, from the entry point I,
+/// with the entry I → P0' as the profile's first element (fed, never rapid):
+///
+/// * G7x.1 climbs every element from the tool's level (`climb.rs`): a right-turning arc that
+///   passes its top — an offset arc ending beyond it, where it meets the next line — is cut to
+///   the top only, and the tool then feeds across to the next element at that level;
+/// * G7x and G7x.2 walk the profile with its pockets (`pockets.rs`): the same arc is cut to its
+///   top and then on down to its end (a G7x.2 first cuts the dip it starts there as a pocket:
+///   feed across, retract, back); S's level lies below the profile, so no other pocket level is
+///   on G7x's grid.
+///
+/// No closing move: the profile ends beyond S's level and the tool stays at its end.
+/// None: too many levels.
+fn away_from_start(
+    moves: &mut Vec<Move>,
+    call: &LatheCall,
+    entry: P2,
+    prof: &[Seg2],
+) -> Option<()> {
+    let entry = mirror_l_point(entry);
+    let mut elements: Vec<Seg2> = Vec::with_capacity(prof.len() + 1);
+    elements.extend(prof.iter().map(mirror_l));
+    let p0 = elements[0].start();
+    elements.insert(0, Seg2::Line { a: entry, b: p0 });
+    let pend = elements[elements.len() - 1].end();
+    let close = Seg2::Line { a: pend, b: pend };
+    moves.push(Move::Rapid(entry));
+    if matches!(call.code, G71_1 | G72_1) {
+        climb::climb_pass(moves, &elements, entry, close);
+        return Some(());
+    }
+    // No level of S's grid lies above the profile: only a G7x.2 pocket anchored at its own top
+    // is cut.
+    pockets::final_pass(
+        moves,
+        call,
+        entry,
+        &pockets::split_at_turns(&elements),
+        close,
+    )
+}
+
+/// (c, l) → (c, −l).
+fn mirror_l_point(p: P2) -> P2 {
+    [p[0], -p[1]]
+}
+
+/// A segment mirrored in l (an arc keeps its radius and turns the other way).
+fn mirror_l(s: &Seg2) -> Seg2 {
+    match *s {
+        Seg2::Line { a, b } => Seg2::Line {
+            a: mirror_l_point(a),
+            b: mirror_l_point(b),
+        },
+        Seg2::Arc { c, r, start, sweep } => Seg2::Arc {
+            c: mirror_l_point(c),
+            r,
+            start: -start,
+            sweep: -sweep,
+        },
     }
 }
 

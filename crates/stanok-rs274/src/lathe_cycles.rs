@@ -38,7 +38,7 @@
 //!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
 //!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
 //!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
-//! * profile' is the profile offset by D as LinuxCNC offsets it, arcs that end off their radius
+//! * profile' is the profile offset by D (on the side of `side.rs`) as LinuxCNC offsets it, arcs that end off their radius
 //!   included (`arcs.rs`); an arc is printed with its own end point, the next feed's start.
 //! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
@@ -48,9 +48,16 @@
 //! cuts it with the chord between the same tangent points, next to lines and arcs alike
 //! (`corners.rs`).
 //!
-//! A profile that only runs away from S (l falls all along it) gets no levels: rapid to I, then
-//! the final pass from I — the entry I → P0' its first element — in the frame mirrored in l, where
-//! the profile rises as LinuxCNC's frame has it; the tool stays at its end (`away_from_start`).
+//! LinuxCNC orients its frame by the profile (P0 below Pend), not by S. A profile that ends below
+//! P0 here (it runs away from S overall) has S below it there: it gets no levels — rapid to I,
+//! then the final pass from I, the entry I → P0' its first element, in the frame mirrored in l;
+//! the tool stays at its end (`away_from_start`). Where the frame's cut direction is undecided
+//! (Pend level with P0 along c) it runs towards −Z (G71) or −X (G72), as LinuxCNC's does.
+//!
+//! The allowance's side is LinuxCNC's rule (`side.rs`): towards S for the usual profile, by the
+//! turn from the entry to the last element where S is level with P0 or behind the profile.
+//! A motion of the profile that moves neither X nor Z is no element (the first motion that does
+//! is the approach to P0).
 //!
 //! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
 //! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
@@ -71,6 +78,11 @@ mod arcs;
 mod climb;
 mod corners;
 mod pockets;
+mod side;
+
+/// A profile motion moving X and Z less than this is no element (LinuxCNC compares the ends
+/// exactly; this only absorbs the unit conversions' rounding), mm.
+const IN_PLACE: f64 = 1e-9;
 
 /// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
 pub const MAX_LEVELS: usize = 10_000;
@@ -216,7 +228,19 @@ impl Profile {
             let q = to_program(p);
             [q.z, q.x]
         };
-        let mut motions = commands.iter().filter(|c| c.motion().is_some());
+        // LinuxCNC reads only the motions that change X or Z (a move back to where the tool is,
+        // a Y-only move and a full circle are no element): the first of them is the approach.
+        let moves_in_plane = |c: &&Canon| match c {
+            Canon::StraightTraverse(m) | Canon::StraightFeed(m) => {
+                stanok_geom::offset2d::dist2(zx(&m.start), zx(&m.end)) > IN_PLACE
+            }
+            Canon::ArcFeed(a) => stanok_geom::offset2d::dist2(zx(&a.start), zx(&a.end)) > IN_PLACE,
+            c => c.motion().is_some(),
+        };
+        let mut motions = commands
+            .iter()
+            .filter(|c| c.motion().is_some())
+            .filter(moves_in_plane);
         let Some(first) = motions.next() else {
             return Err("G7X error: the profile subroutine has no motion".into());
         };
@@ -251,7 +275,7 @@ impl Profile {
                 }
                 continue;
             }
-            if c.motion().is_none() {
+            if c.motion().is_none() || !moves_in_plane(&c) {
                 continue;
             }
             let seg = match c {
@@ -298,7 +322,9 @@ impl Frame {
         let sign = |v: f64| if v < 0.0 { -1.0 } else { 1.0 };
         Frame {
             facing,
-            sc: sign(pend[ci] - p0[ci]),
+            // A profile ending where it starts along the cut axis runs towards −Z (G71) or −X
+            // (G72), as LinuxCNC's frame has it (it flips only where Pend is past P0).
+            sc: if pend[ci] - p0[ci] > 0.0 { 1.0 } else { -1.0 },
             sl: sign(s[li] - p0[li]),
         }
     }
@@ -430,8 +456,11 @@ pub fn finish(
         [p0_c[0], s_c[1]]
     };
     let unit = cx.mm(1.0);
+    // The allowance's side (`side.rs`), as a sign for an offset to the left in the frame.
+    let side = side::left_in_plane(facing, f.to_real(entry), p0, chain)
+        * if f.mirrors() { -1.0 } else { 1.0 };
     let offset = |d: f64| {
-        arcs::offset_profile(&canon, p0_c, d, unit).ok_or_else(|| {
+        arcs::offset_profile(&canon, p0_c, side * d, unit).ok_or_else(|| {
             cx.err(
                 "rs274::g7x-offset",
                 "G7X error: the profile cannot be offset by this distance",
@@ -449,7 +478,10 @@ pub fn finish(
             moves.extend(pass.into_iter().map(Move::Feed));
         }
     } else {
-        if !rising(&canon) && falling(&canon) {
+        // LinuxCNC orients its frame by the profile (P0 below Pend), not by S: a profile ending
+        // below P0 here has S below it there.
+        let pend_c = canon[canon.len() - 1].end();
+        if pend_c[1] < p0_c[1] - LEN_EPS {
             let prof = offset(call.d)?;
             away_from_start(&mut moves, call, entry, &prof).ok_or_else(|| {
                 cx.err(
@@ -474,42 +506,6 @@ pub fn finish(
         cx.fe.modes.comp.stale = Some(pend);
     }
     emit(cx, call, &f, &moves, at)
-}
-
-/// Whether l never increases along the canonical chain (the profile runs away from S).
-fn falling(canon: &[Seg2]) -> bool {
-    let mirrored: Vec<Seg2> = canon
-        .iter()
-        .map(|s| match *s {
-            Seg2::Line { a, b } => Seg2::Line {
-                a: [a[0], -a[1]],
-                b: [b[0], -b[1]],
-            },
-            Seg2::Arc { c, sweep, .. } => Seg2::arc_through(
-                [c[0], -c[1]],
-                [s.start()[0], -s.start()[1]],
-                [s.end()[0], -s.end()[1]],
-                sweep < 0.0,
-                false,
-            ),
-        })
-        .collect();
-    rising(&mirrored)
-}
-
-/// Whether l never decreases along the canonical chain (a type-1 profile).
-fn rising(canon: &[Seg2]) -> bool {
-    let mut lowest = f64::NEG_INFINITY;
-    for s in canon {
-        for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
-            let l = s.point(t)[1];
-            if l < lowest - 1e-6 {
-                return false;
-            }
-            lowest = lowest.max(l);
-        }
-    }
-    monotonic(canon, 1)
 }
 
 /// G71/G72 levels and the final pass, canonical frame (module comment). None: too many levels.
@@ -563,9 +559,11 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
         moves.push(Move::Rapid([cs, l]));
     }
     moves.push(Move::Rapid(p0));
+    // The closing move up to S's level, only from below it: a profile ending above S's level
+    // leaves the tool at its end (LinuxCNC 2.9).
     let close = Seg2::Line {
         a: pend,
-        b: [pend[0], s[1]],
+        b: [pend[0], s[1].max(pend[1])],
     };
     if matches!(call.code, G71_1 | G72_1) {
         climb::climb_pass(moves, prof, p0, close);

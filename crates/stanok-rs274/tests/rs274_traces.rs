@@ -389,6 +389,7 @@ own_tests! {
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
+    parity_g7x_start_level: "stanok-parity-g7x-start-level";
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";
     parity_tap_overrides: "stanok-parity-tap-overrides";

@@ -5,9 +5,14 @@
 //!  G7x block commits ─▶ start: Flow::call(oQ), capture = { before: queue.len(), depth }
 //!  profile blocks    ─▶ executed as usual; their commands stay in the queue behind `before`
 //!                       (`held` covers them, so nothing of them leaves the interpreter)
-//!  return from oQ    ─▶ finish: drain them, read the profile, put the tool back at S and let
+//!  return from oQ    ─▶ finish: drain them, read the profile, put the tool back at S, undo
+//!                       what the profile's F, S and M codes set, and let
 //!                       lathe_cycles::finish emit the cycle in their place
 //! ```
+//!
+//! LinuxCNC reads a profile's motions, parameters and control flow only; its feed, speed,
+//! coolant, spindle and override words never take effect. Stanok executes the blocks (the
+//! profile's own positions and parameters need it) and restores that state afterwards.
 //!
 //! Invariant: while a capture runs, `before` counts the queue entries that precede it (the
 //! iterator decrements it as it releases them), so the profile's commands are exactly
@@ -45,6 +50,20 @@ pub(crate) struct LatheCapture {
     /// law it "sent" never reached the machine and the state must say so.
     css_mm_per_min: f64,
     css_law: Option<stanok_canon::SurfaceSpeedLaw>,
+    /// The M-code state before the profile: LinuxCNC reads a profile's motions and control flow
+    /// only, so its M3–M5, M7–M9 and M48–M53 never happened.
+    switches: Switches,
+}
+
+/// The state the M codes of a profile would change (`LatheCapture::switches`).
+#[derive(Debug, Clone, Copy)]
+struct Switches {
+    mist: bool,
+    flood: bool,
+    spindle_on: [bool; 4],
+    spindle_direction: Option<stanok_canon::SpindleDirection>,
+    feed_override_disabled: bool,
+    speed_override_disabled: bool,
 }
 
 impl Rs274 {
@@ -102,6 +121,14 @@ impl Rs274 {
             spindle_speed: st.spindle_speed,
             css_mm_per_min: self.part.modes.css_mm_per_min,
             css_law: self.part.modes.css_law,
+            switches: Switches {
+                mist: st.mist,
+                flood: st.flood,
+                spindle_on: st.spindle_on,
+                spindle_direction: self.part.modes.spindle_direction,
+                feed_override_disabled: self.part.modes.feed_override_disabled,
+                speed_override_disabled: self.part.modes.speed_override_disabled,
+            },
         });
         self.part.modes.in_profile = true;
         self.part.modes.comp = Default::default();
@@ -137,6 +164,13 @@ impl Rs274 {
         let profile = Profile::from_commands(&commands, |p| frame.to_program(p));
         self.part.modes.in_profile = false;
         self.part.modes.comp = cap.comp;
+        let sw = cap.switches;
+        core.state.mist = sw.mist;
+        core.state.flood = sw.flood;
+        core.state.spindle_on = sw.spindle_on;
+        self.part.modes.spindle_direction = sw.spindle_direction;
+        self.part.modes.feed_override_disabled = sw.feed_override_disabled;
+        self.part.modes.speed_override_disabled = sw.speed_override_disabled;
         let backup = (core.state, *self.part.modes);
         core.state.feed = cap.feed;
         core.state.spindle_speed = cap.spindle_speed;

@@ -38,8 +38,9 @@
 //!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
 //!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
 //!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
-//! * profile' is the profile offset by D (on the side of `side.rs`) as LinuxCNC offsets it, arcs that end off their radius
-//!   included (`arcs.rs`); an arc is printed with its own end point, the next feed's start.
+//! * profile' is the profile offset by D (on the side `side.rs` picks) as LinuxCNC offsets it,
+//!   arcs that end off their radius included (`arcs.rs`); an arc is printed with its own end
+//!   point, the next feed's start.
 //! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
 //!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
 //!   profile is monotonic in Z, else G72's.

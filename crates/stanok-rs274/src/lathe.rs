@@ -20,7 +20,7 @@
 
 use crate::lathe_cycles::{self, LatheCall, Profile};
 use crate::{params, Rs274};
-use stanok_canon::{Diagnostic, FeedMode, Span};
+use stanok_canon::{Canon, Diagnostic, FeedMode, Span};
 use stanok_interp_core::Core;
 use stanok_syntax::{ColSpan, SourcePos};
 use std::io::{BufRead, Seek};
@@ -200,6 +200,18 @@ impl Rs274 {
                     "Cannot do g1 with zero feed rate",
                     whole,
                 ))
+            }
+            // A profile of one motion (or none) is no cycle; LinuxCNC's idea of the tool's
+            // position is then where the profile left it.
+            (None, Ok(p)) if p.chain.is_empty() => {
+                if let Some(end) = commands.iter().rev().find_map(|c| match c {
+                    Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
+                    Canon::ArcFeed(a) => Some(a.end),
+                    _ => None,
+                }) {
+                    cx.st.position = end;
+                }
+                Ok(())
             }
             (None, Ok(p)) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
             (None, Err(msg)) => Err(cx.err("rs274::g7x-profile", msg, whole)),

@@ -243,7 +243,8 @@ impl Profile {
             .filter(|c| c.motion().is_some())
             .filter(moves_in_plane);
         let Some(first) = motions.next() else {
-            return Err("G7X error: the profile subroutine has no motion".into());
+            // No cycle (LinuxCNC 2.9 returns without one).
+            return Ok(Profile::default());
         };
         let end_of = |c: &Canon| match c {
             Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
@@ -424,6 +425,13 @@ pub fn finish(
     profile: &Profile,
     at: ColSpan,
 ) -> Result<(), Diagnostic> {
+    let s = [call.start.z, call.start.x];
+    let chain = &profile.chain;
+    let Some(last) = chain.last() else {
+        // An approach alone, or no motion: LinuxCNC 2.9 cuts nothing (the driver leaves the tool
+        // where the profile ended, `lathe.rs`).
+        return Ok(());
+    };
     if call.code != G70 && call.i <= 0.0 {
         return Err(cx.err(
             "rs274::g7x-i",
@@ -431,15 +439,6 @@ pub fn finish(
             at,
         ));
     }
-    let s = [call.start.z, call.start.x];
-    let chain = &profile.chain;
-    let Some(last) = chain.last() else {
-        return Err(cx.err(
-            "rs274::g7x-empty",
-            "G7X error: the profile has no elements after its start",
-            at,
-        ));
-    };
     let (p0, pend) = (profile.start, last.end());
     let facing = match call.code {
         G70 => !monotonic(chain, 0) && monotonic(chain, 1),
@@ -479,10 +478,7 @@ pub fn finish(
             moves.extend(pass.into_iter().map(Move::Feed));
         }
     } else {
-        // LinuxCNC orients its frame by the profile (P0 below Pend), not by S: a profile ending
-        // below P0 here has S below it there.
-        let pend_c = canon[canon.len() - 1].end();
-        if pend_c[1] < p0_c[1] - LEN_EPS {
+        if s_below_in_linuxcnc_frame(facing, f, s, p0, pend) {
             let prof = offset(call.d)?;
             away_from_start(&mut moves, call, entry, &prof).ok_or_else(|| {
                 cx.err(
@@ -507,6 +503,22 @@ pub fn finish(
         cx.fe.modes.comp.stale = Some(pend);
     }
     emit(cx, call, &f, &moves, at)
+}
+
+/// Whether S is not above P0 in LinuxCNC's frame, which orients "up" by the profile, not by S:
+/// up is +X (G71) or −Z (G72), reversed where P0 lies above Pend that way (a tie keeps it).
+/// S level with P0 counts too: no level lies between them, the tool feeds from S.
+fn s_below_in_linuxcnc_frame(facing: bool, f: Frame, s: P2, p0: P2, pend: P2) -> bool {
+    let li = if facing { 0 } else { 1 };
+    let base = if facing { -1.0 } else { 1.0 };
+    let up = if base * (p0[li] - pend[li]) > 0.0 {
+        -base
+    } else {
+        base
+    };
+    // The canonical frame has S at or above P0 along l = f.sl · (z or x).
+    let rise = s[li] - p0[li];
+    rise.abs() <= 1e-9 || up * f.sl < 0.0
 }
 
 /// G71/G72 levels and the final pass, canonical frame (module comment). None: too many levels.

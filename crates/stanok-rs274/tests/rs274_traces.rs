@@ -390,6 +390,7 @@ own_tests! {
     parity_g7x_labels: "stanok-parity-g7x-labels";
     parity_g7x_profile_mcodes: "stanok-parity-g7x-profile-mcodes";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
+    parity_g7x_short_profile: "stanok-parity-g7x-short-profile";
     parity_g7x_start_level: "stanok-parity-g7x-start-level";
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";

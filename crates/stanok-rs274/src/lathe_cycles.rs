@@ -621,13 +621,11 @@ fn away_from_start(
     }
     // No level of S's grid lies above the profile: only a G7x.2 pocket anchored at its own top
     // is cut.
-    pockets::final_pass(
-        moves,
-        call,
-        entry,
-        &pockets::split_at_turns(&elements),
-        close,
-    )
+    // The entry stays even where it has no length (S level with P0 and past it along c: rs274
+    // still feeds it).
+    let mut pieces = pockets::split_at_turns(&elements[1..]);
+    pieces.insert(0, elements[0]);
+    pockets::final_pass(moves, call, entry, &pieces, close)
 }
 
 /// (c, l) → (c, −l).

@@ -375,6 +375,20 @@ impl Frame {
     }
 }
 
+/// Whether `a` and `b` are both lines and parallel (within rounding: LinuxCNC's test is exact on
+/// its own numbers, Stanok's are converted from program units).
+fn parallel_lines(a: &Seg2, b: &Seg2) -> bool {
+    let (Seg2::Line { a: a0, b: a1 }, Seg2::Line { a: b0, b: b1 }) = (*a, *b) else {
+        return false;
+    };
+    let (u, v) = (
+        [a1[0] - a0[0], a1[1] - a0[1]],
+        [b1[0] - b0[0], b1[1] - b0[1]],
+    );
+    let cross = u[0] * v[1] - u[1] * v[0];
+    cross.abs() <= 1e-12 * u[0].hypot(u[1]) * v[0].hypot(v[1])
+}
+
 /// Whether coordinate `k` never turns back along the chain (arcs included).
 fn monotonic(chain: &[Seg2], k: usize) -> bool {
     let mut dir = 0.0;
@@ -446,6 +460,21 @@ pub fn finish(
     };
     if !monotonic(chain, if facing { 1 } else { 0 }) {
         return Err(cx.err("rs274::g7x-monotonic", "G7X error: Not monotonic", at));
+    }
+    // LinuxCNC joins neighbouring offset lines at their crossing and has none for parallel ones
+    // (two moves along one line): an error as soon as it offsets at all (the first pass's
+    // distance is not zero), before any move.
+    let first_distance = if call.code == G70 {
+        (call.passes - 1) as f64 * (call.d - call.e) / call.passes.max(1) as f64 + call.e
+    } else {
+        call.d
+    };
+    if first_distance != 0.0 && chain.windows(2).any(|w| parallel_lines(&w[0], &w[1])) {
+        return Err(cx.err(
+            "rs274::g7x-parallel",
+            "G7X error: Cannot intersect parallel lines",
+            at,
+        ));
     }
     let f = Frame::new(facing, p0, pend, s);
     let canon: Vec<Seg2> = chain.iter().map(|g| f.seg(g, |p| f.to_canon(p))).collect();

@@ -350,6 +350,7 @@ own_tests! {
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
     err_parity_g7x_arc_centre: "stanok-err-parity-g7x-arc-centre";
+    err_parity_g7x_parallel: "stanok-err-parity-g7x-parallel";
     err_parity_g76_spindle: "stanok-err-parity-g76-spindle";
     err_parity_g4: "stanok-err-parity-g4";
     err_parity_g5_1_inverse_time: "stanok-err-parity-g5-1-inverse-time";

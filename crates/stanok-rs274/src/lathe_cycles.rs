@@ -586,6 +586,9 @@ fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2
             .find(|&c| c > cs + LEN_EPS)
             .unwrap_or(pend[0]);
         if ce <= cs + LEN_EPS {
+            // A level with nothing to cut (the profile meets the closing line there): LinuxCNC
+            // still rapids down the closing line to it.
+            moves.push(Move::Rapid([cs, l]));
             continue;
         }
         // At most half the cut; a negative R retracts by half the cut (LinuxCNC 2.9).

@@ -386,6 +386,7 @@ own_tests! {
     parity_g73_peck_rounding: "stanok-parity-g73-peck-rounding";
     parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";
     parity_g7x_arc_top: "stanok-parity-g7x-arc-top";
+    parity_g7x_empty_levels: "stanok-parity-g7x-empty-levels";
     parity_g93_rotary: "stanok-parity-g93-rotary";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";

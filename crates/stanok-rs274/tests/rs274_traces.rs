@@ -390,6 +390,7 @@ own_tests! {
     parity_g93_rotary: "stanok-parity-g93-rotary";
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
+    parity_g7x_level_element: "stanok-parity-g7x-level-element";
     parity_g7x_profile_mcodes: "stanok-parity-g7x-profile-mcodes";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g7x_short_profile: "stanok-parity-g7x-short-profile";

@@ -35,6 +35,8 @@ use std::f64::consts::TAU;
 
 /// Level tolerance (LinuxCNC's), mm.
 const LEVEL_TOL: f64 = 1e-6;
+/// How far a line's ends may differ in l and the line still count as level, mm.
+const LEVEL_ROUNDING: f64 = 1e-9;
 /// An arc whose remaining piece is shorter than this (chord) is not printed (LinuxCNC), mm.
 const MIN_ARC: f64 = 1e-3;
 
@@ -61,7 +63,9 @@ fn climb(moves: &mut Vec<Move>, seg: &Seg2, end: P2, at: &mut P2) {
     let crossings = crossings_at(seg, level);
     let (x, until) = match *seg {
         Seg2::Line { .. } => {
-            if end[1] < start[1] {
+            // Falling: a level line stays (its offset ends are computed apart, so they may
+            // differ by rounding where LinuxCNC's are exactly level).
+            if end[1] < start[1] - LEVEL_ROUNDING {
                 return;
             }
             // A level line crosses with both ends: the first is its start.

@@ -600,7 +600,14 @@ fn hole(
             spindle(cx, dir);
             overrides(cx, true);
             // The interpreter's position is the hole's clear point (see `tap_feed`).
+            let machine = cx.st.position;
             place(cx, f, aa, bb, f.clear);
+            let believed = cx.st.position;
+            cx.fe.modes.tap_apart = (machine != believed).then_some(super::TapApart {
+                machine: [machine.x, machine.y, machine.z],
+                believed: [believed.x, believed.y, believed.z],
+                reread: false,
+            });
         }
         G85 => {
             feed(cx, f, aa, bb, f.bottom);

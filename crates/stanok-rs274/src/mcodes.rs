@@ -212,6 +212,12 @@ pub(super) fn before_dwell(
     if let Some(span) = m.set_tool {
         set_tool_number(cx, params, span)?;
     }
+    // Both reread the position from the machine before the next block (`TapApart`).
+    if m.tool_change || m.set_tool.is_some() {
+        if let Some(apart) = &mut cx.fe.modes.tap_apart {
+            apart.reread = true;
+        }
+    }
     // 7. Spindle, coolant, user M codes.
     if m.spindle != NO_CODE {
         let code = m.spindle;

@@ -391,6 +391,12 @@ own_tests! {
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";
     parity_tap_overrides: "stanok-parity-tap-overrides";
+    parity_g64_units_cycle: "stanok-parity-g64-units-cycle";
+    parity_g64_units_cycle_q: "stanok-parity-g64-units-cycle-q";
+    parity_g64_units_m72: "stanok-parity-g64-units-m72";
+    parity_tap_plane_m6: "stanok-parity-tap-plane-m6";
+    parity_tap_plane_m61: "stanok-parity-tap-plane-m61";
+    parity_tap_plane_probe: "stanok-parity-tap-plane-probe";
     parity_m60: "stanok-parity-m60";
     parity_m72_coolant: "stanok-parity-m72-coolant";
     parity_m72_g92: "stanok-parity-m72-g92";

@@ -654,8 +654,18 @@ fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cyc
                G72 Q100 X19.321 Z3.3 I1.224\nM2\n";
     let no_feed = "G21 G18\nG0 X20 Z5\nO100 SUB\nG1 X11.812\nZ-21.015\nO100 ENDSUB\n\
                    G72 Q100 X20 Z5 D0.1 I1\nM2\n";
+    // Seed 20261205, program 4846: the passes cut the arc only offset by D, so LinuxCNC never
+    // checks it (rs274 prints `Oops` and cuts off the profile); Stanok refuses it the same way.
+    let offset_arc = "G21 G18 G7 F100\nO100 SUB\nG0 X10 Z0\nX12.475\nZ-15.45\n\
+                      G2 X14.775 Z-17.75 I2.3\nG1 Z-22.742\nO100 ENDSUB\nG0 X17.975 Z2.742\n\
+                      G72.1 Q100 X17.975 Z2.742 D0.1310\nM2\n";
     for (program, message, moves_before) in [
         (arc, "Radius to end of arc differs from radius to start", 2),
+        (
+            offset_arc,
+            "Radius to end of arc differs from radius to start",
+            2,
+        ),
         (no_feed, "Cannot do g1 with zero feed rate", 2),
     ] {
         let (cmds, err) = run(program, Dialect::Rs274ngc);

@@ -395,6 +395,7 @@ own_tests! {
     parity_g64_units_cycle_q: "stanok-parity-g64-units-cycle-q";
     parity_g64_units_m72: "stanok-parity-g64-units-m72";
     parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
+    parity_m19_q_alone: "stanok-parity-m19-q-alone";
     parity_tap_plane_m6: "stanok-parity-tap-plane-m6";
     parity_tap_plane_m61: "stanok-parity-tap-plane-m61";
     parity_tap_plane_probe: "stanok-parity-tap-plane-probe";

@@ -461,14 +461,31 @@ impl Evaluator<'_> {
     pub fn read(&self, p: &ParamRef, at: ExprId) -> Result<f64, Diagnostic> {
         match self.slot(p, at)? {
             Slot::Numbered(n) => Ok(self.read_numbered(n)),
-            Slot::Named { name, global } => self.params_named(&name, global).ok_or_else(|| {
-                Diagnostic::error(
+            Slot::Named { name, global } => match self.params_named(&name, global) {
+                Some(v) => Ok(v),
+                None if self.created_earlier_in_line(&name, global, at) => Ok(0.0),
+                None => Err(Diagnostic::error(
                     "rs274::named-parameter-undefined",
                     format!("Named parameter #<{name}> not defined"),
                     self.span(at),
-                )
-            }),
+                )),
+            },
         }
+    }
+
+    /// LinuxCNC creates a named parameter (unset, reading 0) as soon as it reads the name on the
+    /// left of an assignment, before it reads the value: so `#<a> = [#<a> + 1]` with `#<a>`
+    /// undefined gives 1, and a later reference in the same line reads 0 too; a reference before
+    /// the assignment in the line is still an error.
+    #[cold]
+    fn created_earlier_in_line(&self, name: &str, global: bool, at: ExprId) -> bool {
+        let here = self.block.expr_span(at).start;
+        self.block.assignments.iter().any(|a| match a.target {
+            ParamRef::Named { name: n, global: g } => {
+                g == global && n.start < here && normalise_name(self.block.slice(n)) == name
+            }
+            ParamRef::Numbered(_) => false,
+        })
     }
 
     /// A named parameter's value, if defined.

@@ -36,6 +36,11 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 const SHRINK_RUNS: usize = 300;
+/// An endless loop: rs274 runs until the runner's timeout, Stanok stops it at its bound
+/// (`flow::too-many-iterations`). Not a difference in meaning: neither ends the program.
+const ENDLESS_LOOP: &str = "an endless loop: rs274 never ends it, Stanok stops it at its bound";
+/// The words of Stanok's message for a loop past its bound.
+const ENDLESS_LOOP_MESSAGE: &str = "times: stopping (endless loop?)";
 const TIMEOUT: Duration = Duration::from_secs(30);
 
 struct Config {
@@ -236,10 +241,18 @@ impl Scratch {
         let prog = self.write(text, subfiles);
         let subs = !subfiles.is_empty();
         let Some(theirs) = self.rs274(c, &prog, subs) else {
-            return (
-                None,
-                Err(Difference::OnlyLinuxCncStopped("rs274 timed out".into())),
-            );
+            // rs274 never ends an endless loop; Stanok stops it at its iteration bound.
+            let stopped_loop = self.stanok(c, &prog, subs).is_some_and(|ours| {
+                parse(&ours)
+                    .error
+                    .is_some_and(|e| e.contains(ENDLESS_LOOP_MESSAGE))
+            });
+            let why = if stopped_loop {
+                ENDLESS_LOOP
+            } else {
+                "rs274 timed out"
+            };
+            return (None, Err(Difference::OnlyLinuxCncStopped(why.into())));
         };
         let theirs = parse(&theirs);
         let linuxcnc_stopped = Some(theirs.error.is_some());
@@ -335,6 +348,9 @@ fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> (Outcome
             }
             if let Some(k) = open_difference(&p.text) {
                 return (Outcome::Known(k), stopped);
+            }
+            if matches!(&d, Difference::OnlyLinuxCncStopped(m) if m == ENDLESS_LOOP) {
+                return (Outcome::Known(ENDLESS_LOOP), stopped);
             }
             if let Difference::OnlyStanokStopped(message) = &d {
                 if let Some(k) = known_refusal(&p.text, message) {

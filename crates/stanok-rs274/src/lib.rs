@@ -36,6 +36,7 @@ mod checks;
 mod codes;
 pub(crate) mod cutter_comp;
 mod cycles;
+mod degrees;
 mod flow;
 mod front;
 mod home;

@@ -551,7 +551,7 @@ impl Evaluator<'_> {
             }
             ExprNode::Atan(y, x) => {
                 let (y, x) = (self.eval(y)?, self.eval(x)?);
-                Ok(y.atan2(x).to_degrees())
+                Ok(crate::degrees::to_degrees(y.atan2(x)))
             }
             ExprNode::Binary(op, l, r) => {
                 let a = self.eval(l)?;
@@ -572,21 +572,30 @@ impl Evaluator<'_> {
                 if !(-1.0..=1.0).contains(&x) {
                     return Err(self.domain(id, "Argument to acos out of range"));
                 }
-                x.acos().to_degrees()
+                crate::degrees::to_degrees(x.acos())
             }
             UnaryFn::Asin => {
                 if !(-1.0..=1.0).contains(&x) {
                     return Err(self.domain(id, "Argument to asin out of range"));
                 }
-                x.asin().to_degrees()
+                crate::degrees::to_degrees(x.asin())
             }
-            UnaryFn::Cos => x.to_radians().cos(),
-            UnaryFn::Sin => x.to_radians().sin(),
-            UnaryFn::Tan => x.to_radians().tan(),
+            UnaryFn::Cos => crate::degrees::cos_deg(x),
+            UnaryFn::Sin => crate::degrees::sin_deg(x),
+            UnaryFn::Tan => crate::degrees::tan_deg(x),
             UnaryFn::Exp => x.exp(),
             UnaryFn::Fix => x.floor(),
             UnaryFn::Fup => x.ceil(),
-            UnaryFn::Round => x.round(),
+            // LinuxCNC's `(int)(x ± 0.5)`: truncation after adding a half (0.49999999999999994
+            // rounds to 1), and x86's 0x80000000 for what an int cannot hold.
+            UnaryFn::Round => {
+                let t = x + if x < 0.0 { -0.5 } else { 0.5 };
+                if t > -2_147_483_649.0 && t < 2_147_483_648.0 {
+                    t.trunc()
+                } else {
+                    -2_147_483_648.0
+                }
+            }
             UnaryFn::Ln => {
                 if x <= 0.0 {
                     return Err(self.domain(id, "Zero or negative argument to ln"));

@@ -396,6 +396,7 @@ own_tests! {
     parity_g64_units_m72: "stanok-parity-g64-units-m72";
     parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
     parity_m19_q_alone: "stanok-parity-m19-q-alone";
+    parity_trig_long_double: "stanok-parity-trig-long-double";
     parity_g10_rotation_under_shift: "stanok-parity-g10-rotation-under-shift";
     parity_g93_minimum_rate: "stanok-parity-g93-minimum-rate";
     parity_named_created_by_assignment: "stanok-parity-named-created-by-assignment";

@@ -108,7 +108,7 @@ fn dd_div(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
 
 /// π/2 as three doubles (its first ~160 bits).
 const PIO2: [f64; 3] = [
-    1.570_796_326_794_896_6,
+    std::f64::consts::FRAC_PI_2,
     6.123_233_995_736_766e-17,
     -1.497_384_904_859_169_8e-33,
 ];
@@ -119,7 +119,7 @@ const PIO2: [f64; 3] = [
 /// each product exact (`two_prod`), so r keeps ~100 bits for the arguments of degree conversions.
 /// Then the Taylor series of sin r and cos r (|r| ≤ π/4: 14 terms reach 10⁻³¹) and the quadrant.
 fn sin_cos_dd(y: (f64, f64)) -> Option<((f64, f64), (f64, f64))> {
-    if !(y.0.abs() < 1e6) {
+    if y.0.is_nan() || y.0.abs() >= 1e6 {
         return None;
     }
     let k = (y.0 / PIO2[0]).round();

@@ -307,7 +307,12 @@ impl Flow {
                     return Err(flow_err(
                         block,
                         "flow::return-outside-sub",
-                        format!("{name} endsub/return outside a subroutine call"),
+                        // LinuxCNC's words: the line number and the line as written.
+                        format!(
+                            "{}: not in a subroutine definition: '{}'",
+                            block.line,
+                            block.text.trim_end()
+                        ),
                     ));
                 };
                 // `return` may carry the label of the if or loop it sits in (LinuxCNC's

@@ -414,6 +414,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         Some(mcodes::classify_m(cx)?)
     };
 
+    checks::motion_axes(cx, &g)?;
     checks::spindle_selection(cx)?;
     checks::l_word_check(cx, &g)?;
 

@@ -345,6 +345,10 @@ macro_rules! own_tests {
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
+    err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
+    err_parity_motion_axes_missing: "stanok-err-parity-motion-axes-missing";
+    err_parity_negative_tool: "stanok-err-parity-negative-tool";
+    err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_comp_plane: "stanok-err-parity-comp-plane";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
@@ -396,6 +400,7 @@ own_tests! {
     parity_g64_units_m72: "stanok-parity-g64-units-m72";
     parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
     parity_m19_q_alone: "stanok-parity-m19-q-alone";
+    parity_g76_any_plane: "stanok-parity-g76-any-plane";
     parity_trig_long_double: "stanok-parity-trig-long-double";
     parity_g10_rotation_under_shift: "stanok-parity-g10-rotation-under-shift";
     parity_g93_minimum_rate: "stanok-parity-g93-minimum-rate";

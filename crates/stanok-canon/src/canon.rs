@@ -264,6 +264,14 @@ pub enum Canon {
         /// Seconds to wait for the orientation to complete (LinuxCNC M19 Q); None = no wait.
         timeout: Option<f64>,
     },
+    /// LinuxCNC `M19 Q` without R or P: wait up to `timeout` seconds for an orientation to
+    /// complete, commanding none.
+    WaitSpindleOrient {
+        /// Spindle number.
+        spindle: u8,
+        /// Seconds.
+        timeout: f64,
+    },
     /// Spindle speed override enabled or disabled (LinuxCNC M48/M49/M51, tapping cycles).
     SetSpindleOverrideEnabled {
         /// Spindle number.

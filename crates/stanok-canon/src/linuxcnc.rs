@@ -266,6 +266,10 @@ impl LinuxCncPrinter {
                     self.line(n, format!("SPINDLE.{spindle}.WAIT_ORIENT_COMPLETE({t:.4})"));
                 }
             }
+            Canon::WaitSpindleOrient { spindle, timeout } => self.line(
+                n,
+                format!("SPINDLE.{spindle}.WAIT_ORIENT_COMPLETE({timeout:.4})"),
+            ),
             Canon::SetSpindleOverrideEnabled { spindle, enabled } => self.line(
                 n,
                 format!(

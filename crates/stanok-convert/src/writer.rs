@@ -402,6 +402,16 @@ impl Converter {
                     }
                 }
             }
+            Canon::WaitSpindleOrient { spindle, timeout } => {
+                if rs {
+                    self.line(src, &format!("M19 Q{}", num(*timeout)));
+                    if *spindle != 0 {
+                        self.cannot(src, &format!("M19 of spindle {spindle} written for the main spindle"))
+                    }
+                } else {
+                    self.cannot(src, "a wait for a spindle orientation (LinuxCNC M19 Q) has no AxiOMA form")
+                }
+            }
             Canon::SetCurrentTool { tool, .. } => {
                 if rs {
                     self.line(src, &format!("M61 Q{tool}"))

@@ -423,6 +423,13 @@ impl SimMachine {
                 line,
                 format!("M19 {} orient to {degrees} deg", spindle_name(*spindle)),
             ),
+            Canon::WaitSpindleOrient { spindle, timeout } => self.log(
+                line,
+                format!(
+                    "M19 {} wait up to {timeout} s for an orientation",
+                    spindle_name(*spindle)
+                ),
+            ),
             Canon::DigitalOutput { index, on, .. } => self.log(
                 line,
                 format!("output {index} {}", if *on { "on" } else { "off" }),

@@ -503,7 +503,8 @@ impl CanonAdapter {
             | Canon::ChangeSpindleTool { .. }
             | Canon::StartToolChange
             | Canon::PalletShuttle
-            | Canon::WaitInput { .. } => stop(out),
+            | Canon::WaitInput { .. }
+            | Canon::WaitSpindleOrient { .. } => stop(out),
             _ => {}
         }
     }

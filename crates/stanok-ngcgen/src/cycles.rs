@@ -397,7 +397,15 @@ pub fn lathe(g: &mut Gen) {
     ];
     if g.rng.chance(0.4) {
         g.feat("lathe: profile arc");
-        let r = r4(x2 - x1);
+        // A quarter circle from (x1, z2) to (x2, z2 − r). Under G7 the X words are diameters
+        // and I is still a radius: r is half the X step, else the arc is off its radius (which
+        // LinuxCNC 2.9's G7x reader does not check and cuts as garbage).
+        let (r, x2) = if diameter {
+            let r = r4((x2 - x1) / 2.0);
+            (r, r4(x1 + 2.0 * r))
+        } else {
+            (r4(x2 - x1), x2)
+        };
         body.push(format!("G2 X{x2} Z{} I{r} K0", r4(z2 - r)));
         body.push(format!("G1 Z{}", r4(z3 - r)));
     } else {

@@ -26,6 +26,7 @@ mod cycles;
 pub mod expr;
 mod flow;
 mod invalid;
+pub mod known;
 pub mod mutate;
 pub mod rng;
 mod sections;

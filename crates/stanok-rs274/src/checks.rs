@@ -1,11 +1,42 @@
 //! Checks LinuxCNC makes on a block before it runs any of it, kept apart from the order of
-//! execution in `lib.rs`: the `$` spindle-selection word and the L word of G74/G33.1.
+//! execution in `lib.rs`: a motion code without axis words, the `$` spindle-selection word and the
+//! L word of G74/G33.1.
 
 use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::{GCodes, Group};
 use stanok_canon::Diagnostic;
 use stanok_interp_core::words::Val;
+
+/// LinuxCNC's `enhance_block`, right after reading: a motion code written in the block needs an
+/// axis (or polar) word, except G0–G3, G5.2 and the G7x lathe cycles — so `G33 K1`, `G5 …`,
+/// `G38.2 F1`, `G76 …` or a canned cycle without one are refused before their own word checks.
+/// The test inlined (G0/G1 pass at once), the check out of line.
+#[inline(always)]
+pub(super) fn motion_axes(cx: &Ctx<'_>, g: &GCodes) -> Result<(), Diagnostic> {
+    match g.get(Group::Motion, cx) {
+        None | Some((G0 | G1 | G2 | G3 | G80, _)) => Ok(()),
+        Some((code, span)) => motion_axes_cold(cx, code, span),
+    }
+}
+
+#[cold]
+#[inline(never)]
+fn motion_axes_cold(
+    cx: &Ctx<'_>,
+    code: u32,
+    span: stanok_syntax::ColSpan,
+) -> Result<(), Diagnostic> {
+    let exempt = matches!(code, G5_2 | G70 | G71 | G71_1 | G71_2 | G72 | G72_1 | G72_2);
+    if exempt || cx.has_axis_words() {
+        return Ok(());
+    }
+    Err(cx.err(
+        "rs274::motion-axes-missing",
+        "All axes missing with motion code",
+        span,
+    ))
+}
 
 /// LinuxCNC checks a block's L word before it runs anything: G74 (left-hand tapping) and G33.1
 /// take none, unlike the other canned cycles (`G74 … L2` is refused even with the spindle the

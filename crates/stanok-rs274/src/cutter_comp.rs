@@ -49,10 +49,13 @@ use crate::arc::PlanarArc;
 use crate::codes::*;
 use crate::ctx::Ctx;
 use crate::params::Parameters;
-use stanok_canon::{Canon, Diagnostic, Plane, Pose};
+use stanok_canon::{Canon, Diagnostic, LengthUnits, Plane, Pose};
 use stanok_syntax::ColSpan;
 
+mod geometry;
 mod stale;
+
+use geometry::*;
 
 /// A corner turning the "convex" way by less than this many radians is joined like a concave one.
 pub const CONCAVE_TOLERANCE: f64 = 0.05;
@@ -123,47 +126,6 @@ impl CutterComp {
         } else {
             -1.0
         }
-    }
-}
-
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
-}
-fn add(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] + b[0], a[1] + b[1]]
-}
-fn scale(a: [f64; 2], k: f64) -> [f64; 2] {
-    [a[0] * k, a[1] * k]
-}
-fn len(a: [f64; 2]) -> f64 {
-    a[0].hypot(a[1])
-}
-fn unit(a: [f64; 2]) -> [f64; 2] {
-    let l = len(a);
-    if l > 0.0 {
-        scale(a, 1.0 / l)
-    } else {
-        [1.0, 0.0]
-    }
-}
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[0] + a[1] * b[1]
-}
-/// `v` rotated +90°.
-fn left(v: [f64; 2]) -> [f64; 2] {
-    [-v[1], v[0]]
-}
-
-/// Tangent of an arc about `c` at point `p`.
-fn arc_tangent(c: [f64; 2], p: [f64; 2], ccw: bool) -> [f64; 2] {
-    let t = left(unit(sub(p, c)));
-    if ccw {
-        t
-    } else {
-        scale(t, -1.0)
     }
 }
 
@@ -603,10 +565,41 @@ fn corner(
 /// LinuxCNC's check whenever a corner sets the held move's end (moved to a concave corner, or
 /// kept before a convex arc) at `to` (nose centre): a held straight move must still run its
 /// programmed direction from where it starts, else the tool would gouge (its error texts).
+///
+/// A held arc (LinuxCNC's `move_endpoint_and_flush`): moving its end must not make it sweep more
+/// than it was queued with — its turn from the tool's start to the new end may exceed the
+/// original by at most 0.0254 (G21) or 0.001 (G20), LinuxCNC comparing radians with a length
+/// tolerance as written.
 fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
-    let Some(Element::Line { from, to: end }) = comp.last else {
-        return Ok(());
+    let (from, end) = match comp.last {
+        Some(Element::Line { from, to: end }) => (from, end),
+        Some(Element::Arc {
+            centre,
+            ccw,
+            to: programmed_end,
+            tool_radius,
+            tool_from,
+        }) => {
+            let radial = sub(programmed_end, centre);
+            let queued_end = add(centre, scale(unit(radial), tool_radius));
+            let original = find_turn(tool_from, centre, ccw, queued_end);
+            let moved = find_turn(tool_from, centre, ccw, to);
+            let tolerance = match cx.st.units {
+                LengthUnits::Millimetres => 0.0254,
+                LengthUnits::Inches => 0.001,
+            };
+            if original != 0.0 && moved.abs() > original.abs() + tolerance {
+                return Err(err(
+                    cx,
+                    "rs274::comp-concave-gouge",
+                    "Arc move in concave corner cannot be reached by the tool without gouging",
+                    span,
+                ));
+            }
+            return Ok(());
+        }
+        None => return Ok(()),
     };
     let (frame, plane) = (cx.st.frame, cx.st.plane);
     let mut start = None;
@@ -632,136 +625,6 @@ fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagno
         &format!("Straight {what} in concave corner cannot be reached by the tool without gouging"),
         span,
     ))
-}
-
-/// Offset line of a programmed line: a point and the direction.
-fn offset_line(from: [f64; 2], to: [f64; 2], off: f64) -> ([f64; 2], [f64; 2]) {
-    let d = unit(sub(to, from));
-    (add(from, scale(left(d), off)), d)
-}
-
-/// How far apart (mm) elements may miss each other and still count as touching: offset paths
-/// that are tangent in exact arithmetic (a line running into an arc tangentially) miss by
-/// rounding only.
-const TANGENT_TOLERANCE: f64 = 1e-6;
-
-/// Intersections of a line (point p, unit direction d) with a circle (tangent within
-/// [`TANGENT_TOLERANCE`] counts as one double point).
-fn line_circle(p: [f64; 2], d: [f64; 2], c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
-    let f = sub(p, c);
-    let b = dot(f, d);
-    let mut disc = b * b - (dot(f, f) - r * r);
-    if disc < 0.0 {
-        // The line misses the circle by δ where −disc = 2rδ + δ².
-        if -disc > TANGENT_TOLERANCE * (2.0 * r + TANGENT_TOLERANCE) {
-            return Vec::new();
-        }
-        disc = 0.0;
-    }
-    let q = disc.sqrt();
-    vec![add(p, scale(d, -b - q)), add(p, scale(d, -b + q))]
-}
-
-/// Intersections of two circles; `same` is returned when they coincide (an arc continued by an
-/// arc of the same circle: the corner point is where the new one starts).
-fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64, same: [f64; 2]) -> Vec<[f64; 2]> {
-    let d = len(sub(c2, c1));
-    if d < TANGENT_TOLERANCE && (r1 - r2).abs() < TANGENT_TOLERANCE {
-        return vec![same];
-    }
-    if d == 0.0 || d > r1 + r2 + TANGENT_TOLERANCE || d < (r1 - r2).abs() - TANGENT_TOLERANCE {
-        return Vec::new();
-    }
-    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
-    let h = (r1 * r1 - a * a).max(0.0).sqrt();
-    let u = unit(sub(c2, c1));
-    let m = add(c1, scale(u, a));
-    vec![add(m, scale(left(u), h)), add(m, scale(left(u), -h))]
-}
-
-/// Angle swept from `a` to `b` about `c` in the arc's sense, in [0, 2π).
-fn sweep(c: [f64; 2], a: [f64; 2], b: [f64; 2], ccw: bool) -> f64 {
-    let (u, v) = (sub(a, c), sub(b, c));
-    let mut t = cross(u, v).atan2(dot(u, v));
-    if !ccw {
-        t = -t;
-    }
-    if t < 0.0 {
-        t += std::f64::consts::TAU;
-    }
-    t
-}
-
-/// Where the offset of `last` meets the offset of `new` (signed offset `off`: + left).
-/// `prev_end` is the last element's offset end, `new_start` the new one's offset start.
-fn meet(
-    last: Element,
-    new: Element,
-    off: f64,
-    prev_end: [f64; 2],
-    new_start: [f64; 2],
-) -> Option<[f64; 2]> {
-    let candidates: Vec<[f64; 2]> = match (last, new) {
-        (Element::Line { from, to }, Element::Line { from: f2, to: t2 }) => {
-            let (p1, d1) = offset_line(from, to, off);
-            let (p2, d2) = offset_line(f2, t2, off);
-            let den = cross(d1, d2);
-            if den.abs() < 1e-12 {
-                return Some(new_start);
-            }
-            let t = cross(sub(p2, p1), d2) / den;
-            vec![add(p1, scale(d1, t))]
-        }
-        (
-            Element::Line { from, to },
-            Element::Arc {
-                centre,
-                tool_radius,
-                ..
-            },
-        ) => {
-            let (p, d) = offset_line(from, to, off);
-            line_circle(p, d, centre, tool_radius)
-        }
-        (
-            Element::Arc {
-                centre,
-                tool_radius,
-                ..
-            },
-            Element::Line { from, to },
-        ) => {
-            let (p, d) = offset_line(from, to, off);
-            line_circle(p, d, centre, tool_radius)
-        }
-        (
-            Element::Arc {
-                centre: c1,
-                tool_radius: r1,
-                ..
-            },
-            Element::Arc {
-                centre: c2,
-                tool_radius: r2,
-                ..
-            },
-        ) => circle_circle(c1, r1, c2, r2, new_start),
-    };
-    match last {
-        // After a line: the intersection nearest the line's offset end.
-        Element::Line { .. } => candidates
-            .into_iter()
-            .min_by(|a, b| len(sub(*a, prev_end)).total_cmp(&len(sub(*b, prev_end)))),
-        // After an arc: the one the tool reaches first along it.
-        Element::Arc {
-            centre,
-            ccw,
-            tool_from,
-            ..
-        } => candidates.into_iter().min_by(|a, b| {
-            sweep(centre, tool_from, *a, ccw).total_cmp(&sweep(centre, tool_from, *b, ccw))
-        }),
-    }
 }
 
 /// Moves the end of the held motion (and the plane position of the moves without plane motion

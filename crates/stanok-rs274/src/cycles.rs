@@ -60,6 +60,10 @@ struct CycleFrame {
     r: f64,
     bottom: f64,
     clear: f64,
+    /// R and the bottom in program units as LinuxCNC computes them (G73/G83 step their pecks
+    /// from these: see `hole`).
+    r_units: f64,
+    bottom_units: f64,
 }
 
 /// LinuxCNC's plane name in its cycle messages.
@@ -292,6 +296,18 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
             naive_cam_tolerance: None,
         });
     }
+    // LinuxCNC's R and bottom in program units: the words as written, or under G91 the level the
+    // series began at plus R, plus the drilling-axis word — float sums whose last bit decides
+    // whether one more peck comes where R − nQ is the bottom in decimal. (mm values are read back
+    // to program units on a 10⁻⁹ grid, which recovers the words as written.)
+    let k = cx.st.units.mm_per_unit();
+    let written = |mm: f64| (mm / k * 1e9).round() / 1e9;
+    let (r_units, bottom_units) = if incremental {
+        let r_units = written(il) + written(r_value);
+        (r_units, r_units + written(cc_value))
+    } else {
+        (written(r_value), written(cc_value))
+    };
     let f = CycleFrame {
         a,
         b,
@@ -299,6 +315,8 @@ pub(super) fn canned_cycle(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result
         r,
         bottom,
         clear,
+        r_units,
+        bottom_units,
     };
     for _ in 0..repeats {
         aa += da;
@@ -567,11 +585,10 @@ fn hole(
             let up = peck_clearance(cx);
             // LinuxCNC steps the depth in program units, R − Q, R − 2Q, … while above the bottom:
             // where R − nQ is the bottom in decimal its rounding decides whether one more peck
-            // comes, so the levels are stepped here as it does, from the values as written (mm
-            // values read back to program units on a 10⁻⁹ grid).
+            // comes, so the levels are stepped here as it does (`CycleFrame::r_units`).
             let k = cx.st.units.mm_per_unit();
-            let written = |mm: f64| (mm / k * 1e9).round() / 1e9;
-            let (r_u, q_u, bottom_u) = (written(f.r), written(q), written(f.bottom));
+            let q_u = (q / k * 1e9).round() / 1e9;
+            let (r_u, bottom_u) = (f.r_units, f.bottom_units);
             let mut depth_u = r_u - q_u;
             while depth_u > bottom_u {
                 let depth = depth_u * k;
@@ -600,7 +617,14 @@ fn hole(
             spindle(cx, dir);
             overrides(cx, true);
             // The interpreter's position is the hole's clear point (see `tap_feed`).
+            let machine = cx.st.position;
             place(cx, f, aa, bb, f.clear);
+            let believed = cx.st.position;
+            cx.fe.modes.tap_apart = (machine != believed).then_some(super::TapApart {
+                machine: [machine.x, machine.y, machine.z],
+                believed: [believed.x, believed.y, believed.z],
+                reread: false,
+            });
         }
         G85 => {
             feed(cx, f, aa, bb, f.bottom);

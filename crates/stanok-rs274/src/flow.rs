@@ -149,6 +149,10 @@ pub struct Flow {
     /// or repeat loop loops back to that loop's start instead of leaving it.
     doing_break: bool,
     doing_continue: bool,
+    /// LinuxCNC's `sub_name` left set at level 0: a return from a call sets it to the caller's
+    /// (non-null) name and only the end of a subroutine definition clears it. While it is set, a
+    /// stray `endsub` at level 0 is "Not in subroutine definition" and a stray `return` is ignored.
+    returned_to_top: bool,
 }
 
 /// The file holding subroutine `label` (`<name>` → `name.ngc`) on the search path, if any.
@@ -205,6 +209,25 @@ fn flow_err(block: &Block, code: &'static str, msg: String) -> Diagnostic {
 }
 
 impl Flow {
+    /// `#<_value>` and `#<_value_returned>` after an endsub or return.
+    fn push_returned_value(&mut self, value: Option<f64>) {
+        let returned = value.is_some();
+        self.ops.push((
+            ParamOp::Write(Slot::Named {
+                name: "_value".into(),
+                global: true,
+            }),
+            value.unwrap_or(0.0),
+        ));
+        self.ops.push((
+            ParamOp::Write(Slot::Named {
+                name: "_value_returned".into(),
+                global: true,
+            }),
+            if returned { 1.0 } else { 0.0 },
+        ));
+    }
+
     /// Whether lines are being skipped (and for what).
     pub fn skipping(&self) -> Option<()> {
         self.skip.as_ref().map(|_| ())
@@ -303,11 +326,28 @@ impl Flow {
                     Some(e) => Some(eval.eval(*e)?),
                     None => None,
                 };
+                if self.calls.is_empty() && self.returned_to_top {
+                    if matches!(o.kind, OKind::Return(_)) {
+                        // Ignored, but its value is still set as returned.
+                        self.push_returned_value(value);
+                        return Ok(FlowAction::Handled);
+                    }
+                    return Err(flow_err(
+                        block,
+                        "flow::return-outside-sub",
+                        "Not in subroutine definition".into(),
+                    ));
+                }
                 let Some(frame) = self.calls.pop() else {
                     return Err(flow_err(
                         block,
                         "flow::return-outside-sub",
-                        format!("{name} endsub/return outside a subroutine call"),
+                        // LinuxCNC's words: the line number and the line as written.
+                        format!(
+                            "{}: not in a subroutine definition: '{}'",
+                            block.line,
+                            block.text.trim_end()
+                        ),
                     ));
                 };
                 // `return` may carry the label of the if or loop it sits in (LinuxCNC's
@@ -321,27 +361,14 @@ impl Flow {
                         format!("{name} does not match the active subroutine"),
                     ));
                 }
+                self.returned_to_top |= self.calls.is_empty();
                 self.loops.truncate(frame.loops);
                 self.ifs.truncate(frame.ifs);
                 self.ops.push((ParamOp::PopScope, 0.0));
                 for (i, v) in frame.saved.iter().enumerate() {
                     self.ops.push((ParamOp::Write(Slot::Numbered(i + 1)), *v));
                 }
-                let returned = value.is_some();
-                self.ops.push((
-                    ParamOp::Write(Slot::Named {
-                        name: "_value".into(),
-                        global: true,
-                    }),
-                    value.unwrap_or(0.0),
-                ));
-                self.ops.push((
-                    ParamOp::Write(Slot::Named {
-                        name: "_value_returned".into(),
-                        global: true,
-                    }),
-                    if returned { 1.0 } else { 0.0 },
-                ));
+                self.push_returned_value(value);
                 if frame.file {
                     Ok(FlowAction::ReturnFromFile(frame.return_pos))
                 } else {

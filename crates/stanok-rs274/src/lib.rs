@@ -36,6 +36,7 @@ mod checks;
 mod codes;
 pub(crate) mod cutter_comp;
 mod cycles;
+mod degrees;
 mod flow;
 mod front;
 mod home;
@@ -126,6 +127,35 @@ pub struct Rs274State {
     pub comp: cutter_comp::CutterComp,
     /// A G70–G72 profile subroutine is running (its moves are captured, A/C are corners).
     pub in_profile: bool,
+    /// The machine stands elsewhere than the interpreter believes: after a G74/G84 in G18/G19
+    /// (`cycles::tap_feed`) until the next move.
+    pub tap_apart: Option<TapApart>,
+}
+
+/// Where a G74/G84 in G18/G19 left the machine (its last feed went to the plane-rotated point)
+/// and where the interpreter believes it is (the hole's clear point), machine X Y Z, mm. LinuxCNC
+/// moves on from the believed point; but `M6`, `M61` and a probe reread the position from the
+/// machine (rs274's stub and milltask alike), and from then on the rotated point is the position.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TapApart {
+    /// The machine's X Y Z.
+    pub machine: [f64; 3],
+    /// The interpreter's X Y Z.
+    pub believed: [f64; 3],
+    /// An M6 or M61 asked for the position to be reread before the next block.
+    pub reread: bool,
+}
+
+/// Rereads the position from the machine if it stands apart (`TapApart`) and has not moved
+/// since: the interpreter takes the machine's X Y Z. A position that no longer is the believed
+/// one means a move came between, which brought machine and interpreter together again.
+pub(crate) fn reread_position(cx: &mut Ctx<'_>) {
+    if let Some(apart) = cx.fe.modes.tap_apart.take() {
+        let p = &mut cx.st.position;
+        if [p.x, p.y, p.z] == apart.believed {
+            [p.x, p.y, p.z] = apart.machine;
+        }
+    }
 }
 
 /// The Canon of a path-control mode (G61/G61.1/G64), as LinuxCNC re-announces it.
@@ -279,6 +309,20 @@ fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
 }
 
 /// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
+/// Switches the length units. LinuxCNC keeps G64's P and Q as the numbers written, not as
+/// lengths: a later re-announcement (a canned cycle's end, M72) sends the same numbers, read in the
+/// new units. Stanok holds them in mm, so a change of units rescales them by the units' ratio.
+pub(crate) fn set_units(cx: &mut Ctx<'_>, units: LengthUnits) {
+    let ratio = units.mm_per_unit() / cx.st.units.mm_per_unit();
+    if ratio != 1.0 {
+        if let PathMode::Continuous { blend_tolerance } = &mut cx.st.path_mode {
+            *blend_tolerance *= ratio;
+        }
+        cx.fe.modes.naive_cam_tolerance *= ratio;
+    }
+    cx.st.units = units;
+}
+
 pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
     let text = match mode {
         FeedMode::InverseTime => "inverse time",
@@ -353,6 +397,14 @@ pub(crate) fn announce_distance(
 
 /// Executes one RS274/NGC block (comments already emitted by the driver).
 pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Diagnostic> {
+    if let Some(apart) = cx.fe.modes.tap_apart {
+        let p = &cx.st.position;
+        if apart.reread {
+            reread_position(cx);
+        } else if [p.x, p.y, p.z] != apart.believed {
+            cx.fe.modes.tap_apart = None;
+        }
+    }
     let mut g = GCodes::new();
     classify(cx, &mut g)?;
     // Most blocks have no M word: they skip the classification and steps 5a–7 and 21 entirely.
@@ -362,6 +414,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         Some(mcodes::classify_m(cx)?)
     };
 
+    checks::motion_axes(cx, &g)?;
     checks::spindle_selection(cx)?;
     checks::l_word_check(cx, &g)?;
 
@@ -482,7 +535,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
         } else {
             LengthUnits::Millimetres
         };
-        cx.st.units = units;
+        set_units(cx, units);
         cx.out.push(Canon::UseLengthUnits { units });
     }
     // 10a. Lathe diameter mode: from here on every X word of the block is a diameter (LinuxCNC

@@ -107,13 +107,19 @@ pub(super) fn orient(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> 
             q.span,
         ));
     }
-    // (Q alone, a wait without an orientation, is not modelled: Canon has no such command.)
+    // With R or P LinuxCNC orients (and waits Q); Q alone waits for an orientation it does not
+    // command; M19 alone does nothing but stop the spindle's sense.
     if r.is_some() || p.is_some() {
         cx.out.push(Canon::OrientSpindle {
             spindle: 0,
             degrees: r.map_or(0.0, |r| r.v),
             direction,
             timeout: q.map(|q| q.v),
+        });
+    } else if let Some(q) = q {
+        cx.out.push(Canon::WaitSpindleOrient {
+            spindle: 0,
+            timeout: q.v,
         });
     }
     Ok(())
@@ -211,6 +217,12 @@ pub(super) fn before_dwell(
     }
     if let Some(span) = m.set_tool {
         set_tool_number(cx, params, span)?;
+    }
+    // Both reread the position from the machine before the next block (`TapApart`).
+    if m.tool_change || m.set_tool.is_some() {
+        if let Some(apart) = &mut cx.fe.modes.tap_apart {
+            apart.reread = true;
+        }
     }
     // 7. Spindle, coolant, user M codes.
     if m.spindle != NO_CODE {

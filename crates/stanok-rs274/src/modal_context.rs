@@ -109,9 +109,23 @@ pub fn restore(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) 
     cx.out.number = number;
 }
 
+fn same_length(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
+}
+
+fn same_path_mode(a: PathMode, b: PathMode) -> bool {
+    match (a, b) {
+        (
+            PathMode::Continuous { blend_tolerance: x },
+            PathMode::Continuous { blend_tolerance: y },
+        ) => same_length(x, y),
+        _ => a == b,
+    }
+}
+
 fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext) {
     if cx.st.units != saved.units {
-        cx.st.units = saved.units;
+        super::set_units(cx, saved.units);
         cx.out.push(Canon::UseLengthUnits { units: saved.units });
     }
     cx.fe.modes.feed_units = saved.feed_units;
@@ -184,7 +198,11 @@ fn restore_state(cx: &mut Ctx<'_>, params: &mut Parameters, saved: &SavedContext
     if cx.st.g5x_index != saved.g5x_index {
         select_coordinate_system(cx, params, saved.g5x_index, true);
     }
-    if cx.st.path_mode != saved.path_mode || cx.fe.modes.naive_cam_tolerance != saved.naive_cam {
+    // (Tolerances compared as numbers: a G20/G21 pair rescales them there and back, which may
+    // leave an ulp.)
+    if !same_path_mode(cx.st.path_mode, saved.path_mode)
+        || !same_length(cx.fe.modes.naive_cam_tolerance, saved.naive_cam)
+    {
         cx.st.path_mode = saved.path_mode;
         cx.fe.modes.naive_cam_tolerance = saved.naive_cam;
         cx.out

@@ -302,7 +302,9 @@ fn feed_for(
                     span,
                 ));
             }
-            let feed = cx.path_feed(length());
+            // LinuxCNC 2.9 never asks for less than 0.1 program units per minute: a short move
+            // at a low inverse time gets 0.1 (seen in rs274's traces; its issue 2410).
+            let feed = cx.path_feed(length()).max(cx.mm(0.1));
             cx.out.push(Canon::SetFeedRate { feed });
             Ok(feed)
         }

@@ -139,7 +139,12 @@ pub(super) fn g10_origin(
     params.set_pose_mm(base, &offset);
     params.set(base + 9, rotation);
     if index == cx.st.g5x_index {
+        let (old_origin, old_rotation) = (*cx.st.frame.origin(), cx.st.xy_rotation_deg);
+        let (shift, p) = (*cx.st.frame.shift(), cx.st.program_position());
         set_g5x(cx, offset, rotation);
+        if rotation != old_rotation && (shift.x != 0.0 || shift.y != 0.0) {
+            believe_as_linuxcnc(cx, p, (old_origin, old_rotation), (offset, rotation));
+        }
         cx.out.push(Canon::SetG5xOffset { index, offset });
         cx.out.push(Canon::SetXyRotation { degrees: rotation });
     } else {
@@ -148,6 +153,26 @@ pub(super) fn g10_origin(
         });
     }
     Ok(())
+}
+
+/// LinuxCNC's position after G10 L2/L20 changes the rotation of the active system while a G92/G52
+/// shift is applied. Its `convert_setup` re-derives the current point as
+/// `p' = Rz(−R_new)·(Rz(R_old)·p + origin_old − origin_new)`, turning the shifted point as if the
+/// shift were not there: off the machine's true point by `shift − Rz(R_old − R_new)·shift` in X Y.
+/// The interpreter goes on from that point — the next move's unnamed axes, an inverse-time length,
+/// an arc's start — in rs274 and milltask alike, so Stanok takes it as the position (the machine
+/// then moves from where it stands to the next programmed point, as LinuxCNC's does).
+fn believe_as_linuxcnc(cx: &mut Ctx<'_>, p: Pose, old: (Pose, f64), new: (Pose, f64)) {
+    let turn = |x: f64, y: f64, deg: f64| {
+        let (s, c) = deg.to_radians().sin_cos();
+        (x * c - y * s, x * s + y * c)
+    };
+    let (x, y) = turn(p.x, p.y, old.1);
+    let (x, y) = turn(x + old.0.x - new.0.x, y + old.0.y - new.0.y, -new.1);
+    let mut believed = cx.st.program_position();
+    believed.x = x;
+    believed.y = y;
+    cx.st.position = cx.st.frame.to_machine(&believed);
 }
 
 /// Makes `shift` the applied G92/G52 vector: the frame, #5210 = 1 and #5211…#5219.

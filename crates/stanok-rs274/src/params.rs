@@ -461,14 +461,31 @@ impl Evaluator<'_> {
     pub fn read(&self, p: &ParamRef, at: ExprId) -> Result<f64, Diagnostic> {
         match self.slot(p, at)? {
             Slot::Numbered(n) => Ok(self.read_numbered(n)),
-            Slot::Named { name, global } => self.params_named(&name, global).ok_or_else(|| {
-                Diagnostic::error(
+            Slot::Named { name, global } => match self.params_named(&name, global) {
+                Some(v) => Ok(v),
+                None if self.created_earlier_in_line(&name, global, at) => Ok(0.0),
+                None => Err(Diagnostic::error(
                     "rs274::named-parameter-undefined",
                     format!("Named parameter #<{name}> not defined"),
                     self.span(at),
-                )
-            }),
+                )),
+            },
         }
+    }
+
+    /// LinuxCNC creates a named parameter (unset, reading 0) as soon as it reads the name on the
+    /// left of an assignment, before it reads the value: so `#<a> = [#<a> + 1]` with `#<a>`
+    /// undefined gives 1, and a later reference in the same line reads 0 too; a reference before
+    /// the assignment in the line is still an error.
+    #[cold]
+    fn created_earlier_in_line(&self, name: &str, global: bool, at: ExprId) -> bool {
+        let here = self.block.expr_span(at).start;
+        self.block.assignments.iter().any(|a| match a.target {
+            ParamRef::Named { name: n, global: g } => {
+                g == global && n.start < here && normalise_name(self.block.slice(n)) == name
+            }
+            ParamRef::Numbered(_) => false,
+        })
     }
 
     /// A named parameter's value, if defined.
@@ -534,7 +551,7 @@ impl Evaluator<'_> {
             }
             ExprNode::Atan(y, x) => {
                 let (y, x) = (self.eval(y)?, self.eval(x)?);
-                Ok(y.atan2(x).to_degrees())
+                Ok(crate::degrees::to_degrees(y.atan2(x)))
             }
             ExprNode::Binary(op, l, r) => {
                 let a = self.eval(l)?;
@@ -555,21 +572,30 @@ impl Evaluator<'_> {
                 if !(-1.0..=1.0).contains(&x) {
                     return Err(self.domain(id, "Argument to acos out of range"));
                 }
-                x.acos().to_degrees()
+                crate::degrees::to_degrees(x.acos())
             }
             UnaryFn::Asin => {
                 if !(-1.0..=1.0).contains(&x) {
                     return Err(self.domain(id, "Argument to asin out of range"));
                 }
-                x.asin().to_degrees()
+                crate::degrees::to_degrees(x.asin())
             }
-            UnaryFn::Cos => x.to_radians().cos(),
-            UnaryFn::Sin => x.to_radians().sin(),
-            UnaryFn::Tan => x.to_radians().tan(),
+            UnaryFn::Cos => crate::degrees::cos_deg(x),
+            UnaryFn::Sin => crate::degrees::sin_deg(x),
+            UnaryFn::Tan => crate::degrees::tan_deg(x),
             UnaryFn::Exp => x.exp(),
             UnaryFn::Fix => x.floor(),
             UnaryFn::Fup => x.ceil(),
-            UnaryFn::Round => x.round(),
+            // LinuxCNC's `(int)(x ± 0.5)`: truncation after adding a half (0.49999999999999994
+            // rounds to 1), and x86's 0x80000000 for what an int cannot hold.
+            UnaryFn::Round => {
+                let t = x + if x < 0.0 { -0.5 } else { 0.5 };
+                if t > -2_147_483_649.0 && t < 2_147_483_648.0 {
+                    t.trunc()
+                } else {
+                    -2_147_483_648.0
+                }
+            }
             UnaryFn::Ln => {
                 if x <= 0.0 {
                     return Err(self.domain(id, "Zero or negative argument to ln"));

@@ -65,6 +65,9 @@ pub(super) fn straight_probe(
     }
     let (end, _) = cx.end_point()?;
     cx.apply_pending_tlo();
+    // The probe moves from where the machine stands (after a G74/G84 in G18/G19 not where the
+    // interpreter believes: `TapApart`).
+    super::reread_position(cx);
     let start_m = cx.st.position;
     let end_m = cx.st.frame.to_machine(&end);
     let d = {

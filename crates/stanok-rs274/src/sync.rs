@@ -29,9 +29,8 @@
 //! is refused before anything moves.
 
 use crate::codes::*;
-use crate::ctx::{Ctx, AXIS_WORDS};
-use crate::state::DistanceMode;
-use stanok_canon::{Canon, Diagnostic, Plane, Pose};
+use crate::ctx::Ctx;
+use stanok_canon::{Canon, Diagnostic, Pose};
 use stanok_syntax::ColSpan;
 
 /// Most passes a G76 may take.
@@ -118,7 +117,7 @@ struct ThreadWords {
     taper_ends: u32,
 }
 
-fn thread_words(cx: &mut Ctx<'_>, span: ColSpan) -> Result<ThreadWords, Diagnostic> {
+fn thread_words(cx: &mut Ctx<'_>, span: ColSpan, z_end: f64) -> Result<ThreadWords, Diagnostic> {
     let diameter = if cx.st.diameter_mode { 0.5 } else { 1.0 };
     let need = |cx: &mut Ctx<'_>, l: u8| -> Result<f64, Diagnostic> {
         match cx.words.take(l) {
@@ -131,7 +130,6 @@ fn thread_words(cx: &mut Ctx<'_>, span: ColSpan) -> Result<ThreadWords, Diagnost
         }
     };
     let pitch = need(cx, b'P')?;
-    let z = need(cx, b'Z')?;
     let i = need(cx, b'I')?;
     let j = need(cx, b'J')?;
     let k = need(cx, b'K')?;
@@ -160,11 +158,6 @@ fn thread_words(cx: &mut Ctx<'_>, span: ColSpan) -> Result<ThreadWords, Diagnost
     if spring < 0.0 || spring.fract() != 0.0 || spring > MAX_PASSES as f64 {
         return Err(cx.err("rs274::g76-h", "Invalid H value with G76", span));
     }
-    let z_mm = cx.mm(z);
-    let z_end = match cx.st.distance {
-        DistanceMode::Absolute => z_mm,
-        DistanceMode::Incremental => cx.st.program_position().z + z_mm,
-    };
     Ok(ThreadWords {
         pitch: cx.mm(pitch),
         z_end,
@@ -202,10 +195,17 @@ fn pass_depths(w: &ThreadWords) -> Option<Vec<f64>> {
     (depths.len() <= MAX_PASSES).then_some(depths)
 }
 
-/// G76: the multi-pass threading cycle.
+/// G76: the multi-pass threading cycle, in LinuxCNC 2.9's order of checks: P, then I J K present
+/// (its `check_items`); the spindle turning; no rotary or UVW axis moved. It threads in XZ
+/// whatever the plane (LinuxCNC does not check the plane), and its last rapid goes to the block's
+/// end point — X and Y words are allowed and taken there, Z is the thread's end (the current Z
+/// without one).
 pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
-    if cx.st.plane != Plane::ZX {
-        return Err(cx.err("rs274::g76-plane", "G76 only allowed in XZ plane", span));
+    if !cx.words.has(b'P') {
+        return Err(cx.err("rs274::g76-p", "P word missing with G76", span));
+    }
+    if !(cx.words.has(b'I') && cx.words.has(b'J') && cx.words.has(b'K')) {
+        return Err(cx.err("rs274::g76-ijk", "I J or K words missing with G76", span));
     }
     if !spindle_turning(cx) {
         return Err(cx.err(
@@ -214,16 +214,17 @@ pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
             span,
         ));
     }
-    for k in [0, 1, 3, 4, 5, 6, 7, 8] {
-        if let Some(v) = cx.words.take(AXIS_WORDS[k]) {
-            return Err(cx.err(
-                "rs274::g76-axis",
-                format!("Cannot use {} with G76", AXIS_WORDS[k] as char),
-                v.span,
-            ));
-        }
+    let here = cx.st.program_position().to_array();
+    let (end, _) = cx.end_point()?;
+    let e = end.to_array();
+    if (3..9).any(|k| e[k] != here[k]) {
+        return Err(cx.err(
+            "rs274::g76-rotary",
+            "Cannot move rotary axes with G76",
+            span,
+        ));
     }
-    let w = thread_words(cx, span)?;
+    let w = thread_words(cx, span, end.z)?;
     let Some(depths) = pass_depths(&w) else {
         return Err(cx
             .err("rs274::g76-passes", "Too many passes in G76", span)
@@ -275,7 +276,15 @@ pub(super) fn g76(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         cx.straight(true, at(clear_x, end_z), 0.0);
         cx.out.push(Canon::SetFeedOverrideEnabled { enabled: true });
     }
-    cx.straight(true, at(x0, w.z_end), 0.0);
+    cx.straight(
+        true,
+        Pose {
+            x: end.x,
+            y: end.y,
+            ..at(x0, w.z_end)
+        },
+        0.0,
+    );
     cx.fe.modes.motion_code = Some(G76);
     Ok(())
 }

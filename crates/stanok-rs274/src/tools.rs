@@ -57,7 +57,28 @@ fn h_tool(cx: &Ctx<'_>, params: &Parameters, h: Val) -> Result<u32, Diagnostic> 
 /// T: prepare a tool. It must be in the table (T0 = no tool). A machine without tool data (empty
 /// table) accepts any T: there is nothing to check it against.
 pub(super) fn select_tool(cx: &mut Ctx<'_>, params: &Parameters, t: Val) -> Result<(), Diagnostic> {
-    let tool = cx.non_negative_integer(t, "T word")?;
+    // LinuxCNC reads T as an integer (within 10⁻⁴) and refuses a negative one with its words.
+    if (t.v - t.v.round()).abs() > 1e-4 {
+        return Err(cx.err(
+            "rs274::not-an-integer",
+            "Non integer value for integer",
+            t.span,
+        ));
+    }
+    if t.v.round() < 0.0 {
+        return Err(cx.err(
+            "rs274::negative-tool",
+            "Negative tool id (tool not found)",
+            t.span,
+        ));
+    }
+    let tool = cx.non_negative_integer(
+        Val {
+            v: t.v.round(),
+            ..t
+        },
+        "T word",
+    )?;
     let table = &params.tools().tools;
     if tool != 0 && !table.is_empty() && !table.contains_key(&tool) {
         return Err(not_found(cx, tool, t.span));

@@ -345,6 +345,12 @@ macro_rules! own_tests {
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
+    err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
+    err_parity_stray_endsub_after_call: "stanok-err-parity-stray-endsub-after-call";
+    err_parity_comp_arc_gouge: "stanok-err-parity-comp-arc-gouge";
+    err_parity_motion_axes_missing: "stanok-err-parity-motion-axes-missing";
+    err_parity_negative_tool: "stanok-err-parity-negative-tool";
+    err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
     err_parity_comp_plane: "stanok-err-parity-comp-plane";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
@@ -398,6 +404,19 @@ own_tests! {
     parity_g87_repeat: "stanok-parity-g87-repeat";
     parity_m19: "stanok-parity-m19";
     parity_tap_overrides: "stanok-parity-tap-overrides";
+    parity_g64_units_cycle: "stanok-parity-g64-units-cycle";
+    parity_g64_units_cycle_q: "stanok-parity-g64-units-cycle-q";
+    parity_g64_units_m72: "stanok-parity-g64-units-m72";
+    parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
+    parity_m19_q_alone: "stanok-parity-m19-q-alone";
+    parity_g76_any_plane: "stanok-parity-g76-any-plane";
+    parity_trig_long_double: "stanok-parity-trig-long-double";
+    parity_g10_rotation_under_shift: "stanok-parity-g10-rotation-under-shift";
+    parity_g93_minimum_rate: "stanok-parity-g93-minimum-rate";
+    parity_named_created_by_assignment: "stanok-parity-named-created-by-assignment";
+    parity_tap_plane_m6: "stanok-parity-tap-plane-m6";
+    parity_tap_plane_m61: "stanok-parity-tap-plane-m61";
+    parity_tap_plane_probe: "stanok-parity-tap-plane-probe";
     parity_m60: "stanok-parity-m60";
     parity_m72_coolant: "stanok-parity-m72-coolant";
     parity_m72_g92: "stanok-parity-m72-g92";
@@ -654,8 +673,18 @@ fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cyc
                G72 Q100 X19.321 Z3.3 I1.224\nM2\n";
     let no_feed = "G21 G18\nG0 X20 Z5\nO100 SUB\nG1 X11.812\nZ-21.015\nO100 ENDSUB\n\
                    G72 Q100 X20 Z5 D0.1 I1\nM2\n";
+    // Seed 20261205, program 4846: the passes cut the arc only offset by D, so LinuxCNC never
+    // checks it (rs274 prints `Oops` and cuts off the profile); Stanok refuses it the same way.
+    let offset_arc = "G21 G18 G7 F100\nO100 SUB\nG0 X10 Z0\nX12.475\nZ-15.45\n\
+                      G2 X14.775 Z-17.75 I2.3\nG1 Z-22.742\nO100 ENDSUB\nG0 X17.975 Z2.742\n\
+                      G72.1 Q100 X17.975 Z2.742 D0.1310\nM2\n";
     for (program, message, moves_before) in [
         (arc, "Radius to end of arc differs from radius to start", 2),
+        (
+            offset_arc,
+            "Radius to end of arc differs from radius to start",
+            2,
+        ),
         (no_feed, "Cannot do g1 with zero feed rate", 2),
     ] {
         let (cmds, err) = run(program, Dialect::Rs274ngc);

@@ -25,6 +25,7 @@
 //! two still differ with the same [`Difference::signature`]; at most `SHRINK_RUNS` runs.
 
 use stanok_canon::linuxcnc_trace::{compare, parse, Difference};
+use stanok_ngcgen::known::{known_difference, known_refusal};
 use stanok_ngcgen::mutate::mutate;
 use stanok_ngcgen::{generate, Program, TOOL_TABLE};
 use std::collections::BTreeMap;
@@ -35,6 +36,11 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 const SHRINK_RUNS: usize = 300;
+/// An endless loop: rs274 runs until the runner's timeout, Stanok stops it at its bound
+/// (`flow::too-many-iterations`). Not a difference in meaning: neither ends the program.
+const ENDLESS_LOOP: &str = "an endless loop: rs274 never ends it, Stanok stops it at its bound";
+/// The words of Stanok's message for a loop past its bound.
+const ENDLESS_LOOP_MESSAGE: &str = "times: stopping (endless loop?)";
 const TIMEOUT: Duration = Duration::from_secs(30);
 
 struct Config {
@@ -235,10 +241,18 @@ impl Scratch {
         let prog = self.write(text, subfiles);
         let subs = !subfiles.is_empty();
         let Some(theirs) = self.rs274(c, &prog, subs) else {
-            return (
-                None,
-                Err(Difference::OnlyLinuxCncStopped("rs274 timed out".into())),
-            );
+            // rs274 never ends an endless loop; Stanok stops it at its iteration bound.
+            let stopped_loop = self.stanok(c, &prog, subs).is_some_and(|ours| {
+                parse(&ours)
+                    .error
+                    .is_some_and(|e| e.contains(ENDLESS_LOOP_MESSAGE))
+            });
+            let why = if stopped_loop {
+                ENDLESS_LOOP
+            } else {
+                "rs274 timed out"
+            };
+            return (None, Err(Difference::OnlyLinuxCncStopped(why.into())));
         };
         let theirs = parse(&theirs);
         let linuxcnc_stopped = Some(theirs.error.is_some());
@@ -253,82 +267,6 @@ impl Scratch {
             compare(&parse(&ours), &theirs, Some(text)),
         )
     }
-}
-
-/// A listed difference between the standalone rs274 and a real LinuxCNC (docs/linuxcnc.md,
-/// "Known differences"): the name of the one the program shows, if any. The test is on the text,
-/// line by line in file order (a good enough stand-in for execution order in these programs).
-pub fn known_difference(text: &str) -> Option<&'static str> {
-    let mut tool_loaded = false;
-    let mut after_m61 = false;
-    let mut offset_in_force = false;
-    // A tool length offset changed since the last move: rs274's stub still has the old position.
-    let mut offset_unmoved = false;
-    for line in text.lines() {
-        let l = line
-            .split(['(', ';'])
-            .next()
-            .unwrap_or("")
-            .to_ascii_lowercase();
-        let l: String = l.chars().filter(|c| !c.is_whitespace()).collect();
-        let has = |code: &str| {
-            l.match_indices(code).any(|(i, _)| {
-                !l[i + code.len()..].starts_with(|c: char| c.is_ascii_digit() || c == '.')
-            })
-        };
-        let m6 = has("m6") || has("m06");
-        if m6 && has("g43") {
-            return Some("T… M6 G43 in one block");
-        }
-        if !tool_loaded {
-            // rs274's simulated tool changer starts with the tool of table slot 1 in the
-            // spindle; LinuxCNC's (and Stanok's) spindle is empty until M6 or M61.
-            let writes_slot_1 = ["g10l1p1", "g10l10p1", "g10l11p1"].iter().any(|c| has(c));
-            let g43_loaded = has("g43") && !l.contains('h');
-            let raw = line.to_ascii_lowercase();
-            if writes_slot_1 || g43_loaded || raw.contains("_current_pocket") {
-                return Some("the spindle holds tool slot 1 at start");
-            }
-        }
-        // After M61 the standalone rs274 leaves #<_current_tool>, #5400… and the offset G43
-        // takes as they were; LinuxCNC (milltask) and Stanok take the declared tool's.
-        let raw = line.to_ascii_lowercase();
-        let comp_from_tool = (has("g41") || has("g42")) && !l.contains('d');
-        if after_m61
-            && (raw.contains("_current_tool")
-                || raw.contains("#540")
-                || raw.contains("#541")
-                || (has("g43") && !l.contains('h'))
-                || comp_from_tool)
-        {
-            return Some("M61 leaves the tool data as it was");
-        }
-        after_m61 |= has("m61");
-        // M6/M61 resynchronise rs274's position from its stub, which has not seen a tool length
-        // offset applied since the last move; milltask (and Stanok) keep the program position.
-        if offset_unmoved && (m6 || has("m61")) {
-            return Some("M6/M61 after a tool length offset change or a spline without a move");
-        }
-        // (A spline — G5, G5.1, or a NURBS, G5.2 … G5.3 —, which rs274 prints as NURBS_FEED,
-        // leaves the stub's position behind too.)
-        if l.contains("g43") || has("g49") || l.contains("g5.3") || has("g5") || has("g5.1") {
-            offset_unmoved = true;
-        } else if l.contains(['x', 'y', 'z']) {
-            offset_unmoved = false;
-        }
-        // G20/G21 under a tool length offset: LinuxCNC keeps the offset's number, which then
-        // means another length (its later G43.2, G53, G28/G30 use it); Stanok keeps the length.
-        if offset_in_force && (has("g20") || has("g21")) {
-            return Some("G20/G21 under a tool length offset");
-        }
-        if has("g49") {
-            offset_in_force = false;
-        }
-        offset_in_force |= l.contains("g43");
-        // M61 Q1 declares the tool rs274 believes loaded already: its state stays apart.
-        tool_loaded |= m6 || (has("m61") && !has("q1"));
-    }
-    None
 }
 
 /// A difference found by the runner and not fixed yet (docs/linuxcnc.md, "Open differences"):
@@ -410,6 +348,14 @@ fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> (Outcome
             }
             if let Some(k) = open_difference(&p.text) {
                 return (Outcome::Known(k), stopped);
+            }
+            if matches!(&d, Difference::OnlyLinuxCncStopped(m) if m == ENDLESS_LOOP) {
+                return (Outcome::Known(ENDLESS_LOOP), stopped);
+            }
+            if let Difference::OnlyStanokStopped(message) = &d {
+                if let Some(k) = known_refusal(&p.text, message) {
+                    return (Outcome::Known(k), stopped);
+                }
             }
             if matches!(d, Difference::MovedBeforeError(_)) {
                 // Same block, same message; rs274 issued calls of the failing block first.

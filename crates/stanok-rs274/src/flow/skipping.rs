@@ -23,6 +23,7 @@ impl Flow {
             Skip::Sub(l) => {
                 if l == label && matches!(kind, OKind::EndSub(_)) {
                     self.skip = None;
+                    self.returned_to_top = false;
                 }
                 Ok(FlowAction::Skip)
             }

@@ -346,6 +346,8 @@ macro_rules! own_tests {
 own_tests! {
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
+    err_parity_comp_zero_radius_error: "stanok-err-parity-comp-zero-radius-error";
+    err_parity_abort_comment: "stanok-err-parity-abort-comment";
     err_parity_stray_endsub_after_call: "stanok-err-parity-stray-endsub-after-call";
     err_parity_comp_arc_gouge: "stanok-err-parity-comp-arc-gouge";
     err_parity_motion_axes_missing: "stanok-err-parity-motion-axes-missing";

@@ -386,7 +386,7 @@ impl Rs274 {
         if c.kind == CommentKind::Paren {
             let t = text.trim_start();
             if t.len() >= 6 && t[..6].eq_ignore_ascii_case("abort,") {
-                let message = crate::subfiles::substitute_parameters(&t[6..], eval);
+                let message = crate::subfiles::substitute_parameters(t[6..].trim_start(), eval);
                 return Err(
                     Diagnostic::error("rs274::abort", message, block.span_of(c.text)).fatal(),
                 );

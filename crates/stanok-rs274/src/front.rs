@@ -366,16 +366,32 @@ impl Rs274 {
     }
 
     /// The current line's comment as LinuxCNC keeps it (one per line: the last one).
-    fn comment(&self, block: &Block, out: &mut Emitter<'_>, eval: &params::Evaluator<'_>) {
+    fn comment(
+        &self,
+        block: &Block,
+        out: &mut Emitter<'_>,
+        eval: &params::Evaluator<'_>,
+    ) -> Result<(), Diagnostic> {
         let Some(c) = block.comments.iter().rev().find(|c| {
             matches!(
                 c.kind,
                 CommentKind::Paren | CommentKind::Msg | CommentKind::Debug
             )
         }) else {
-            return;
+            return Ok(());
         };
         let text = block.slice(c.text);
+        // (ABORT, text): LinuxCNC stops the program with the text, parameters substituted, before
+        // anything of the block runs.
+        if c.kind == CommentKind::Paren {
+            let t = text.trim_start();
+            if t.len() >= 6 && t[..6].eq_ignore_ascii_case("abort,") {
+                let message = crate::subfiles::substitute_parameters(t[6..].trim_start(), eval);
+                return Err(
+                    Diagnostic::error("rs274::abort", message, block.span_of(c.text)).fatal(),
+                );
+            }
+        }
         let cmd = match c.kind {
             CommentKind::Msg => Some(Canon::Message {
                 text: text.to_string(),
@@ -396,6 +412,7 @@ impl Rs274 {
         if let Some(cmd) = cmd {
             out.push(cmd);
         }
+        Ok(())
     }
 
     #[cold]
@@ -512,7 +529,7 @@ impl FrontEnd for Rs274 {
                     .map_err(|e| first_reading_error(parts.block, &parts.opts.axes, e, true))?;
                 self.pending.push((slot, v));
             }
-            self.comment(parts.block, &mut parts.out, &eval);
+            self.comment(parts.block, &mut parts.out, &eval)?;
         }
         let (block, axes) = (parts.block, &parts.opts.axes);
         let mut cx = parts.with(&mut self.part);

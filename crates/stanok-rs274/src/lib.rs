@@ -351,7 +351,9 @@ fn plane_of_code(code: u32) -> Plane {
 /// The held commands while cutter compensation is on: the last compensated element's motion and
 /// everything after it (see `cutter_comp`), counted in motion commands from the back.
 pub fn held_motions(st: &Rs274State) -> usize {
-    if st.comp.on() && st.comp.last.is_some() {
+    // LinuxCNC queues compensated moves only for a tool radius above 0: with a zero radius
+    // nothing can move their ends, and an error later leaves them issued.
+    if st.comp.on() && st.comp.last.is_some() && st.comp.radius > 0.0 {
         st.comp.moves_since as usize + 1
     } else {
         0

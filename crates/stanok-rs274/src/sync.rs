@@ -108,13 +108,16 @@ struct ThreadWords {
     pitch: f64,
     z_end: f64,
     i: f64,
-    j: f64,
     k: f64,
     degression: f64,
     angle_deg: f64,
     spring_passes: u32,
     taper: f64,
     taper_ends: u32,
+    /// I, J, K as LinuxCNC holds them (program units, halved under G7), and mm per unit: the
+    /// passes are stepped in program units as LinuxCNC steps them (see `pass_depths`).
+    ijk_units: [f64; 3],
+    mm_per_unit: f64,
 }
 
 fn thread_words(cx: &mut Ctx<'_>, span: ColSpan, z_end: f64) -> Result<ThreadWords, Diagnostic> {
@@ -162,35 +165,41 @@ fn thread_words(cx: &mut Ctx<'_>, span: ColSpan, z_end: f64) -> Result<ThreadWor
         pitch: cx.mm(pitch),
         z_end,
         i: cx.mm(i) * diameter,
-        j: cx.mm(j) * diameter,
         k: cx.mm(k) * diameter,
         degression,
         angle_deg,
         spring_passes: spring as u32,
         taper: cx.mm(taper),
         taper_ends: ends as u32,
+        ijk_units: [i * diameter, j * diameter, k * diameter],
+        mm_per_unit: cx.st.units.mm_per_unit(),
     })
 }
 
 /// The depths of the passes, from the drive line (see the module doc).
+///
+/// Stepped in program units, as LinuxCNC steps them (`depth < end_depth` decides the last pass
+/// where the depths meet K in decimal: its rounding, not the mm rounding, counts), each depth then
+/// converted to mm.
 fn pass_depths(w: &ThreadWords) -> Option<Vec<f64>> {
-    let full = w.i.abs() + w.k;
+    let [i, j, k] = w.ijk_units;
+    let full = k.abs() + i.abs();
     let mut depths = Vec::new();
     let mut n = 1.0f64;
     loop {
-        let d = w.i.abs() + w.j * n.powf(1.0 / w.degression);
+        let d = i.abs() + j.abs() * n.powf(1.0 / w.degression);
         // (NaN stops too.)
         if d >= full || d.is_nan() {
             break;
         }
-        depths.push(d);
+        depths.push(d * w.mm_per_unit);
         if depths.len() > MAX_PASSES {
             return None;
         }
         n += 1.0;
     }
     for _ in 0..=w.spring_passes {
-        depths.push(full);
+        depths.push(full * w.mm_per_unit);
     }
     (depths.len() <= MAX_PASSES).then_some(depths)
 }

@@ -346,6 +346,8 @@ macro_rules! own_tests {
 own_tests! {
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
+    err_parity_comp_zero_radius_error: "stanok-err-parity-comp-zero-radius-error";
+    err_parity_abort_comment: "stanok-err-parity-abort-comment";
     err_parity_stray_endsub_after_call: "stanok-err-parity-stray-endsub-after-call";
     err_parity_comp_arc_gouge: "stanok-err-parity-comp-arc-gouge";
     err_parity_motion_axes_missing: "stanok-err-parity-motion-axes-missing";
@@ -410,6 +412,7 @@ own_tests! {
     parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
     parity_m19_q_alone: "stanok-parity-m19-q-alone";
     parity_g76_any_plane: "stanok-parity-g76-any-plane";
+    parity_g76_inch_passes: "stanok-parity-g76-inch-passes";
     parity_trig_long_double: "stanok-parity-trig-long-double";
     parity_g10_rotation_under_shift: "stanok-parity-g10-rotation-under-shift";
     parity_g93_minimum_rate: "stanok-parity-g93-minimum-rate";

@@ -114,6 +114,25 @@ impl Rs274 {
     }
 }
 
+/// A parameter's value as LinuxCNC writes it into a comment (`convert_param_comment`): `%lf`, a
+/// value within 10⁻⁶ of 0 as 0 (no "-0.000000"), C's `nan`/`inf`, and `######` for a text of 30
+/// characters or more (its buffer).
+fn param_text(v: f64) -> String {
+    let v = if v.abs() < 1e-6 { 0.0 } else { v };
+    let s = if v.is_nan() {
+        if v.is_sign_negative() { "-nan" } else { "nan" }.to_string()
+    } else if v.is_infinite() {
+        if v < 0.0 { "-inf" } else { "inf" }.to_string()
+    } else {
+        format!("{v:.6}")
+    };
+    if s.len() >= 30 {
+        "######".to_string()
+    } else {
+        s
+    }
+}
+
 /// LinuxCNC `(DEBUG, …)`: `#n` and `#<name>` replaced by their values with six decimals.
 pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
     let mut out = String::with_capacity(text.len());
@@ -128,7 +147,7 @@ pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
                     let global = name.starts_with('_');
                     let v = eval.params_named(&name, global);
                     match v {
-                        Some(v) => out.push_str(&format!("{v:.6}")),
+                        Some(v) => out.push_str(&param_text(v)),
                         None => out.push_str("######"),
                     }
                     i += end + 3;
@@ -141,7 +160,7 @@ pub fn substitute_parameters(text: &str, eval: &Evaluator<'_>) -> String {
                     .count();
                 if digits > 0 {
                     let n: usize = text[i + 1..i + 1 + digits].parse().unwrap_or(0);
-                    out.push_str(&format!("{:.6}", eval.numbered(n)));
+                    out.push_str(&param_text(eval.numbered(n)));
                     i += 1 + digits;
                     continue;
                 }

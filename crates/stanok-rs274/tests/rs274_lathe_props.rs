@@ -361,7 +361,7 @@ proptest! {
             // in the first step is at most 0.01 mm along the cut axis.
             let first_step = canon.iter().map(|s| s.length() / 2.0).fold(d, f64::min);
             let radius = vec![0.0; canon.len()];
-            let arcs = stanok_geom::chain2d::ArcStarts { radius: &radius, first_step, corner_arc_gap: 0.01 };
+            let arcs = stanok_geom::chain2d::ArcStarts { radius: &radius, first_step, corner_arc_gap: 0.01, unit: 1.0 };
             let offset = stanok_geom::chain2d::offset_chain_sourced(&canon, Some(&arcs), d)
                 .map(|o| o.into_iter().map(|(s, _)| s).collect::<Vec<_>>());
             if let Some(offset) = offset {

@@ -401,6 +401,7 @@ own_tests! {
     parity_g7x_level_element: "stanok-parity-g7x-level-element";
     parity_g7x_profile_mcodes: "stanok-parity-g7x-profile-mcodes";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
+    parity_g7x_inch_corner_tie: "stanok-parity-g7x-inch-corner-tie";
     parity_g7x_short_profile: "stanok-parity-g7x-short-profile";
     parity_g7x_start_level: "stanok-parity-g7x-start-level";
     parity_g87_repeat: "stanok-parity-g87-repeat";

@@ -65,6 +65,47 @@ pub struct ArcStarts<'a> {
     /// program units); two lines with a shorter gap run on to their crossing instead (a sharp
     /// corner). 0: always an arc.
     pub corner_arc_gap: f64,
+    /// The program's length unit in mm (1: mm, 25.4: inches). LinuxCNC compares the gap in
+    /// program units, so where it ties with `corner_arc_gap` the comparison is redone in them
+    /// (see [`sharp_corner`]).
+    pub unit: f64,
+}
+
+/// Gaps this close to `ArcStarts::corner_arc_gap` (mm) tie in mm arithmetic: the program-unit
+/// rounding decides them.
+const GAP_TIE: f64 = 1e-9;
+
+/// The program-unit value `v` (mm) was converted from: of the doubles next to v/unit, one that
+/// converts back to v exactly, the one with the shortest decimal form (a programmed number).
+fn in_units(v: f64, unit: f64) -> f64 {
+    if unit == 1.0 {
+        return v;
+    }
+    let u0 = v / unit;
+    [u0, u0.next_down(), u0.next_up()]
+        .into_iter()
+        .filter(|u| u * unit == v)
+        .min_by_key(|u| format!("{u}").len())
+        .unwrap_or(u0)
+}
+
+/// LinuxCNC's `add_distance` gap test in program units: the corner's first-axis coordinate
+/// plus each piece's first-step offset along that axis, each sum rounded as a double in program
+/// units (`start += d·I·dir/|dir|`), then subtracted and compared with the threshold. An
+/// axis-aligned piece's offset direction is exactly ±1 or 0, so the result is bit-exact there.
+fn gap_in_units(arcs: &ArcStarts, corner: P2, last: &Seg2, next: &Seg2) -> f64 {
+    let unit = arcs.unit;
+    let c = in_units(corner[0], unit);
+    let step = in_units(arcs.first_step.abs(), unit);
+    let along = |p: P2| {
+        let len = dist2(p, corner);
+        if len > 0.0 {
+            (p[0] - corner[0]) / len
+        } else {
+            0.0
+        }
+    };
+    (c + step * along(next.start())) - (c + step * along(last.end()))
 }
 
 /// Where the offsets `last` and `next` meet when the gap between them is too short for an arc
@@ -76,13 +117,23 @@ pub struct ArcStarts<'a> {
 fn sharp_corner(
     arcs: Option<&ArcStarts>,
     d: f64,
+    corner: P2,
     last: &Seg2,
     next: &Seg2,
 ) -> Option<(Seg2, Seg2)> {
     let arcs = arcs?;
     // The gaps of every step have the same direction; their size scales with the step.
     let gap = (next.start()[0] - last.end()[0]) * (arcs.first_step / d).abs();
-    if arcs.corner_arc_gap <= 0.0 || gap > arcs.corner_arc_gap {
+    if arcs.corner_arc_gap <= 0.0 {
+        return None;
+    }
+    let arc = if (gap - arcs.corner_arc_gap).abs() <= GAP_TIE && arcs.unit > 0.0 {
+        // A tie in mm (D exactly 0.01 inch at an axis-aligned corner): decided in program units.
+        gap_in_units(arcs, corner, last, next) > in_units(arcs.corner_arc_gap, arcs.unit)
+    } else {
+        gap > arcs.corner_arc_gap
+    };
+    if arc {
         return None;
     }
     let nearest = |ps: Vec<P2>| {
@@ -299,7 +350,7 @@ pub fn offset_chain_sourced(
                     _ => {}
                 }
             } else if let Some((a, b)) = ((theta < 0.0) == (d > 0.0))
-                .then(|| sharp_corner(arcs, d, last, &o))
+                .then(|| sharp_corner(arcs, d, corner, last, &o))
                 .flatten()
             {
                 // Turn away from the offset side with a gap too short for LinuxCNC to close it
@@ -522,6 +573,7 @@ mod tests {
             radius: &radius,
             first_step: 0.1,
             corner_arc_gap: 0.0,
+            unit: 1.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
         let expected = 2.0015 * 2.1 / 2.0 + 0.4;
@@ -537,6 +589,7 @@ mod tests {
             radius: &radius,
             first_step: 0.5,
             corner_arc_gap: 0.0,
+            unit: 1.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 0.5).unwrap();
         assert!(matches!(o[1].0, Seg2::Arc { r, .. } if (r - 2.0015 * 2.5 / 2.0).abs() < 1e-12));
@@ -550,6 +603,7 @@ mod tests {
             radius: &radius,
             first_step: 0.1,
             corner_arc_gap: 0.0,
+            unit: 1.0,
         };
         let o = offset_chain_sourced(&chain[1..], Some(&arcs), 0.5).unwrap();
         assert!(
@@ -587,6 +641,7 @@ mod tests {
             radius: &radius,
             first_step: 1.0,
             corner_arc_gap: 0.0,
+            unit: 1.0,
         };
         let o = offset_chain_sourced(&chain, Some(&arcs), 1.0).unwrap();
         // The first arc keeps its start circle for its crossings.
@@ -702,6 +757,7 @@ mod tests {
                 radius: &radius,
                 first_step: d,
                 corner_arc_gap,
+                unit: 1.0,
             };
             offset_chain_sourced(&chain, Some(&arcs), d).unwrap()
         };
@@ -714,5 +770,29 @@ mod tests {
         assert!(matches!(round[1], (Seg2::Arc { r, .. }, None) if (r - 0.762).abs() < 1e-9));
         // 0: always an arc (the plain offset).
         assert_eq!(gap(0.0, 0.17).len(), 3);
+    }
+
+    #[test]
+    fn a_gap_of_exactly_the_threshold_is_decided_in_program_units() {
+        // D 0.01 inch at a corner at c inches: LinuxCNC arcs iff fl(c + 0.01) − c > 0.01 in
+        // inches. c = 0.0013: 0.010000000000000002 in inches (an arc), exactly 0.254 in mm;
+        // c = 0.0098: 0.009999999999999998 in inches (sharp), 0.25400000000000006 in mm.
+        let pieces = |c_in: f64| {
+            let c = c_in * 25.4;
+            let chain = [line([-5.0, 0.0], [c, 0.0]), line([c, 0.0], [c, -3.0])];
+            let radius = [0.0, 0.0];
+            let d = 0.01 * 25.4;
+            let arcs = ArcStarts {
+                radius: &radius,
+                first_step: d,
+                corner_arc_gap: 0.01 * 25.4,
+                unit: 25.4,
+            };
+            offset_chain_sourced(&chain, Some(&arcs), d).unwrap().len()
+        };
+        assert_eq!(pieces(0.0013), 3, "an arc");
+        assert_eq!(pieces(0.0098), 2, "sharp");
+        assert_eq!(in_units(0.4203 * 25.4, 25.4), 0.4203);
+        assert_eq!(in_units(0.7746 * 25.4, 25.4), 0.7746);
     }
 }

@@ -81,6 +81,7 @@ pub(super) fn offset_profile(chain: &[Seg2], p0: P2, d: f64, unit: f64) -> Optio
         radius: &start_radii,
         first_step,
         corner_arc_gap: 0.01 * unit,
+        unit,
     };
     Some(
         offset_chain_sourced(chain, Some(&arcs), d)?

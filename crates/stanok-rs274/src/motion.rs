@@ -170,7 +170,9 @@ fn motion_block_inner(
                 let length = inverse_time_length(cx, &end);
                 feed_for(cx, f_in_block, span, false, || length)?
             };
-            if cx.fe.modes.comp.on() && g53.is_none() {
+            // LinuxCNC compensates only with a tool radius above 0 (`cutter_comp_radius > 0.0`):
+            // with none the moves are plain, corners get no arcs.
+            if cx.fe.modes.comp.on() && cx.fe.modes.comp.radius > 0.0 && g53.is_none() {
                 super::cutter_comp::straight(cx, rapid, end, feed, span)
             } else {
                 cx.straight(rapid, end, feed);
@@ -454,7 +456,7 @@ fn arc_block(
     let feed = feed_for(cx, f_in_block, span, true, || {
         helix_length(start, end, plane, planar.centre, ccw, planar.turns)
     })?;
-    if cx.fe.modes.comp.on() {
+    if cx.fe.modes.comp.on() && cx.fe.modes.comp.radius > 0.0 {
         return super::cutter_comp::arc(cx, ccw, end, planar, feed, span);
     }
     cx.arc(plane, ccw, end, planar, feed);

@@ -27,7 +27,8 @@ pub(super) fn motion_block(
     }
     // Tested first: the write journals the whole `Rs274State` (a copy of it), and only the
     // first motion of a run finds it set (measured, docs/performance.md).
-    if cx.fe.modes.motion_unset {
+    // G5 and G5.1 keep LinuxCNC's motion mode as it was (−1 after G5.3 included).
+    if cx.fe.modes.motion_unset && !matches!(code, G5 | G5_1) {
         cx.fe.modes.motion_unset = false;
     }
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)

@@ -413,6 +413,7 @@ own_tests! {
     parity_g83_incremental_pecks: "stanok-parity-g83-incremental-pecks";
     parity_m19_q_alone: "stanok-parity-m19-q-alone";
     parity_g76_any_plane: "stanok-parity-g76-any-plane";
+    parity_g5_keeps_unset_motion: "stanok-parity-g5-keeps-unset-motion";
     parity_comp_zero_radius: "stanok-parity-comp-zero-radius";
     parity_debug_value_text: "stanok-parity-debug-value-text";
     parity_g76_inch_passes: "stanok-parity-g76-inch-passes";

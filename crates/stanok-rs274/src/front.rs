@@ -385,8 +385,11 @@ impl Rs274 {
         // anything of the block runs.
         if c.kind == CommentKind::Paren {
             let t = text.trim_start();
-            if t.len() >= 6 && t[..6].eq_ignore_ascii_case("abort,") {
-                let message = crate::subfiles::substitute_parameters(t[6..].trim_start(), eval);
+            // (`get`: the comment may start with any character; "abort," is ASCII, so after it
+            // byte 6 is a character boundary.)
+            if t.get(..6).is_some_and(|p| p.eq_ignore_ascii_case("abort,")) {
+                let rest = t.get(6..).unwrap_or("").trim_start();
+                let message = crate::subfiles::substitute_parameters(rest, eval);
                 return Err(
                     Diagnostic::error("rs274::abort", message, block.span_of(c.text)).fatal(),
                 );

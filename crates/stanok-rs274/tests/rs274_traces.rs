@@ -760,3 +760,16 @@ fn an_axis_the_machine_lacks_is_the_first_error_of_its_block() {
     );
     assert_eq!(err.span.line, 3);
 }
+
+/// The fuzz smoke's crash (`fuzz interp`, 2026-11-27): a comment starting with a multi-byte
+/// character was sliced at byte 6 when tested for `ABORT,`. Any comment is a comment; only
+/// `(ABORT, …)` stops the program.
+#[test]
+fn a_comment_starting_with_multibyte_text_is_no_abort() {
+    let program = "G21\n(Ду газа годинниковою стрілкою в площині XY)\n(abörtion)\nG0 X1\nM2\n";
+    let (cmds, err) = run(program, Dialect::Rs274ngc);
+    assert!(err.is_none(), "{err:?}");
+    assert!(cmds.iter().any(|c| c.value.motion().is_some()));
+    let (_, err) = run("G21\n(ABORT, стоп)\nG0 X1\nM2\n", Dialect::Rs274ngc);
+    assert_eq!(err.expect("aborted").message, "стоп");
+}

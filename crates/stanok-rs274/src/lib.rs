@@ -39,6 +39,7 @@ mod cycles;
 mod degrees;
 mod flow;
 mod front;
+mod groups;
 mod home;
 mod lathe;
 pub(crate) mod lathe_cycles;
@@ -74,6 +75,7 @@ use stanok_canon::{
     Canon, Diagnostic, FeedMode, LengthUnits, Plane, SpindleDirection, SurfaceSpeedLaw,
 };
 
+use groups::{classify, g_name, group_of, GCodes, Group, NO_CODE};
 use motion::motion_block;
 pub use offsets::g5x_from_params;
 use offsets::{g10_origin, g92_family, program_end, select_coordinate_system};
@@ -177,87 +179,6 @@ pub(crate) fn path_mode_canon(mode: PathMode, naive_cam: f64) -> Canon {
     }
 }
 
-/// LinuxCNC's modal groups (the ones this module distinguishes).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Group {
-    /// Group 0: G4, G10, G28, G30, G52, G53, G92 …
-    NonModal,
-    /// Group 1.
-    Motion,
-    /// Group 2.
-    Plane,
-    /// Group 3.
-    Distance,
-    /// Group 4 (LinuxCNC's "arc distance").
-    ArcDistance,
-    /// Group 5.
-    FeedMode,
-    /// Group 6.
-    Units,
-    /// Group 7.
-    CutterComp,
-    /// Group 8.
-    ToolLength,
-    /// Group 10.
-    Retract,
-    /// Group 12.
-    CoordSystem,
-    /// Group 13.
-    PathControl,
-    /// Group 14.
-    SpindleMode,
-    /// Group 15.
-    LatheDiameter,
-}
-
-/// Group of a G code (×10), or None if LinuxCNC does not know it.
-#[inline(always)]
-fn group_of(code: u32) -> Option<Group> {
-    g_code(code).map(|c| c.group)
-}
-
-fn g_name(code: u32) -> String {
-    if let Some(c) = g_code(code) {
-        return c.name.to_string();
-    }
-    if code.is_multiple_of(10) {
-        format!("G{}", code / 10)
-    } else {
-        format!("G{}.{}", code / 10, code % 10)
-    }
-}
-
-/// Number of groups in [`Group`].
-const GROUPS: usize = 14;
-/// "No code of this group in the block".
-const NO_CODE: u32 = u32::MAX;
-
-/// The G codes of one block, one per group (plain arrays: this runs for every block). A code's
-/// span stays in the block's words (`at` indexes `Words::g`): copying fourteen spans in and out
-/// of every block cost more than the whole lookup.
-struct GCodes {
-    code: [u32; GROUPS],
-    /// Index of the group's code in `Words::g` (valid where `code` is not `NO_CODE`).
-    at: [u32; GROUPS],
-    /// G53 travels with the motion group in LinuxCNC ("G53 may share a line with G0/G1").
-    g53: Option<ColSpan>,
-}
-
-impl GCodes {
-    fn new() -> Self {
-        GCodes {
-            code: [NO_CODE; GROUPS],
-            at: [0; GROUPS],
-            g53: None,
-        }
-    }
-
-    fn get(&self, g: Group, cx: &Ctx<'_>) -> Option<(u32, ColSpan)> {
-        let c = self.code[g as usize];
-        (c != NO_CODE).then(|| (c, cx.words.g[self.at[g as usize] as usize].1))
-    }
-}
-
 /// `_area`: the part of the language it belongs to (for readers of the code; users are told only
 /// that it is not implemented).
 fn unsupported(cx: &Ctx<'_>, what: &str, _area: &str, at: ColSpan) -> Diagnostic {
@@ -269,46 +190,6 @@ fn unsupported(cx: &Ctx<'_>, what: &str, _area: &str, at: ColSpan) -> Diagnostic
     .with_note("not implemented in this version of Stanok")
 }
 
-/// Sorts the block's G codes into groups, into `g` (fresh from `GCodes::new`). An out-parameter:
-/// returned inside a `Result` the table was copied twice per block.
-#[inline(always)]
-fn classify(cx: &Ctx<'_>, g: &mut GCodes) -> Result<(), Diagnostic> {
-    for (i, &(code, span)) in cx.words.g.iter().enumerate() {
-        let Some(group) = group_of(code) else {
-            return Err(cx.err(
-                "rs274::unknown-g-code",
-                format!("Unknown g code used: {}", g_name(code)),
-                span,
-            ));
-        };
-        // G53 is group 0 too: it travels with the motion, but shares the group with G4, G10 ….
-        let prev = if code == G53 {
-            g.code[Group::NonModal as usize]
-        } else if group == Group::NonModal && g.g53.is_some() {
-            G53
-        } else {
-            g.code[group as usize]
-        };
-        if code == G53 && prev == NO_CODE {
-            g.g53 = Some(span);
-            continue;
-        }
-        if prev != NO_CODE {
-            return Err(cx
-                .err(
-                    "rs274::two-g-codes-same-group",
-                    "Two g codes used from same modal group",
-                    span,
-                )
-                .with_note(format!("{} and {}", g_name(prev), g_name(code))));
-        }
-        g.code[group as usize] = code;
-        g.at[group as usize] = i as u32;
-    }
-    Ok(())
-}
-
-/// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
 /// Switches the length units. LinuxCNC keeps G64's P and Q as the numbers written, not as
 /// lengths: a later re-announcement (a canned cycle's end, M72) sends the same numbers, read in the
 /// new units. Stanok holds them in mm, so a change of units rescales them by the units' ratio.
@@ -323,6 +204,7 @@ pub(crate) fn set_units(cx: &mut Ctx<'_>, units: LengthUnits) {
     cx.st.units = units;
 }
 
+/// G93/G94/G95 as LinuxCNC does it: announce, set, and (except for inverse time) reset F to 0.
 pub(crate) fn set_feed_mode(cx: &mut Ctx<'_>, mode: FeedMode) {
     let text = match mode {
         FeedMode::InverseTime => "inverse time",

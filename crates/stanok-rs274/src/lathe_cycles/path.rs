@@ -37,6 +37,10 @@ use super::model::{intersect, Kind, Out, Seg, Thrown, TOL};
 /// would otherwise take hours, and some of LinuxCNC's loops never end).
 pub(super) const MAX_WORK: usize = 200_000_000;
 
+/// Most moves one cycle may print (a million: LinuxCNC's own sample cycles print hundreds; a
+/// level step of 10⁻⁷ over a tall profile would otherwise fill the memory).
+pub(super) const MAX_MOVES: usize = 1_000_000;
+
 /// Counts a cycle's work against `MAX_WORK`.
 #[derive(Debug, Default)]
 pub(super) struct Work(usize);
@@ -300,6 +304,9 @@ pub(super) fn g70(mut chain: Chain, w: &Words) -> Result<Vec<Out>, Thrown> {
         let Some((first, rest)) = path.segs.split_first() else {
             continue;
         };
+        if out.len() > MAX_MOVES {
+            return Err(format!("the cycle makes more than {MAX_MOVES} moves"));
+        }
         out.push(Out::Rapid(first.s));
         out.push(Out::Rapid(first.e));
         for s in rest {
@@ -365,6 +372,9 @@ struct Pocket {
 
 impl Pocket {
     fn step(&mut self) -> Result<(), Thrown> {
+        if self.out.len() > MAX_MOVES {
+            return Err(format!("the cycle makes more than {MAX_MOVES} moves"));
+        }
         self.work.add(1)
     }
 

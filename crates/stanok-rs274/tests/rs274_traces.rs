@@ -344,6 +344,8 @@ macro_rules! own_tests {
 // The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
+    err_parity_sub_after_percent: "stanok-err-parity-sub-after-percent";
+    err_parity_if_to_percent: "stanok-err-parity-if-to-percent";
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
     err_parity_comp_zero_radius_error: "stanok-err-parity-comp-zero-radius-error";

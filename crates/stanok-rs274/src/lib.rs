@@ -551,7 +551,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             Some(Handler::Home) => home::go_home(cx, params, code == G28)?,
             Some(Handler::StoreHome) => home::store_home(cx, params, code == G28_1),
             Some(Handler::Offset) => g92_family(cx, params, code, span)?,
-            Some(Handler::NurbsEnd) => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
+            Some(Handler::NurbsEnd) => spline::nurbs_end(cx, params, span)?,
             _ => {}
         }
     }

@@ -392,6 +392,7 @@ own_tests! {
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
     parity_g5_2_inverse_time: "stanok-parity-g5-2-inverse-time";
+    parity_g5_3_zero_feed: "stanok-parity-g5-3-zero-feed";
     parity_g53_tlo: "stanok-parity-g53-tlo";
     parity_g73_peck_rounding: "stanok-parity-g73-peck-rounding";
     parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";

@@ -155,6 +155,42 @@ fn with_plane(p: Pose, plane: Plane, q: [f64; 2]) -> Pose {
     Pose::from_array(v)
 }
 
+/// The block a convex corner belongs to: its programmed end, whether it is a rapid, its feed.
+#[derive(Clone, Copy)]
+pub(super) struct CornerOf {
+    pub end: Pose,
+    pub rapid: bool,
+    pub feed: f64,
+}
+
+/// LinuxCNC's move round a convex corner about the programmed corner `s` to `to` (offset
+/// point): an arc, or for a rapid a straight traverse to the arc's end (there is no arc
+/// traverse; `convert_straight_comp2`). Either carries the block's end on every axis outside
+/// the plane but its normal, which stays where the tool is (`cz`, `AA_end`… in LinuxCNC), so a
+/// rotary or UVW move of the block happens on the corner move.
+fn corner_move(cx: &mut Ctx<'_>, of: CornerOf, s: [f64; 2], to: [f64; 2]) {
+    let plane = cx.st.plane;
+    let comp = cx.fe.modes.comp;
+    let (_, _, normal) = plane.axes();
+    let mut v = of.end.to_array();
+    v[normal] = cx.st.program_position().to_array()[normal];
+    let end = emit_at(cx, Pose::from_array(v), to);
+    if of.rapid {
+        cx.straight(true, end, of.feed);
+    } else {
+        cx.arc(
+            plane,
+            comp.side == 2,
+            end,
+            PlanarArc {
+                centre: add(s, comp.nose),
+                turns: 1,
+            },
+            of.feed,
+        );
+    }
+}
+
 /// LinuxCNC's lathe tool origin: a tool of orientation 1–8 (G18 only) is controlled at the
 /// point of its nose that the orientation names, r from the nose centre along Z and/or X
 /// (orientation 2: −X −Z; 1: −X +Z; 3: +X −Z; 4: +X +Z; 5/6/7/8: +Z/−X/−Z/+X only). The
@@ -374,9 +410,10 @@ pub(super) fn straight(
     let n = scale(left(dir), r * comp.sign());
     let new = Element::Line { from: s, to: e };
     if let Some(c) = comp.stale {
-        stale::corner(cx, s, c, e, feed, span)?;
+        stale::corner(cx, s, c, e, CornerOf { end, rapid, feed }, span)?;
     } else {
-        corner(cx, s, dir, add(s, n), new, feed, span)?;
+        let of = CornerOf { end, rapid, feed };
+        corner(cx, s, dir, add(s, n), new, of, span)?;
     }
     cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
     let c = &mut cx.fe.modes.comp;
@@ -474,7 +511,12 @@ pub(super) fn arc(
                 },
             ),
         );
-        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
+        let of = CornerOf {
+            end,
+            rapid: false,
+            feed,
+        };
+        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, of, span)?;
         if let Element::Arc { tool_from, .. } = &mut new {
             *tool_from = tool_at(cx);
         }
@@ -505,7 +547,7 @@ fn corner(
     dir: [f64; 2],
     start_tool: [f64; 2],
     new: Element,
-    feed: f64,
+    of: CornerOf,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
@@ -514,26 +556,15 @@ fn corner(
     };
     let a = last.end_tangent();
     let turn = cross(a, dir).atan2(dot(a, dir));
-    let plane = cx.st.plane;
     // A line straight back on a line turns by ±π, the sign a rounding accident: LinuxCNC goes
     // round the end with a half circle on either side. (An arc's cusp with a line is concave:
     // their offsets cross.)
     let lines = matches!((last, new), (Element::Line { .. }, Element::Line { .. }));
     let reversal = lines && std::f64::consts::PI - turn.abs() < 1e-9;
     if reversal || comp.sign() * turn < -CONCAVE_TOLERANCE {
-        // Convex: an arc about the corner.
+        // Convex: an arc about the corner (a traverse to its end for a rapid).
         reachable(cx, tool_at(cx), span)?;
-        let here = cx.st.program_position();
-        cx.arc(
-            plane,
-            comp.side == 2,
-            emit_at(cx, here, start_tool),
-            PlanarArc {
-                centre: add(s, comp.nose),
-                turns: 1,
-            },
-            feed,
-        );
+        corner_move(cx, of, s, start_tool);
         return Ok(());
     }
     // Within the tolerance of tangent next to an arc, the new element starts where the tool is

@@ -384,6 +384,7 @@ own_tests! {
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
     parity_comp_reversal: "stanok-parity-comp-reversal";
+    parity_comp_rapid_corner: "stanok-parity-comp-rapid-corner";
     parity_css_inch: "stanok-parity-css-inch";
     parity_flow_break_continue: "stanok-parity-flow-break-continue";
     parity_flow_continue_repeat: "stanok-parity-flow-continue-repeat";

@@ -23,14 +23,17 @@
 //! element's start tangent at the programmed corner S
 //!
 //! * **convex** (the tool is on the outside: G41 turning right, G42 turning left, by more than
-//!   [`CONCAVE_TOLERANCE`]): an arc of radius r about S is inserted from the previous offset end to
-//!   the new offset start (clockwise for G41, counter-clockwise for G42);
-//! * **concave** (everything else, straight continuations and reversals included): the previous
-//!   offset element is shortened to where it meets the new offset element (line–line, line–circle
-//!   or circle–circle intersection); no intersection is a gouge error;
-//! * **tangent with an arc** (either element an arc, turn within ±[`CONCAVE_TOLERANCE`]): nothing
-//!   is moved; the new element starts where the tool is (LinuxCNC's "convex, one arc" case).
-//!
+//!   [`CONCAVE_TOLERANCE`]; or a near reversal, |turn| within it of π, either way): an arc of
+//!   radius r about S is inserted from the previous offset end to the new offset start
+//!   (clockwise for G41, counter-clockwise for G42; for a G0 a straight traverse to its end);
+//! * **concave** (turning towards the tool by more than the tolerance, short of a near
+//!   reversal; and a near reversal where an arc has the tool outside it — the new arc, or the
+//!   last arc before a line, LinuxCNC's "h" and "m" shapes): the previous offset element is
+//!   shortened to where it meets the new offset element (line–line, line–circle or
+//!   circle–circle intersection); no intersection is a gouge error;
+//! * **straight on** (turn within ±[`CONCAVE_TOLERANCE`]): nothing is moved; the new element
+//!   starts where the tool is (LinuxCNC's "convex, one arc" and "colinear" cases).
+
 //! An arc's offset uses its programmed points as LinuxCNC 2.9 does when the end is off the circle
 //! through the start (|E − C| ≠ |S − C|, by the program's rounding): the offset start is S moved
 //! r along the radius C→S, the offset end E moved r along C→E, and the circle it meets its
@@ -556,22 +559,38 @@ fn corner(
     };
     let a = last.end_tangent();
     let turn = cross(a, dir).atan2(dot(a, dir));
-    // A line straight back on a line turns by ±π, the sign a rounding accident: LinuxCNC goes
-    // round the end with a half circle on either side. (An arc's cusp with a line is concave:
-    // their offsets cross.)
-    let lines = matches!((last, new), (Element::Line { .. }, Element::Line { .. }));
-    let reversal = lines && std::f64::consts::PI - turn.abs() < 1e-9;
-    if reversal || comp.sign() * turn < -CONCAVE_TOLERANCE {
+    // LinuxCNC's zones (`convert_straight_comp2`, `convert_arc_comp2`: β = the turn away from
+    // the tool's side, tolerance t = CONCAVE_TOLERANCE), in `towards` = the turn towards it:
+    // concave for t < towards < π − t; a near reversal (|turn| within t of π, either sign, an
+    // exact one's sign being a rounding accident) is convex — a half circle round the end —
+    // unless an arc there has the tool outside it (the "h" and "m" shapes: the new arc, or the
+    // last arc before a line), which LinuxCNC joins as concave; convex for towards < −t; and
+    // within ±t of straight on nothing moves: the new element starts where the tool is, the
+    // held move keeps its end (lines too: LinuxCNC does not seek the crossing there).
+    let towards = comp.sign() * turn;
+    let tool_outside = |e: Element| match e {
+        Element::Arc { ccw, .. } => (comp.side == 1) != ccw,
+        Element::Line { .. } => false,
+    };
+    let near_reversal = std::f64::consts::PI - turn.abs() <= CONCAVE_TOLERANCE;
+    let concave = if near_reversal {
+        match new {
+            Element::Arc { .. } => tool_outside(new),
+            Element::Line { .. } => tool_outside(last),
+        }
+    } else {
+        towards > CONCAVE_TOLERANCE
+    };
+    if !concave && (near_reversal || towards < -CONCAVE_TOLERANCE) {
         // Convex: an arc about the corner (a traverse to its end for a rapid).
         reachable(cx, tool_at(cx), span)?;
         corner_move(cx, of, s, start_tool);
         return Ok(());
     }
-    // Within the tolerance of tangent next to an arc, the new element starts where the tool is
-    // (LinuxCNC's "convex, one arc" case): no meeting point is sought, and the new offset start
-    // may be off the tool's position by as much as an arc's end is off its radius.
-    let with_arc = matches!(new, Element::Arc { .. }) || matches!(last, Element::Arc { .. });
-    if with_arc && (comp.sign() * turn).abs() <= CONCAVE_TOLERANCE {
+    if !concave {
+        // Within the tolerance of straight on (LinuxCNC's "convex, one arc" with an arc): no
+        // meeting point is sought, and the new offset start may be off the tool's position by
+        // as much as an arc's end is off its radius or a line's normal turns.
         return Ok(());
     }
     // Concave: where the two offset paths meet.

@@ -110,7 +110,11 @@ fn a_feed_set_to_zero_before_g5_3_cuts_the_nurbs_at_zero() {
     // LinuxCNC checks a NURBS's feed on its G5.2 blocks only (golden
     // stanok-parity-g5-3-zero-feed): F0 after the points, alone or on the G5.3 line, cuts the
     // curve at feed 0 with every point collected; an F on the G5.3 line is its feed.
-    for (end, feed) in [("F0\nG5.3", 0.0), ("G5.3 F0", 0.0), ("F0\nF10 G5.3", 10.0 * 25.4)] {
+    for (end, feed) in [
+        ("F0\nG5.3", 0.0),
+        ("G5.3 F0", 0.0),
+        ("F0\nF10 G5.3", 10.0 * 25.4),
+    ] {
         let s = splines(&format!(
             "G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\n{end}\nM2\n"
         ));

@@ -24,7 +24,9 @@
 //! elements; with the stale one it reproduces `rs274`'s first pass (tests/rs274/
 //! `stanok-g70-comp*.ngc`). A move with no motion in the plane keeps the tool at c meanwhile.
 
-use super::{add, corner_move, move_held_end, reachable, sub, CornerOf, Element, CONCAVE_TOLERANCE};
+use super::{
+    add, corner_move, move_held_end, reachable, sub, CornerOf, Element, CONCAVE_TOLERANCE,
+};
 use crate::ctx::Ctx;
 use stanok_canon::Diagnostic;
 use stanok_syntax::ColSpan;

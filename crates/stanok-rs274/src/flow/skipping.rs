@@ -104,7 +104,11 @@ impl Flow {
     pub fn skipped_to_percent(&self, percent: &Block) -> Option<Diagnostic> {
         let bare = |l: &str| l.trim_start_matches('<').trim_end_matches('>').to_string();
         let local = |l: &str| {
-            let sub = self.calls.last().map(|c| bare(&c.label)).unwrap_or_default();
+            let sub = self
+                .calls
+                .last()
+                .map(|c| bare(&c.label))
+                .unwrap_or_default();
             format!("{sub}#{}", bare(l))
         };
         let (name, call) = match self.skip.as_ref()? {

@@ -114,6 +114,9 @@ pub struct CutterComp {
     /// The entry move starts here rather than at the tool: the programmed point a G40 left
     /// (LinuxCNC resets its current point to it), if no move has been made since.
     pub entry_from: Option<[f64; 2]>,
+    /// The last element is the entry line: LinuxCNC queues it with the offset normal as its
+    /// direction, not its travel (`convert_straight_comp1`), and its gouge check tests that.
+    pub entry_held: bool,
 }
 
 impl CutterComp {
@@ -321,6 +324,7 @@ pub(super) fn comp_on(
         stale: None,
         arc_refused: cx.fe.modes.comp.arc_refused,
         entry_from: cx.fe.modes.comp.program,
+        entry_held: false,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -380,6 +384,7 @@ pub(super) fn straight(
         let c = &mut cx.fe.modes.comp;
         c.program = Some(e);
         c.last = Some(Element::Line { from: t, to: e });
+        c.entry_held = true;
         c.moves_since = 0;
         c.entry_from = None;
         c.arc_refused = false;
@@ -423,6 +428,7 @@ pub(super) fn straight(
     c.stale = None;
     c.program = Some(e);
     c.last = Some(new);
+    c.entry_held = false;
     c.moves_since = 0;
     c.arc_refused = false;
     Ok(())
@@ -538,6 +544,7 @@ pub(super) fn arc(
     cc.stale = None;
     cc.program = Some(e);
     cc.last = Some(new);
+    cc.entry_held = false;
     cc.moves_since = 0;
     Ok(())
 }
@@ -665,7 +672,15 @@ fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagno
         return Ok(());
     };
     let s = sub(plane_of(&frame.to_program(&s), plane), comp.nose);
-    if dot(sub(end, from), sub(to, s)) >= 0.0 {
+    // The direction LinuxCNC queued the move with: its travel, or for the entry line the
+    // offset normal (so a crossing far behind the entry's end can pass, and one beside it fail).
+    let travel = sub(end, from);
+    let queued = if comp.entry_held {
+        scale(left(travel), comp.sign())
+    } else {
+        travel
+    };
+    if dot(queued, sub(to, s)) >= 0.0 {
         return Ok(());
     }
     let what = if rapid { "traverse" } else { "feed" };

@@ -604,12 +604,18 @@ fn corner(
     let r = comp.radius;
     let prev_end = tool_at(cx);
     let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
-        cx.err(
-            "rs274::comp-gouge",
-            // LinuxCNC words such a gouge at an arc as the arc's radius check.
-            "Tool radius not less than arc radius with comp",
-            span,
-        )
+        // LinuxCNC's words for offsets that do not meet, by the corner's elements
+        // (`convert_arc_comp2`, `convert_straight_comp2`; two lines always meet).
+        let msg = match (last, new) {
+            (Element::Arc { .. }, Element::Arc { .. }) => {
+                "Arc to arc motion makes a corner the compensated tool can't fit in without gouging"
+            }
+            (Element::Arc { .. }, Element::Line { .. }) => {
+                "Arc to straight motion makes a corner the compensated tool can't fit in without gouging"
+            }
+            _ => "Arc move in concave corner cannot be reached by the tool without gouging",
+        };
+        cx.err("rs274::comp-gouge", msg, span)
         .with_note(format!(
             "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
         ))

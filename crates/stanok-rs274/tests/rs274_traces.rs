@@ -356,6 +356,8 @@ own_tests! {
     err_parity_negative_tool: "stanok-err-parity-negative-tool";
     err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_comp_arc_line_gouge: "stanok-err-parity-comp-arc-line-gouge";
+    err_parity_comp_arc_arc_gouge: "stanok-err-parity-comp-arc-arc-gouge";
     err_parity_comp_entry_direction: "stanok-err-parity-comp-entry-direction";
     err_parity_comp_plane: "stanok-err-parity-comp-plane";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";

@@ -29,8 +29,8 @@
 //! * **concave** (turning towards the tool by more than the tolerance, short of a near
 //!   reversal; and a near reversal where an arc has the tool outside it — the new arc, or the
 //!   last arc before a line, LinuxCNC's "h" and "m" shapes): the previous offset element is
-//!   shortened to where it meets the new offset element (line–line, line–circle or
-//!   circle–circle intersection); no intersection is a gouge error;
+//!   shortened to where it meets the new offset element — two lines' crossing, or with an arc
+//!   the root LinuxCNC's own formulas pick (`join.rs`); none is a gouge error in its words;
 //! * **straight on** (turn within ±[`CONCAVE_TOLERANCE`]): nothing is moved; the new element
 //!   starts where the tool is (LinuxCNC's "convex, one arc" and "colinear" cases).
 
@@ -56,6 +56,7 @@ use stanok_canon::{Canon, Diagnostic, LengthUnits, Plane, Pose};
 use stanok_syntax::ColSpan;
 
 mod geometry;
+mod join;
 mod stale;
 
 use geometry::*;
@@ -600,26 +601,12 @@ fn corner(
         // as much as an arc's end is off its radius or a line's normal turns.
         return Ok(());
     }
-    // Concave: where the two offset paths meet.
+    // Concave: where the two offset paths meet — by LinuxCNC's own arithmetic where an arc is
+    // one of them (`join.rs`), else the lines' crossing.
     let r = comp.radius;
     let prev_end = tool_at(cx);
-    let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
-        // LinuxCNC's words for offsets that do not meet, by the corner's elements
-        // (`convert_arc_comp2`, `convert_straight_comp2`; two lines always meet).
-        let msg = match (last, new) {
-            (Element::Arc { .. }, Element::Arc { .. }) => {
-                "Arc to arc motion makes a corner the compensated tool can't fit in without gouging"
-            }
-            (Element::Arc { .. }, Element::Line { .. }) => {
-                "Arc to straight motion makes a corner the compensated tool can't fit in without gouging"
-            }
-            _ => "Arc move in concave corner cannot be reached by the tool without gouging",
-        };
-        cx.err("rs274::comp-gouge", msg, span)
-        .with_note(format!(
-            "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
-        ))
-    })?;
+    let p = join::concave_join(last, new, comp.side == 1, r, s, prev_end, start_tool)
+        .map_err(|msg| cx.err("rs274::comp-gouge", msg, span))?;
     reachable(cx, p, span)?;
     move_held_end(cx, p);
     Ok(())

@@ -386,6 +386,7 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_arc_join: "stanok-parity-comp-arc-join";
     parity_comp_near_reversal: "stanok-parity-comp-near-reversal";
     parity_comp_reversal: "stanok-parity-comp-reversal";
     parity_comp_rapid_corner: "stanok-parity-comp-rapid-corner";

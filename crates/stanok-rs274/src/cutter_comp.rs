@@ -118,6 +118,10 @@ pub struct CutterComp {
     /// The last element is the entry line: LinuxCNC queues it with the offset normal as its
     /// direction, not its travel (`convert_straight_comp1`), and its gouge check tests that.
     pub entry_held: bool,
+    /// A stop flushed the held moves (LinuxCNC's `convert_stop`: M0, M1, M60): the last
+    /// element's motion is issued as it was, no corner moves it or checks it; only the moves
+    /// without plane motion made since are held (`moves_since`).
+    pub released: bool,
 }
 
 impl CutterComp {
@@ -326,6 +330,7 @@ pub(super) fn comp_on(
         arc_refused: cx.fe.modes.comp.arc_refused,
         entry_from: cx.fe.modes.comp.program,
         entry_held: false,
+        released: false,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -337,7 +342,8 @@ pub(super) fn comp_on(
 }
 
 /// G40.
-pub(super) fn comp_off(cx: &mut Ctx<'_>) {
+pub(super) fn comp_off(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
+    flush(cx, span)?;
     // The programmed point stays until the exit move: its missing words come from it.
     let was = cx.fe.modes.comp;
     cx.fe.modes.comp = CutterComp {
@@ -348,6 +354,28 @@ pub(super) fn comp_off(cx: &mut Ctx<'_>) {
     cx.out.push(Canon::Comment {
         text: "interpreter: cutter radius compensation off".into(),
     });
+    Ok(())
+}
+
+/// LinuxCNC's flush of the held moves at G40 and at a stop (M0, M1, M2, M30, M60:
+/// `convert_stop`): `move_endpoint_and_flush` to where the tool is, whose gouge check fails a
+/// held straight move that the last corner turned against its programmed way.
+/// Nothing is held after it: the next corner joins from where the tool is.
+pub(super) fn flush(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
+    let comp = cx.fe.modes.comp;
+    if comp.on() && comp.radius > 0.0 && comp.last.is_some() {
+        reachable(cx, tool_at(cx), span)?;
+        let c = &mut cx.fe.modes.comp;
+        c.released = true;
+        c.moves_since = 0;
+    }
+    Ok(())
+}
+
+/// How many motion commands from the back compensation holds: the last element's (unless a
+/// stop released it) and the moves without plane motion after it.
+pub fn held_count(comp: &CutterComp) -> usize {
+    comp.moves_since as usize + usize::from(!comp.released)
 }
 
 /// The programmed point of the plane, if compensation has set it (else the tool position).
@@ -386,6 +414,7 @@ pub(super) fn straight(
         c.program = Some(e);
         c.last = Some(Element::Line { from: t, to: e });
         c.entry_held = true;
+        c.released = false;
         c.moves_since = 0;
         c.entry_from = None;
         c.arc_refused = false;
@@ -430,6 +459,7 @@ pub(super) fn straight(
     c.program = Some(e);
     c.last = Some(new);
     c.entry_held = false;
+    c.released = false;
     c.moves_since = 0;
     c.arc_refused = false;
     Ok(())
@@ -546,6 +576,7 @@ pub(super) fn arc(
     cc.program = Some(e);
     cc.last = Some(new);
     cc.entry_held = false;
+    cc.released = false;
     cc.moves_since = 0;
     Ok(())
 }
@@ -622,6 +653,10 @@ fn corner(
 /// tolerance as written.
 fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
+    if comp.released {
+        // LinuxCNC's queue holds no move of the element now: nothing to check.
+        return Ok(());
+    }
     let (from, end) = match comp.last {
         Some(Element::Line { from, to: end }) => (from, end),
         Some(Element::Arc {
@@ -654,12 +689,10 @@ fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagno
     let (frame, plane) = (cx.st.frame, cx.st.plane);
     let mut start = None;
     cx.out
-        .edit_last_motions(comp.moves_since as usize + 1, |cmd, first| {
-            match (first, &*cmd) {
-                (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
-                (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
-                _ => {}
-            }
+        .edit_last_motions(held_count(&comp), |cmd, first| match (first, &*cmd) {
+            (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
+            (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
+            _ => {}
         });
     let Some((s, rapid)) = start else {
         return Ok(());
@@ -695,7 +728,11 @@ fn move_held_end(cx: &mut Ctx<'_>, p: [f64; 2]) {
         let prog = frame.to_program(m);
         frame.to_machine(&with_plane(prog, plane, p))
     };
-    let n = cx.fe.modes.comp.moves_since as usize + 1;
+    let n = held_count(&cx.fe.modes.comp);
+    if n == 0 {
+        // Released by a stop with nothing since: the tool stays where the issued move ended.
+        return;
+    }
     cx.out.edit_last_motions(n, |cmd, first| match cmd {
         Canon::StraightFeed(l) | Canon::StraightTraverse(l) => {
             if !first {

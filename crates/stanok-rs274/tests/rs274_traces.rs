@@ -356,6 +356,7 @@ own_tests! {
     err_parity_negative_tool: "stanok-err-parity-negative-tool";
     err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_comp_g40_flush: "stanok-err-parity-comp-g40-flush";
     err_parity_comp_arc_line_gouge: "stanok-err-parity-comp-arc-line-gouge";
     err_parity_comp_arc_arc_gouge: "stanok-err-parity-comp-arc-arc-gouge";
     err_parity_comp_entry_direction: "stanok-err-parity-comp-entry-direction";
@@ -386,6 +387,7 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_stop_flush: "stanok-parity-comp-stop-flush";
     parity_comp_arc_join: "stanok-parity-comp-arc-join";
     parity_comp_near_reversal: "stanok-parity-comp-near-reversal";
     parity_comp_reversal: "stanok-parity-comp-reversal";

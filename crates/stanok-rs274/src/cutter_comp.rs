@@ -86,6 +86,10 @@ pub enum Element {
         tool_radius: f64,
         /// Where the tool's arc starts (plane, program frame).
         tool_from: [f64; 2],
+        /// The sweep LinuxCNC queues it with (`original_turns`, signed), which moving its end
+        /// must not exceed: the programmed one, start to end about the centre; for the entry
+        /// arc the tool's own. Set when the arc is emitted.
+        queued_turn: f64,
     },
 }
 
@@ -507,6 +511,7 @@ pub(super) fn arc(
         to: e,
         tool_radius,
         tool_from: [0.0; 2],
+        queued_turn: 0.0,
     };
     if comp.program.is_none() {
         // Entry arc: through the current point, centre on the line C–E.
@@ -524,8 +529,14 @@ pub(super) fn arc(
         }
         let rho = dot(chord, chord) / (2.0 * k);
         let centre = sub(tool_end, scale(u, rho));
-        if let Element::Arc { tool_from, .. } = &mut new {
+        if let Element::Arc {
+            tool_from,
+            queued_turn,
+            ..
+        } = &mut new
+        {
             *tool_from = t;
+            *queued_turn = find_turn(t, c, ccw, tool_end);
         }
         cx.arc(
             plane,
@@ -557,8 +568,14 @@ pub(super) fn arc(
             feed,
         };
         corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, of, span)?;
-        if let Element::Arc { tool_from, .. } = &mut new {
+        if let Element::Arc {
+            tool_from,
+            queued_turn,
+            ..
+        } = &mut new
+        {
             *tool_from = tool_at(cx);
+            *queued_turn = find_turn(s, c, ccw, e);
         }
         cx.arc(
             plane,
@@ -648,9 +665,10 @@ fn corner(
 /// programmed direction from where it starts, else the tool would gouge (its error texts).
 ///
 /// A held arc (LinuxCNC's `move_endpoint_and_flush`): moving its end must not make it sweep more
-/// than it was queued with — its turn from the tool's start to the new end may exceed the
-/// original by at most 0.0254 (G21) or 0.001 (G20), LinuxCNC comparing radians with a length
-/// tolerance as written.
+/// than it was queued with (`queued_turn`: the programmed sweep, so a concave join that starts
+/// it early can fail even at the flush of a stop) — its turn from the tool's start to the new
+/// end may exceed that by at most 0.0254 (G21) or 0.001 (G20), LinuxCNC comparing radians with
+/// a length tolerance as written.
 fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
     if comp.released {
@@ -662,13 +680,10 @@ fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagno
         Some(Element::Arc {
             centre,
             ccw,
-            to: programmed_end,
-            tool_radius,
             tool_from,
+            queued_turn: original,
+            ..
         }) => {
-            let radial = sub(programmed_end, centre);
-            let queued_end = add(centre, scale(unit(radial), tool_radius));
-            let original = find_turn(tool_from, centre, ccw, queued_end);
             let moved = find_turn(tool_from, centre, ccw, to);
             let tolerance = match cx.st.units {
                 LengthUnits::Millimetres => 0.0254,

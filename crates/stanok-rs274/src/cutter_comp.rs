@@ -638,8 +638,12 @@ fn corner(
         towards > CONCAVE_TOLERANCE
     };
     if !concave && (near_reversal || towards < -CONCAVE_TOLERANCE) {
-        // Convex: an arc about the corner (a traverse to its end for a rapid).
-        reachable(cx, tool_at(cx), span)?;
+        // Convex: an arc about the corner (a traverse to its end for a rapid). Before a line
+        // LinuxCNC flushes the held move first, with its gouge check; before an arc it only
+        // issues it (`convert_arc_comp2`'s "convex, two arcs").
+        if matches!(new, Element::Line { .. }) {
+            reachable(cx, tool_at(cx), span)?;
+        }
         corner_move(cx, of, s, start_tool);
         return Ok(());
     }

@@ -388,6 +388,7 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_convex_before_arc: "stanok-parity-comp-convex-before-arc";
     parity_comp_stop_flush: "stanok-parity-comp-stop-flush";
     parity_comp_arc_join: "stanok-parity-comp-arc-join";
     parity_comp_near_reversal: "stanok-parity-comp-near-reversal";

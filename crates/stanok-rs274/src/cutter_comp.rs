@@ -126,6 +126,10 @@ pub struct CutterComp {
     /// element's motion is issued as it was, no corner moves it or checks it; only the moves
     /// without plane motion made since are held (`moves_since`).
     pub released: bool,
+    /// LinuxCNC's endpoint is invalid (`endpoint_valid` 0: a stop dequeued the moves and the
+    /// corner after it found nothing queued to move): the held move's next gouge check is
+    /// skipped.
+    pub unchecked: bool,
 }
 
 impl CutterComp {
@@ -335,6 +339,7 @@ pub(super) fn comp_on(
         entry_from: cx.fe.modes.comp.program,
         entry_held: false,
         released: false,
+        unchecked: false,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -371,6 +376,7 @@ pub(super) fn flush(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
         reachable(cx, tool_at(cx), span)?;
         let c = &mut cx.fe.modes.comp;
         c.released = true;
+        c.unchecked = true;
         c.moves_since = 0;
     }
     Ok(())
@@ -419,6 +425,7 @@ pub(super) fn straight(
         c.last = Some(Element::Line { from: t, to: e });
         c.entry_held = true;
         c.released = false;
+        c.unchecked = false;
         c.moves_since = 0;
         c.entry_from = None;
         c.arc_refused = false;
@@ -495,8 +502,10 @@ pub(super) fn arc(
     // Inside when the tool's side is the arc's turning side.
     let inside = (comp.side == 1) == ccw;
     let tool_radius = if inside { radius - r } else { radius + r };
-    // Zero is allowed: a circle of the tool's own size is cut with the tool standing at its centre.
-    if tool_radius < 0.0 {
+    // After the entry LinuxCNC refuses an arc no larger than the tool from inside
+    // (`convert_arc_comp2`: arc radius ≤ tool radius); the entry arc has checks of its own, and
+    // there zero is allowed: a circle of the tool's own size, the tool standing at its centre.
+    if tool_radius < 0.0 || (comp.program.is_some() && inside && tool_radius <= 0.0) {
         return Err(err(
             cx,
             "rs274::comp-arc-radius",
@@ -645,9 +654,11 @@ fn corner(
             reachable(cx, tool_at(cx), span)?;
         }
         corner_move(cx, of, s, start_tool);
+        cx.fe.modes.comp.unchecked = false;
         return Ok(());
     }
     if !concave {
+        cx.fe.modes.comp.unchecked = false;
         // Within the tolerance of straight on (LinuxCNC's "convex, one arc" with an arc): no
         // meeting point is sought, and the new offset start may be off the tool's position by
         // as much as an arc's end is off its radius or a line's normal turns.
@@ -661,6 +672,8 @@ fn corner(
         .map_err(|msg| cx.err("rs274::comp-gouge", msg, span))?;
     reachable(cx, p, span)?;
     move_held_end(cx, p);
+    // Nothing queued to move (a stop flushed it all): LinuxCNC's endpoint stays invalid.
+    cx.fe.modes.comp.unchecked = comp.released && held_count(&comp) == 0;
     Ok(())
 }
 
@@ -675,8 +688,9 @@ fn corner(
 /// a length tolerance as written.
 fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
-    if comp.released {
-        // LinuxCNC's queue holds no move of the element now: nothing to check.
+    if comp.released || comp.unchecked {
+        // LinuxCNC's queue holds no move of the element now, or its endpoint is invalid:
+        // nothing is checked.
         return Ok(());
     }
     let (from, end) = match comp.last {

@@ -356,6 +356,7 @@ own_tests! {
     err_parity_negative_tool: "stanok-err-parity-negative-tool";
     err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_comp_arc_tool_size: "stanok-err-parity-comp-arc-tool-size";
     err_parity_comp_arc_sweep: "stanok-err-parity-comp-arc-sweep";
     err_parity_comp_g40_flush: "stanok-err-parity-comp-g40-flush";
     err_parity_comp_arc_line_gouge: "stanok-err-parity-comp-arc-line-gouge";
@@ -388,6 +389,7 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_after_stop_unchecked: "stanok-parity-comp-after-stop-unchecked";
     parity_comp_convex_before_arc: "stanok-parity-comp-convex-before-arc";
     parity_comp_stop_flush: "stanok-parity-comp-stop-flush";
     parity_comp_arc_join: "stanok-parity-comp-arc-join";

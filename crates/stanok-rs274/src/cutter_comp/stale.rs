@@ -89,5 +89,6 @@ pub(super) fn corner(
         let mid = add(p, [r * (alpha + gamma).cos(), r * (alpha + gamma).sin()]);
         corner_move(cx, of, p, mid);
     }
+    cx.fe.modes.comp.unchecked = false;
     Ok(())
 }

@@ -502,10 +502,12 @@ pub(super) fn arc(
     // Inside when the tool's side is the arc's turning side.
     let inside = (comp.side == 1) == ccw;
     let tool_radius = if inside { radius - r } else { radius + r };
-    // After the entry LinuxCNC refuses an arc no larger than the tool from inside
-    // (`convert_arc_comp2`: arc radius ≤ tool radius); the entry arc has checks of its own, and
-    // there zero is allowed: a circle of the tool's own size, the tool standing at its centre.
-    if tool_radius < 0.0 || (comp.program.is_some() && inside && tool_radius <= 0.0) {
+    // Zero is allowed: a circle of the tool's own size is cut with the tool standing at its centre.
+    // (LinuxCNC refuses arc radius ≤ tool radius after the entry, but compares in program units
+    // after its own unit conversions: a tool-table radius under G20 comes out an ulp small, so
+    // the tie passes there — LinuxCNC's sample `useful-subroutines` cuts such a circle — and a
+    // G41.1 D radius ties exactly and fails; docs/linuxcnc.md, open differences.)
+    if tool_radius < 0.0 {
         return Err(err(
             cx,
             "rs274::comp-arc-radius",

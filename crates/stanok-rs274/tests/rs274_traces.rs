@@ -356,7 +356,6 @@ own_tests! {
     err_parity_negative_tool: "stanok-err-parity-negative-tool";
     err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
-    err_parity_comp_arc_tool_size: "stanok-err-parity-comp-arc-tool-size";
     err_parity_comp_arc_sweep: "stanok-err-parity-comp-arc-sweep";
     err_parity_comp_g40_flush: "stanok-err-parity-comp-g40-flush";
     err_parity_comp_arc_line_gouge: "stanok-err-parity-comp-arc-line-gouge";

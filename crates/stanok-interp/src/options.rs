@@ -27,6 +27,9 @@ pub struct InterpOptions {
     pub arc_tolerance_mm: f64,
     /// RS274/NGC arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
     pub rs274_arc_tolerance_mm: Option<f64>,
+    /// RS274/NGC without `rs274_arc_tolerance_mm`: LinuxCNC 2.9's default T (0.002828 in /
+    /// 0.02828 mm) instead of the document's.
+    pub rs274_linuxcnc_arc_tolerance: bool,
     /// Deepest subroutine nesting (RS274/NGC).
     pub max_call_depth: usize,
     /// Most iterations of one loop (RS274/NGC while/do/repeat, AxiOMA for/while/do).
@@ -113,6 +116,7 @@ impl InterpOptions {
             initial_units: core.initial_units,
             arc_tolerance_mm: core.arc_tolerance_mm,
             rs274_arc_tolerance_mm: rs274.arc_tolerance_mm,
+            rs274_linuxcnc_arc_tolerance: rs274.linuxcnc_arc_tolerance,
             max_call_depth: core.max_call_depth,
             max_loop_iterations: core.max_loop_iterations,
             max_total_loop_iterations: core.max_total_loop_iterations,
@@ -175,6 +179,7 @@ impl InterpOptions {
     pub fn rs274(&self) -> Rs274Options {
         Rs274Options {
             arc_tolerance_mm: self.rs274_arc_tolerance_mm,
+            linuxcnc_arc_tolerance: self.rs274_linuxcnc_arc_tolerance,
             user_m_codes: self.user_m_codes,
             machine_units: self.rs274_machine_units,
             g92_persistence: self.g92_persistence,

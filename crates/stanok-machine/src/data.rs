@@ -10,6 +10,7 @@
 //! arc_tolerance = 0.01          # mm, ≥ 0
 //! path_tolerance = 0.05         # mm, > 0, optional (G64 without a programmed tolerance)
 //! linuxcnc_units = "mm"         # optional, "mm" | "inch": units of LinuxCNC .tbl/.var files
+//! rs274_arc_tolerance = "document" # optional, "document" | "linuxcnc": RS274/NGC's arc-end rule
 //! m_functions = "generic"       # optional, AxiOMA M-function profile: "generic" | "beavermill"
 //! [channel]                     # optional AxiOMA channel parameters (`data/channel.rs`)
 //! [[axis]]                      # one table per axis, at least one
@@ -96,6 +97,9 @@ pub struct MachineData {
     /// exchanges: LinuxCNC writes them in the machine's units (its `[TRAJ] LINEAR_UNITS`). Stanok's
     /// own data is always mm.
     pub linuxcnc_units: LengthUnits,
+    /// RS274/NGC's arc-end tolerance is LinuxCNC 2.9's default (0.002828 in / 0.02828 mm), not
+    /// the document's (0.0005 in / 0.005 mm; spec rs274ngc §4.3.1 and ambiguity 1).
+    pub rs274_linuxcnc_arc_tolerance: bool,
     /// The stored data the interpreter reads: tool table, offset tables, preset parameters.
     pub control: ControlData,
     /// The AxiOMA M-function profile of the channel (spec axioma-2 §4, §5): one of
@@ -230,6 +234,7 @@ struct RawFile {
     arc_tolerance: Option<Spanned<f64>>,
     path_tolerance: Option<Spanned<f64>>,
     linuxcnc_units: Option<Spanned<String>>,
+    rs274_arc_tolerance: Option<Spanned<String>>,
     m_functions: Option<Spanned<String>>,
     feed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
     speed_table: Option<Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>>,
@@ -419,6 +424,7 @@ impl RawFile {
             ("arc_tolerance", at(&self.arc_tolerance)),
             ("path_tolerance", at(&self.path_tolerance)),
             ("linuxcnc_units", at(&self.linuxcnc_units)),
+            ("rs274_arc_tolerance", at(&self.rs274_arc_tolerance)),
             ("m_functions", at(&self.m_functions)),
             ("feed_table", at(&self.feed_table)),
             ("speed_table", at(&self.speed_table)),
@@ -520,6 +526,21 @@ impl RawFile {
                 tolerance(t, "path_tolerance", f64::MIN_POSITIVE)
             })?;
         let linuxcnc_units = units(&self.linuxcnc_units)?;
+        let rs274_linuxcnc_arc_tolerance = match &self.rs274_arc_tolerance {
+            None => false,
+            Some(v) => match v.get_ref().as_str() {
+                "document" => false,
+                "linuxcnc" => true,
+                other => {
+                    return Err((
+                        format!(
+                        "rs274_arc_tolerance must be \"document\" or \"linuxcnc\", not \"{other}\""
+                    ),
+                        v.span(),
+                    ))
+                }
+            },
+        };
         let m_functions = match &self.m_functions {
             None => "generic".to_string(),
             Some(p) if M_FUNCTION_PROFILES.contains(&p.get_ref().as_str()) => p.get_ref().clone(),
@@ -578,6 +599,7 @@ impl RawFile {
             path_tolerance,
             axes,
             linuxcnc_units,
+            rs274_linuxcnc_arc_tolerance,
             control: ControlData::default(),
             m_functions,
             kinematics,

@@ -191,35 +191,9 @@ pub fn known_difference(text: &str) -> Option<&'static str> {
     None
 }
 
-/// A listed difference shown by the kind of difference rather than by the text alone: Stanok
-/// refused a G7x profile arc off its radius where rs274 ran on. LinuxCNC 2.9 reads the profile
-/// unchecked and checks an arc only where a pass cuts it as written; where the passes cut it only
-/// offset by the allowance, rs274 prints `Oops` on its standard output and cuts a path off the
-/// profile. Stanok refuses every such profile at its `O… ENDSUB` (docs/linuxcnc.md).
-pub fn known_refusal(text: &str, stanok_message: &str) -> Option<&'static str> {
-    let lathe_cycle = text.lines().map(Line::read).any(|l| {
-        ["g70", "g71", "g72"]
-            .iter()
-            .any(|c| l.words.contains(c) && !l.words.contains(&format!("{c}0")))
-    });
-    (lathe_cycle && stanok_message.contains("Radius to end of arc differs from radius to start"))
-        .then_some("a G7x profile arc off its radius is refused")
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{known_difference, known_refusal};
-
-    /// Seed 20261205, program 4846: a G7 profile whose arc is off its radius, cut with D.
-    #[test]
-    fn an_off_radius_g7x_profile_arc_refused_is_known() {
-        let text = "G18\nG7\nO103 SUB\nG0 X10 Z0\nX12.475\nZ-15.45\nG2 X14.775 Z-17.75 I2.3\n\
-                    G1 Z-22.742\nO103 ENDSUB\nG72.1 Q103 X17.975 Z2.742 D0.1310\nM30\n";
-        let message = "Radius to end of arc differs from radius to start: start=(Z-15.4500…";
-        assert!(known_refusal(text, message).is_some());
-        assert!(known_refusal(text, "Cannot do g1 with zero feed rate").is_none());
-        assert!(known_refusal("G2 X1 I3\nM2\n", message).is_none());
-    }
+    use super::known_difference;
 
     const RESYNC: &str = "M6/M61 after a tool length offset change or a spline without a move";
 

@@ -29,8 +29,11 @@ use std::io::{BufRead, Seek};
 /// RS274/NGC's options beside the common ones.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Rs274Options {
-    /// Arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units.
+    /// Arc tolerance T in mm; `None` = the document's 0.0005 in / 0.005 mm by units, or
+    /// LinuxCNC 2.9's with `linuxcnc_arc_tolerance`.
     pub arc_tolerance_mm: Option<f64>,
+    /// LinuxCNC 2.9's default arc tolerance (0.002828 in / 0.02828 mm) instead of the document's.
+    pub linuxcnc_arc_tolerance: bool,
     /// User M codes M100–M199 passed to the machine as auxiliary functions (else refused as
     /// "Unknown m code", as LinuxCNC without an executable of that name).
     pub user_m_codes: bool,
@@ -46,6 +49,7 @@ impl Default for Rs274Options {
     fn default() -> Self {
         Rs274Options {
             arc_tolerance_mm: None,
+            linuxcnc_arc_tolerance: false,
             user_m_codes: false,
             machine_units: LengthUnits::Millimetres,
             g92_persistence: true,
@@ -62,10 +66,9 @@ pub struct Rs274Part {
     /// profile subroutine (cleared if the block fails). Kept out of the modes, which every
     /// block may copy, so that ordinary blocks do not pay for it.
     pub lathe_call: Option<LatheCall>,
-    /// An error of a G7x profile block that LinuxCNC only finds when the cycle cuts the element
-    /// (an arc whose end is off its radius): the profile runs on, and the cycle's block (the
-    /// profile's endsub) fails with it (`lathe.rs`).
-    pub profile_error: Option<Box<Diagnostic>>,
+    /// The words of a G7x profile's motion blocks, recorded while it runs
+    /// (`lathe_cycles::record`) and read by the cycle at its end (`lathe.rs`).
+    pub profile_blocks: Vec<crate::lathe_cycles::ProfileBlock>,
     /// Options.
     pub opts: Rs274Options,
 }
@@ -292,7 +295,7 @@ impl Rs274 {
             part: Rs274Part {
                 modes: Journalled::default(),
                 lathe_call: None,
-                profile_error: None,
+                profile_blocks: Vec::new(),
                 opts: rs,
             },
             params,

@@ -18,9 +18,9 @@
 //! iterator decrements it as it releases them), so the profile's commands are exactly
 //! `queue[before..]`. A failing `finish` leaves none of them and none of the cycle's.
 
-use crate::lathe_cycles::{self, LatheCall, Profile};
+use crate::lathe_cycles::{self, LatheCall};
 use crate::{params, Rs274};
-use stanok_canon::{Canon, Diagnostic, FeedMode, Span};
+use stanok_canon::{Canon, Diagnostic, Span};
 use stanok_interp_core::Core;
 use stanok_syntax::{ColSpan, SourcePos};
 use std::io::{BufRead, Seek};
@@ -131,6 +131,7 @@ impl Rs274 {
             },
         });
         self.part.modes.in_profile = true;
+        self.part.profile_blocks.clear();
         self.part.modes.comp = Default::default();
         match action {
             crate::FlowAction::Seek(pos) => core.seek(pos)?,
@@ -160,8 +161,7 @@ impl Rs274 {
         let from = (before + cap.kept).min(queue.len());
         let commands: Vec<_> = queue.drain(from..).map(|c| c.value).collect();
         let kept: Vec<_> = queue.range(before..).cloned().collect();
-        let frame = *core.state.frame;
-        let profile = Profile::from_commands(&commands, |p| frame.to_program(p));
+        let blocks = std::mem::take(&mut self.part.profile_blocks);
         self.part.modes.in_profile = false;
         self.part.modes.comp = cap.comp;
         let sw = cap.switches;
@@ -181,40 +181,22 @@ impl Rs274 {
         // rs274 prints the label of the line it executes when it issues the cycle: the
         // profile's endsub line, not the G7x line.
         let number = core.block.number;
-        let deferred = self.part.profile_error.take();
         let mut cx = core.parts(cap.span, number).with(&mut self.part);
-        let result = match (deferred, profile) {
-            // An error LinuxCNC finds only when the cycle cuts the element (after the cycle's
-            // first moves): this block's, the message naming the element.
-            (Some(d), _) => {
-                let at = format!("in the profile at line {}", d.span.line);
-                let mut d = *d;
-                d.span = cx.block.span_of(whole);
-                Err(d.with_note(at))
-            }
-            // LinuxCNC checks the feed when the cycle cuts, not in the profile (which keeps the
-            // G7x block's feed).
-            (None, _) if cx.st.feed_mode == FeedMode::UnitsPerMinute && cx.st.feed <= 0.0 => {
-                Err(cx.err(
-                    "rs274::zero-feed",
-                    "Cannot do g1 with zero feed rate",
-                    whole,
-                ))
-            }
-            // A profile of one motion (or none) is no cycle; LinuxCNC's idea of the tool's
-            // position is then where the profile left it.
-            (None, Ok(p)) if p.chain.is_empty() => {
-                if let Some(end) = commands.iter().rev().find_map(|c| match c {
-                    Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
-                    Canon::ArcFeed(a) => Some(a.end),
-                    _ => None,
-                }) {
-                    cx.st.position = end;
-                }
-                Ok(())
-            }
-            (None, Ok(p)) => lathe_cycles::finish(&mut cx, &cap.call, &p, whole),
-            (None, Err(msg)) => Err(cx.err("rs274::g7x-profile", msg, whole)),
+        let other_motion = commands.iter().any(|c| {
+            c.motion().is_some()
+                && !matches!(
+                    c,
+                    Canon::StraightTraverse(_) | Canon::StraightFeed(_) | Canon::ArcFeed(_)
+                )
+        });
+        let result = if other_motion {
+            Err(cx.err(
+                "rs274::g7x-profile",
+                "G7X error: only G0, G1, G2 and G3 may move in a profile",
+                whole,
+            ))
+        } else {
+            lathe_cycles::finish(&mut cx, &cap.call, &blocks, &commands, whole)
         };
         if let Err(d) = result {
             core.queue.truncate(before);

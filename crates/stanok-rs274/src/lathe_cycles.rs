@@ -1,92 +1,50 @@
 //! LinuxCNC's lathe cycles: G70 finishing, G71/G71.1/G71.2 and G72/G72.1/G72.2 roughing, with the
-//! profile taken from the subroutine named by Q — behaviour read off LinuxCNC 2.9's `rs274`
-//! (spec rs274ngc §4.31–4.32 is thin; `scripts/regen-linuxcnc-goldens.sh` regenerates the traces).
+//! profile taken from the subroutine named by Q — LinuxCNC 2.9's model of them reproduced step by
+//! step (spec rs274ngc §4.31–4.32 is thin; `scripts/regen-linuxcnc-goldens.sh` regenerates the
+//! traces).
 //!
 //! # How a cycle runs (three stages, each in its own block)
 //!
-//! 1. **The G7x block** (`begin`): checks its words (Q, G18, no cutter compensation for G71/G72,
-//!    I > 0 at the end), rapids to the cycle start S = X/Z (default: where the tool is) and leaves
-//!    a `LatheCall` in the state. The driver then *calls* `oQ` as an O-word call would.
-//! 2. **The profile**: the subroutine's blocks run as ordinary blocks (control flow, parameters and
-//!    `#<_x>`/`#<_z>` see the profile's own positions), but the driver keeps their commands back.
-//!    Its first motion is the approach to the profile start P0; the motions after it are the
-//!    profile (G0 counts as G1; F, S and the like in it are ignored).
+//! 1. **The G7x block** (`begin`): checks its words (Q, G18, no cutter compensation for G71/G72),
+//!    rapids to the cycle start S = X/Z (default: where the tool is) and leaves a `LatheCall` in
+//!    the state, with the block's words as written (program units). The driver then *calls* `oQ`
+//!    as an O-word call would.
+//! 2. **The profile**: the subroutine's blocks run as ordinary blocks (control flow, parameters
+//!    and `#<_x>`/`#<_z>` see the profile's own positions), but the driver keeps their commands
+//!    back. Each motion block's words are recorded as written (`record`): LinuxCNC builds the
+//!    profile from the words, not from positions, and so does `read_profile`.
 //! 3. **The return from oQ** (`finish`): the driver drops the kept commands, puts the tool back at
-//!    S and this module emits the cycle. Errors found now ("Not monotonic", I ≤ 0) belong to the
-//!    `endsub` block, as in LinuxCNC.
+//!    S and this module runs the cycle and emits its moves. Errors found now ("Not monotonic",
+//!    I ≤ 0, an arc the cycle cuts off its radius) belong to the `endsub` block, as in LinuxCNC.
 //!
-//! # Geometry (plane coordinates (z, x) of G18; canonical frame (c, l))
+//! # Why a step-by-step model
 //!
-//! G71 (and G70) cut along Z in layers of constant X: cut axis c = z, level axis l = x. G72 cuts
-//! along X in layers of constant Z: c = x, l = z. The canonical frame flips both so that the
-//! profile runs towards +c overall and S lies on the +l side of P0:
+//! LinuxCNC computes the cycle in program units on `std::complex<double>` and makes exact
+//! comparisons of computed points (an offset level element whose end rounds one ulp below its
+//! start is skipped by G7x.1; a gap of 10⁻² decides a bridging arc). Stanok's own geometry (in
+//! mm, with its own formulas) matched on nearly every program but not on those; the model
+//! (`model.rs`: the elements, `path.rs`: the cycle, `cplx.rs`: the arithmetic) follows LinuxCNC's
+//! floating-point steps so that it prints what LinuxCNC prints. Its moves are then converted to
+//! mm and emitted like any move (an arc checked for its radius as LinuxCNC's `convert_arc` checks
+//! it; an arc ending within 10⁻⁴ of where the tool is, is not printed).
 //!
-//! ```text
-//!   l ▲   S ●━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━● (Pend'.c, S.l)   ← level l₀ = S.l
-//!     │     ╲  closing line I → P0'     cut ──▶ | retract ↗ r       ┃
-//!     │      ╲━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━●                  ┃    ← level l₀ − I …
-//!     │  P0'  ●━━━━━━━━━━━━━━╮ profile' (= profile offset by D towards +l)
-//!     │                      ╰━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━━● Pend'
-//!     └──────────────────────────────────────────────────────────────▶ c
-//! ```
-//!
-//! * I (the entry point): S if S is not past P0 along c (S.c ≤ P0.c), else (P0.c, S.l) — P0 of the
-//!   programmed profile, not of the offset one.
-//! * Roughing (G71/G72): rapid to I; for every level l = S.l − k·I while l > P0'.l: rapid to the
-//!   closing line I → P0' at l (c_s), feed along +c to the first crossing of the level with
-//!   profile' beyond c_s (none: to Pend'.c), retract r = min(R, cut/2) diagonally (−c, +l), rapid
-//!   back to (c_s + r, l + r) and to (c_s, l). Then the final pass: rapid to P0', feed along
-//!   profile' — cutting its pockets on the way (`pockets.rs`; G7x.1 climbs it element by element
-//!   instead, `climb.rs`) — and feed to (Pend'.c, S.l).
-//! * profile' is the profile offset by D (on the side `side.rs` picks) as LinuxCNC offsets it,
-//!   arcs that end off their radius included (`arcs.rs`); an arc is printed with its own end
-//!   point, the next feed's start.
-//! * Finishing (G70): passes k = P … 1 at offset (k − 1)(D − E)/P + E: rapid to I, rapid to the
-//!   pass's start, feed along it. The tool stays at the profile's end. The frame is G71's when the
-//!   profile is monotonic in Z, else G72's.
-//!
-//! Corners: `A` on a profile move rounds its end corner with a tangent arc of that radius, `C`
-//! cuts it with the chord between the same tangent points, next to lines and arcs alike
-//! (`corners.rs`).
-//!
-//! LinuxCNC orients its frame by the profile (P0 below Pend), not by S. A profile that ends below
-//! P0 here (it runs away from S overall) has S below it there: it gets no levels — rapid to I,
-//! then the final pass from I, the entry I → P0' its first element, in the frame mirrored in l;
-//! the tool stays at its end (`away_from_start`). Where the frame's cut direction is undecided
-//! (Pend level with P0 along c) it runs towards −Z (G71) or −X (G72), as LinuxCNC's does.
-//!
-//! The allowance's side is LinuxCNC's rule (`side.rs`): towards S for the usual profile, by the
-//! turn from the entry to the last element where S is level with P0 or behind the profile.
-//! A motion of the profile that moves neither X nor Z is no element (the first motion that does
-//! is the approach to P0).
-//!
-//! Invariants: no roughing feed crosses profile' (cuts stop at its first crossing); the final pass
-//! follows profile' exactly (G7x.1: but for arc pieces under 0.001 mm, fed along their chord); the
-//! number of levels is bounded by `MAX_LEVELS`; every offset chain is connected
-//! (stanok_geom::chain2d; within an off-radius arc's |R_e − R| at its end, `arcs.rs`); an element
-//! the allowance swallows is left out and its neighbours joined, and an offset that would then
-//! come nearer the profile than the allowance is refused rather than cut.
+//! Invariants: the model's work is bounded (`path::MAX_WORK`; LinuxCNC's own loops can
+//! run forever on some profiles, Stanok's stop with an error); a failing cycle emits nothing.
 
 use crate::arc::PlanarArc;
 use crate::codes::*;
 use crate::ctx::Ctx;
+use cplx::Cx;
+use model::{Out, Seg};
 use stanok_canon::{Canon, Diagnostic, Plane, Pose};
-use stanok_geom::chain2d::level_crossings;
-use stanok_geom::offset2d::{Seg2, LEN_EPS, P2};
 use stanok_syntax::ColSpan;
 
-mod arcs;
-mod climb;
-mod corners;
-mod pockets;
-mod side;
+mod cplx;
+mod model;
+mod path;
 
-/// A profile motion moving X and Z less than this is no element (LinuxCNC compares the ends
-/// exactly; this only absorbs the unit conversions' rounding), mm.
-const IN_PLACE: f64 = 1e-9;
-
-/// Most roughing levels or finishing passes of one cycle (more is an error, never a hang).
-pub const MAX_LEVELS: usize = 10_000;
+/// Most motion blocks one profile may record (more is an error, never unbounded memory).
+pub const MAX_PROFILE_BLOCKS: usize = 100_000;
 
 /// A G7x block waiting for its profile (set by `begin`, taken by the driver).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -95,18 +53,34 @@ pub struct LatheCall {
     pub code: u32,
     /// The subroutine number (Q).
     pub q: i64,
-    /// Cycle start S, program coordinates, mm.
+    /// Where the G7x block's rapid went, program coordinates, mm (the other axes stay there).
     pub start: Pose,
-    /// D: allowance left for finishing (G71/G72) or first finishing pass distance (G70), mm.
-    pub d: f64,
-    /// E: last finishing pass distance (G70), mm.
-    pub e: f64,
-    /// I: depth of cut per level, mm (> 0, checked at the end as LinuxCNC does).
-    pub i: f64,
-    /// R: retract, mm.
-    pub r: f64,
-    /// P: number of finishing passes (G70).
-    pub passes: i64,
+    /// The cycle's words as LinuxCNC reads them, program units: S = (x, z) (under G91 the tool's
+    /// position plus X/Z, where the rapid went to X/Z), D, E, I, P, R, U, W.
+    words: path::Words,
+    /// The profile reads its X/Z (and arc centres) incrementally (G91, G91.1 at the G7x block).
+    incremental: bool,
+    ijk_incremental: bool,
+    /// Lathe diameter mode at the G7x block (U words are halved).
+    diameter: bool,
+}
+
+/// One motion block of a profile, its words as written (program units; X already halved in
+/// diameter mode).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfileBlock {
+    /// G0, G1, G2 or G3.
+    code: u32,
+    x: Option<f64>,
+    z: Option<f64>,
+    u: Option<f64>,
+    w: Option<f64>,
+    i: Option<f64>,
+    k: Option<f64>,
+    r: Option<f64>,
+    /// Corner words: A fillet radius, C chamfer size.
+    a: Option<f64>,
+    c: Option<f64>,
 }
 
 /// Stage 1: the G7x block. Rapids to the cycle start and leaves the call for the driver.
@@ -136,25 +110,44 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
             span,
         ));
     }
-    // X and Z are absolute even under G91 (LinuxCNC 2.9); the profile itself follows G90/G91.
+    let unit = cx.mm(1.0);
+    let incremental = cx.st.distance == crate::state::DistanceMode::Incremental;
+    let here = cx.programmed_position();
+    let peek = |cx: &Ctx<'_>, l: u8| cx.words.peek(l).map(|w| w.v);
+    // S as LinuxCNC's model reads it: X/Z, under G91 added to where the tool is.
+    let along = |word: Option<f64>, at_mm: f64| {
+        let at = to_units(at_mm, unit);
+        match word {
+            Some(v) if incremental => at + v,
+            Some(v) => v,
+            None => at,
+        }
+    };
+    let mut words = path::Words {
+        x: along(peek(cx, b'X'), here.x),
+        z: along(peek(cx, b'Z'), here.z),
+        d: peek(cx, b'D').unwrap_or(0.0),
+        e: 0.0,
+        i: 1.0,
+        p: 1.0,
+        r: 0.5,
+        u: peek(cx, b'U').unwrap_or(0.0),
+        w: peek(cx, b'W').unwrap_or(0.0),
+    };
+    // The rapid's X and Z are absolute even under G91 (LinuxCNC 2.9); the profile itself
+    // follows G90/G91.
     let distance = cx.st.distance;
     cx.st.distance = crate::state::DistanceMode::Absolute;
     let start = cx.end_point();
     cx.st.distance = distance;
     let (start, _) = start?;
-    // Defaults are in program units, as LinuxCNC reads them (I 1, R 0.5: inches under G20).
-    let word = |cx: &mut Ctx<'_>, letter: u8, default: f64| {
-        let v = cx.words.take(letter).map_or(default, |w| w.v);
-        cx.mm(v)
-    };
-    let d = word(cx, b'D', 0.0);
-    let (mut e, mut i, mut r, mut passes) = (0.0, 1.0, 0.5, 1);
+    cx.words.take(b'D');
     if code == G70 {
-        e = word(cx, b'E', 0.0);
-        passes = cx.words.take(b'P').map_or(1, |w| w.v.round() as i64);
+        words.e = cx.words.take(b'E').map_or(0.0, |w| w.v);
+        words.p = cx.words.take(b'P').map_or(1.0, |w| w.v);
     } else {
-        i = word(cx, b'I', 1.0);
-        r = word(cx, b'R', 0.5);
+        words.i = cx.words.take(b'I').map_or(1.0, |w| w.v);
+        words.r = cx.words.take(b'R').map_or(0.5, |w| w.v);
     }
     // Under compensation (G70 only) the rapid is compensated like any move (LinuxCNC 2.9).
     if cx.fe.modes.comp.on() {
@@ -166,572 +159,248 @@ pub(super) fn begin(cx: &mut Ctx<'_>, code: u32, span: ColSpan) -> Result<(), Di
         code,
         q: q.v.round() as i64,
         start,
-        d,
-        e,
-        i,
-        r,
-        passes,
+        words,
+        incremental,
+        ijk_incremental: cx.st.arc_distance == crate::state::DistanceMode::Incremental,
+        diameter: cx.st.diameter_mode,
     });
     Ok(())
 }
 
-/// Text of the internal marker a profile move with `A`/`C` leaves behind it in the captured
-/// commands: `MARK` + `A|C` + the size in mm. It never leaves the interpreter (the capture drains
-/// every command of the profile, `lathe.rs`).
-const CORNER_MARK: &str = "\u{0}g7x-corner ";
+/// A position (mm) in program units as LinuxCNC holds it. Stanok keeps positions in mm, so an
+/// inch value comes back from the conversion with a rounding error of an ulp or two: the
+/// neighbour that is a short decimal (a number as written, at most 12 significant digits) is
+/// taken for it, else the quotient.
+fn to_units(v_mm: f64, unit: f64) -> f64 {
+    let digits = |v: f64| {
+        let s = format!("{v:e}");
+        s.split('e')
+            .next()
+            .map_or(99, |m| m.chars().filter(char::is_ascii_digit).count())
+    };
+    let q = v_mm / unit;
+    let (mut best, mut best_digits) = (q, digits(q));
+    let (mut down, mut up) = (q, q);
+    for _ in 0..2 {
+        down = down.next_down();
+        up = up.next_up();
+        for c in [down, up] {
+            let d = digits(c);
+            if d < best_digits {
+                (best, best_digits) = (c, d);
+            }
+        }
+    }
+    if best_digits <= 12 {
+        best
+    } else {
+        q
+    }
+}
 
-/// A profile move's corner words: `A` fillet radius, `C` chamfer size (program units), at its end.
-pub(super) fn take_corner(cx: &mut Ctx<'_>) -> Result<Option<Canon>, Diagnostic> {
+/// In a profile: records a motion block's words (`ProfileBlock`) and takes its corner words,
+/// which are not axes here.
+pub(super) fn record(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
     let a = cx.words.take(b'A');
     let c = cx.words.take(b'C');
-    let (kind, w) = match (a, c) {
-        (Some(_), Some(c)) => {
-            return Err(cx.err(
-                "rs274::g7x-a-and-c",
-                "G7X error: Both A and C parameters on a corner",
-                c.span,
-            ))
-        }
-        (Some(a), None) => ('A', a),
-        (None, Some(c)) => ('C', c),
-        (None, None) => return Ok(None),
+    if let (Some(_), Some(c)) = (a, c) {
+        return Err(cx.err(
+            "rs274::g7x-a-and-c",
+            "G7X error: Both A and C parameters on a corner",
+            c.span,
+        ));
+    }
+    if cx.fe.profile_blocks.len() >= MAX_PROFILE_BLOCKS {
+        return Err(cx.err(
+            "rs274::g7x-profile-too-long",
+            format!("G7X error: a profile of more than {MAX_PROFILE_BLOCKS} moves"),
+            cx.whole(),
+        ));
+    }
+    let v = |l: u8| cx.words.peek(l).map(|w| w.v);
+    let block = ProfileBlock {
+        code,
+        x: v(b'X'),
+        z: v(b'Z'),
+        u: v(b'U'),
+        w: v(b'W'),
+        i: v(b'I'),
+        k: v(b'K'),
+        r: v(b'R'),
+        a: a.map(|w| w.v),
+        c: c.map(|w| w.v),
     };
-    Ok(Some(Canon::Comment {
-        text: format!("{CORNER_MARK}{kind}{}", cx.mm(w.v)),
-    }))
+    cx.fe.profile_blocks.push(block);
+    Ok(())
 }
 
-/// A rounded (`A`) or chamfered (`C`) corner at the end of profile element `after`.
-#[derive(Debug, Clone, Copy)]
-struct Corner {
-    after: usize,
-    chamfer: bool,
-    size: f64,
-}
-
-/// The profile as read from the subroutine: its start P0 and its elements, (z, x) program mm.
-#[derive(Debug, Clone, Default)]
-pub struct Profile {
-    /// P0: the end of the subroutine's first motion.
-    pub start: P2,
-    /// The elements after it.
-    pub chain: Vec<Seg2>,
-}
-
-impl Profile {
-    /// The profile of the motions a profile subroutine produced (machine coordinates, converted
-    /// with the work frame `to_program`). Err: a reason for the diagnostic.
-    pub fn from_commands(
-        commands: &[Canon],
-        to_program: impl Fn(&Pose) -> Pose,
-    ) -> Result<Profile, String> {
-        let zx = |p: &Pose| {
-            let q = to_program(p);
-            [q.z, q.x]
-        };
-        // LinuxCNC reads only the motions that change X or Z (a move back to where the tool is,
-        // a Y-only move and a full circle are no element): the first of them is the approach.
-        let moves_in_plane = |c: &&Canon| match c {
-            Canon::StraightTraverse(m) | Canon::StraightFeed(m) => {
-                stanok_geom::offset2d::dist2(zx(&m.start), zx(&m.end)) > IN_PLACE
-            }
-            Canon::ArcFeed(a) => stanok_geom::offset2d::dist2(zx(&a.start), zx(&a.end)) > IN_PLACE,
-            c => c.motion().is_some(),
-        };
-        let mut motions = commands
-            .iter()
-            .filter(|c| c.motion().is_some())
-            .filter(moves_in_plane);
-        let Some(first) = motions.next() else {
-            // No cycle (LinuxCNC 2.9 returns without one).
-            return Ok(Profile::default());
-        };
-        let end_of = |c: &Canon| match c {
-            Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
-            Canon::ArcFeed(a) => Some(a.end),
-            _ => None,
-        };
-        let Some(p0) = end_of(first) else {
-            return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into());
-        };
-        let mut profile = Profile {
-            start: zx(&p0),
-            chain: Vec::new(),
-        };
-        let mut corners: Vec<Corner> = Vec::new();
-        for c in commands
-            .iter()
-            .skip_while(|c| !std::ptr::eq(*c, first))
-            .skip(1)
-        {
-            if let Canon::Comment { text } = c {
-                if let Some(rest) = text.strip_prefix(CORNER_MARK) {
-                    let size = rest[1..].parse::<f64>().unwrap_or(0.0);
-                    if let Some(after) = profile.chain.len().checked_sub(1) {
-                        corners.push(Corner {
-                            after,
-                            chamfer: rest.starts_with('C'),
-                            size,
-                        });
-                    }
-                }
-                continue;
-            }
-            if c.motion().is_none() || !moves_in_plane(&c) {
-                continue;
-            }
-            let seg = match c {
-                Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Seg2::Line {
-                    a: zx(&m.start),
-                    b: zx(&m.end),
-                },
-                Canon::ArcFeed(a) if a.plane == Plane::ZX && a.turns == 1 => {
-                    let centre = to_program(&Pose {
-                        x: a.centre[0],
-                        y: a.centre[1],
-                        z: a.centre[2],
-                        ..a.start
-                    });
-                    let (s, e) = (zx(&a.start), zx(&a.end));
-                    let full = stanok_geom::offset2d::dist2(s, e) < LEN_EPS;
-                    arcs::end_circle_arc([centre.z, centre.x], s, e, a.axis[1] > 0.0, full)
-                }
-                _ => return Err("G7X error: only G0, G1, G2 and G3 may move in a profile".into()),
-            };
-            if seg.length() > LEN_EPS {
-                profile.chain.push(seg);
-            }
-        }
-        for corner in corners.iter().rev() {
-            corners::round_corner(&mut profile.chain, *corner)?;
-        }
-        Ok(profile)
-    }
-}
-
-/// The canonical frame of a cycle (module comment): flips (and for G72 a swap) of (z, x).
-#[derive(Debug, Clone, Copy)]
-struct Frame {
-    /// G72: c = x, l = z (else c = z, l = x).
-    facing: bool,
-    sc: f64,
-    sl: f64,
-}
-
-impl Frame {
-    fn new(facing: bool, p0: P2, pend: P2, s: P2) -> Frame {
-        let (ci, li) = if facing { (1, 0) } else { (0, 1) };
-        let sign = |v: f64| if v < 0.0 { -1.0 } else { 1.0 };
-        Frame {
-            facing,
-            // A profile ending where it starts along the cut axis runs towards −Z (G71) or −X
-            // (G72), as LinuxCNC's frame has it (it flips only where Pend is past P0).
-            sc: if pend[ci] - p0[ci] > 0.0 { 1.0 } else { -1.0 },
-            sl: sign(s[li] - p0[li]),
-        }
-    }
-
-    fn to_canon(self, p: P2) -> P2 {
-        let (c, l) = if self.facing {
-            (p[1], p[0])
+/// The chain LinuxCNC's reader builds from a profile's blocks: the entry from S to the first
+/// move's end, then one element per move that changes X or Z (compared exactly), each followed
+/// by its corner element if it has A or C.
+fn read_profile(call: &LatheCall, blocks: &[ProfileBlock]) -> Vec<Seg> {
+    let mut start = Cx::new(call.words.z, call.words.x);
+    let mut segs = Vec::new();
+    for b in blocks {
+        let mut end = if call.incremental {
+            Cx::new(0.0, 0.0)
         } else {
-            (p[0], p[1])
+            start
         };
-        [self.sc * c, self.sl * l]
-    }
-
-    /// The inverse (every flip and the swap are involutions).
-    fn to_real(self, q: P2) -> P2 {
-        let (c, l) = (self.sc * q[0], self.sl * q[1]);
-        if self.facing {
-            [l, c]
-        } else {
-            [c, l]
+        if let Some(u) = b.u {
+            end.im += if call.diameter { u / 2.0 } else { u };
+        } else if let Some(x) = b.x {
+            end.im = x;
         }
-    }
-
-    /// The same frame mirrored in l (for moves computed in the mirrored canonical frame).
-    fn mirrored_l(self) -> Frame {
-        Frame {
-            sl: -self.sl,
-            ..self
+        if let Some(w) = b.w {
+            end.re += w;
+        } else if let Some(z) = b.z {
+            end.re = z;
         }
-    }
-
-    /// Whether the map reverses orientation (arcs change their sense).
-    fn mirrors(self) -> bool {
-        let det = self.sc * self.sl * if self.facing { -1.0 } else { 1.0 };
-        det < 0.0
-    }
-
-    fn seg(self, s: &Seg2, to: impl Fn(P2) -> P2) -> Seg2 {
-        match *s {
-            Seg2::Line { a, b } => Seg2::Line { a: to(a), b: to(b) },
-            Seg2::Arc { c, sweep, .. } => {
-                let ccw = (sweep > 0.0) != self.mirrors();
-                Seg2::arc_through(to(c), to(s.start()), to(s.end()), ccw, false)
-            }
+        let mut centre = Cx::new(b.k.unwrap_or(0.0), b.i.unwrap_or(0.0));
+        if call.incremental {
+            end += start;
         }
-    }
-}
-
-/// Whether `a` and `b` are both lines and parallel (within rounding: LinuxCNC's test is exact on
-/// its own numbers, Stanok's are converted from program units).
-fn parallel_lines(a: &Seg2, b: &Seg2) -> bool {
-    let (Seg2::Line { a: a0, b: a1 }, Seg2::Line { a: b0, b: b1 }) = (*a, *b) else {
-        return false;
-    };
-    let (u, v) = (
-        [a1[0] - a0[0], a1[1] - a0[1]],
-        [b1[0] - b0[0], b1[1] - b0[1]],
-    );
-    let cross = u[0] * v[1] - u[1] * v[0];
-    cross.abs() <= 1e-12 * u[0].hypot(u[1]) * v[0].hypot(v[1])
-}
-
-/// Whether coordinate `k` never turns back along the chain (arcs included).
-fn monotonic(chain: &[Seg2], k: usize) -> bool {
-    let mut dir = 0.0;
-    for s in chain {
-        let (v0, v1) = (s.start()[k], s.end()[k]);
-        if let Seg2::Arc { start, sweep, .. } = *s {
-            // The coordinate turns where the arc's tangent is perpendicular to axis k.
-            let phase = if k == 0 {
-                0.0
-            } else {
-                std::f64::consts::FRAC_PI_2
-            };
-            let (lo, hi) = if sweep > 0.0 {
-                (start, start + sweep)
-            } else {
-                (start + sweep, start)
-            };
-            let first = ((lo - phase) / std::f64::consts::PI).floor() + 1.0;
-            let turn = phase + first * std::f64::consts::PI;
-            if turn < hi - 1e-9 && turn > lo + 1e-9 {
-                return false;
-            }
-        }
-        let step = v1 - v0;
-        if step.abs() <= LEN_EPS {
+        if start == end {
             continue;
         }
-        if dir == 0.0 {
-            dir = step.signum();
-        } else if step.signum() != dir {
-            return false;
+        if matches!(b.code, G2 | G3) {
+            let ccw = b.code == G3;
+            if let Some(r) = b.r {
+                let chord = end - start;
+                let n = chord.norm();
+                let k = ((r * r - n / 4.0) / n).sqrt();
+                let d = cplx::I.scale(k) * chord;
+                centre = (start + end).div_real(2.0);
+                centre = if ccw { centre + d } else { centre - d };
+            } else if call.ijk_incremental {
+                centre += start;
+            }
+            segs.push(Seg::round(ccw, start, centre, end));
+        } else {
+            segs.push(Seg::straight(start, end));
         }
+        if let Some(a) = b.a {
+            segs.push(Seg::corner(true, a, end));
+        } else if let Some(c) = b.c {
+            segs.push(Seg::corner(false, c, end));
+        }
+        start = end;
     }
-    true
+    segs
 }
 
-/// One move of the cycle, plane coordinates (z, x).
-enum Move {
-    Rapid(P2),
-    Feed(Seg2),
-}
-
-/// Stage 3: emits the cycle for `call` over `profile`, from S (the tool is there). `at` is the
-/// block the errors belong to (the profile's `endsub`).
+/// Stage 3: runs the cycle for `call` over the profile recorded in `blocks` and emits it, from
+/// S (the tool is there). `commands` are the profile's own (dropped) commands. `at` is the block
+/// the errors belong to (the profile's `endsub`).
 pub fn finish(
     cx: &mut Ctx<'_>,
     call: &LatheCall,
-    profile: &Profile,
+    blocks: &[ProfileBlock],
+    commands: &[Canon],
     at: ColSpan,
 ) -> Result<(), Diagnostic> {
-    let s = [call.start.z, call.start.x];
-    let chain = &profile.chain;
-    let Some(last) = chain.last() else {
-        // An approach alone, or no motion: LinuxCNC 2.9 cuts nothing (the driver leaves the tool
-        // where the profile ended, `lathe.rs`).
+    let segs = read_profile(call, blocks);
+    if segs.len() <= 1 {
+        // An approach alone, or no motion: LinuxCNC 2.9 cuts nothing, and its idea of the
+        // tool's position is where the profile left it.
+        if let Some(end) = commands.iter().rev().find_map(|c| match c {
+            Canon::StraightTraverse(m) | Canon::StraightFeed(m) => Some(m.end),
+            Canon::ArcFeed(a) => Some(a.end),
+            _ => None,
+        }) {
+            cx.st.position = end;
+        }
         return Ok(());
-    };
-    if call.code != G70 && call.i <= 0.0 {
+    }
+    // LinuxCNC checks the feed when the cycle cuts, not in the profile (which keeps the G7x
+    // block's feed).
+    if cx.st.feed_mode == stanok_canon::FeedMode::UnitsPerMinute && cx.st.feed <= 0.0 {
+        return Err(cx.err("rs274::zero-feed", "Cannot do g1 with zero feed rate", at));
+    }
+    if call.words.i <= 0.0 {
         return Err(cx.err(
             "rs274::g7x-i",
             "G7X error: I must be greater than zero.",
             at,
         ));
     }
-    let (p0, pend) = (profile.start, last.end());
-    let facing = match call.code {
-        G70 => !monotonic(chain, 0) && monotonic(chain, 1),
-        c => c >= G72,
+    let profile_end = segs[segs.len() - 1].e;
+    let chain = path::Chain::new(segs);
+    let moves = match call.code {
+        G70 => path::g70(chain, &call.words),
+        c => path::g71(chain, &call.words, (c % 10) as u8, c >= G72),
     };
-    if !monotonic(chain, if facing { 1 } else { 0 }) {
-        return Err(cx.err("rs274::g7x-monotonic", "G7X error: Not monotonic", at));
-    }
-    // LinuxCNC joins neighbouring offset lines at their crossing and has none for parallel ones
-    // (two moves along one line): an error as soon as it offsets at all (the first pass's
-    // distance is not zero), before any move.
-    let first_distance = if call.code == G70 {
-        (call.passes - 1) as f64 * (call.d - call.e) / call.passes.max(1) as f64 + call.e
-    } else {
-        call.d
-    };
-    if first_distance != 0.0 && chain.windows(2).any(|w| parallel_lines(&w[0], &w[1])) {
-        return Err(cx.err(
-            "rs274::g7x-parallel",
-            "G7X error: Cannot intersect parallel lines",
-            at,
-        ));
-    }
-    let f = Frame::new(facing, p0, pend, s);
-    let canon: Vec<Seg2> = chain.iter().map(|g| f.seg(g, |p| f.to_canon(p))).collect();
-    let (s_c, p0_c) = (f.to_canon(s), f.to_canon(p0));
-    let entry = if s_c[0] <= p0_c[0] {
-        s_c
-    } else {
-        [p0_c[0], s_c[1]]
-    };
-    let unit = cx.mm(1.0);
-    // The allowance's side (`side.rs`), as a sign for an offset to the left in the frame.
-    let side = side::left_in_plane(facing, f.to_real(entry), p0, chain)
-        * if f.mirrors() { -1.0 } else { 1.0 };
-    let offset = |d: f64| {
-        arcs::offset_profile(&canon, p0_c, side * d, unit).ok_or_else(|| {
-            cx.err(
-                "rs274::g7x-offset",
-                "G7X error: the profile cannot be offset by this distance",
-                at,
-            )
-        })
-    };
-    let mut moves: Vec<Move> = Vec::new();
-    if call.code == G70 {
-        for k in (1..=call.passes.min(MAX_LEVELS as i64)).rev() {
-            let dist = (k - 1) as f64 * (call.d - call.e) / call.passes as f64 + call.e;
-            let pass = offset(dist)?;
-            moves.push(Move::Rapid(entry));
-            moves.push(Move::Rapid(pass[0].start()));
-            moves.extend(pass.into_iter().map(Move::Feed));
-        }
-    } else {
-        if s_below_in_linuxcnc_frame(facing, f, s, p0, pend) {
-            let prof = offset(call.d)?;
-            away_from_start(&mut moves, call, entry, &prof).ok_or_else(|| {
-                cx.err(
-                    "rs274::g7x-levels",
-                    format!("G7X error: more than {MAX_LEVELS} levels"),
-                    at,
-                )
-            })?;
-            return emit(cx, call, &f.mirrored_l(), &moves, at);
-        }
-        let prof = offset(call.d)?;
-        rough(&mut moves, call, entry, s_c, &prof).ok_or_else(|| {
-            cx.err(
-                "rs274::g7x-levels",
-                format!("G7X error: more than {MAX_LEVELS} levels"),
-                at,
-            )
-        })?;
-    }
+    let moves = moves.map_err(|msg| cx.err("rs274::g7x", format!("G7X error: {msg}"), at))?;
     if cx.fe.modes.comp.on() {
         // LinuxCNC read the profile by walking its idea of the tool along it (`stale.rs`).
-        cx.fe.modes.comp.stale = Some(pend);
+        let unit = cx.mm(1.0);
+        cx.fe.modes.comp.stale = Some([profile_end.re * unit, profile_end.im * unit]);
     }
-    emit(cx, call, &f, &moves, at)
+    emit(cx, call, &moves, at)
 }
 
-/// Whether S is not above P0 in LinuxCNC's frame, which orients "up" by the profile, not by S:
-/// up is +X (G71) or −Z (G72), reversed where P0 lies above Pend that way (a tie keeps it).
-/// S level with P0 counts too: no level lies between them, the tool feeds from S.
-fn s_below_in_linuxcnc_frame(facing: bool, f: Frame, s: P2, p0: P2, pend: P2) -> bool {
-    let li = if facing { 0 } else { 1 };
-    let base = if facing { -1.0 } else { 1.0 };
-    let up = if base * (p0[li] - pend[li]) > 0.0 {
-        -base
-    } else {
-        base
-    };
-    // The canonical frame has S at or above P0 along l = f.sl · (z or x).
-    let rise = s[li] - p0[li];
-    rise.abs() <= 1e-9 || up * f.sl < 0.0
-}
-
-/// G71/G72 levels and the final pass, canonical frame (module comment). None: too many levels.
-fn rough(moves: &mut Vec<Move>, call: &LatheCall, entry: P2, s: P2, prof: &[Seg2]) -> Option<()> {
-    let p0 = prof.first()?.start();
-    let pend = prof.last()?.end();
-    moves.push(Move::Rapid(entry));
-    let closing_c = |l: f64| {
-        if (p0[1] - entry[1]).abs() < LEN_EPS {
-            entry[0]
-        } else {
-            entry[0] + (l - entry[1]) / (p0[1] - entry[1]) * (p0[0] - entry[0])
-        }
-    };
-    // G7x.2 cuts only the pockets: a type-1 profile has none.
-    let levels = if matches!(call.code, G71_2 | G72_2) {
-        0
-    } else {
-        MAX_LEVELS
-    };
-    for k in 0..=levels {
-        let l = s[1] - k as f64 * call.i;
-        if l <= p0[1] + 1e-9 {
-            break;
-        }
-        if k == levels {
-            if levels == 0 {
-                break;
-            }
-            return None;
-        }
-        let cs = closing_c(l);
-        let ce = level_crossings(prof, l)
-            .into_iter()
-            .map(|(c, _)| c)
-            .find(|&c| c > cs + LEN_EPS)
-            .unwrap_or(pend[0]);
-        if ce <= cs + LEN_EPS {
-            // A level with nothing to cut (the profile meets the closing line there): LinuxCNC
-            // still rapids down the closing line to it.
-            moves.push(Move::Rapid([cs, l]));
-            continue;
-        }
-        // At most half the cut; a negative R retracts by half the cut (LinuxCNC 2.9).
-        let half = (ce - cs) / 2.0;
-        let r = if call.r < 0.0 { half } else { call.r.min(half) };
-        moves.push(Move::Rapid([cs, l]));
-        moves.push(Move::Feed(Seg2::Line {
-            a: [cs, l],
-            b: [ce, l],
-        }));
-        moves.push(Move::Rapid([ce - r, l + r]));
-        moves.push(Move::Rapid([cs + r, l + r]));
-        moves.push(Move::Rapid([cs, l]));
-    }
-    moves.push(Move::Rapid(p0));
-    // The closing move up to S's level, only from below it: a profile ending above S's level
-    // leaves the tool at its end (LinuxCNC 2.9).
-    let close = Seg2::Line {
-        a: pend,
-        b: [pend[0], s[1].max(pend[1])],
-    };
-    if matches!(call.code, G71_1 | G72_1) {
-        climb::climb_pass(moves, prof, p0, close);
-        return Some(());
-    }
-    pockets::final_pass(moves, call, s, &pockets::split_at_turns(prof), close)
-}
-
-/// A profile running away from S (l only falls along it, canonical frame): LinuxCNC 2.9 cuts no
-/// level. Its own frame for such a profile has S *below* P0 and the profile rising, so this
-/// works in the canonical frame mirrored in l (the moves it leaves are in that frame: emit them
-/// with `Frame::mirrored_l`). There the cycle is the final pass alone, from the entry point I,
-/// with the entry I → P0' as the profile's first element (fed, never rapid):
-///
-/// * G7x.1 climbs every element from the tool's level (`climb.rs`): a right-turning arc that
-///   passes its top — an offset arc ending beyond it, where it meets the next line — is cut to
-///   the top only, and the tool then feeds across to the next element at that level;
-/// * G7x and G7x.2 walk the profile with its pockets (`pockets.rs`): the same arc is cut to its
-///   top and then on down to its end (a G7x.2 first cuts the dip it starts there as a pocket:
-///   feed across, retract, back); S's level lies below the profile, so no other pocket level is
-///   on G7x's grid.
-///
-/// No closing move: the profile ends beyond S's level and the tool stays at its end.
-/// None: too many levels.
-fn away_from_start(
-    moves: &mut Vec<Move>,
-    call: &LatheCall,
-    entry: P2,
-    prof: &[Seg2],
-) -> Option<()> {
-    let entry = mirror_l_point(entry);
-    let mut elements: Vec<Seg2> = Vec::with_capacity(prof.len() + 1);
-    elements.extend(prof.iter().map(mirror_l));
-    let p0 = elements[0].start();
-    elements.insert(0, Seg2::Line { a: entry, b: p0 });
-    let pend = elements[elements.len() - 1].end();
-    let close = Seg2::Line { a: pend, b: pend };
-    moves.push(Move::Rapid(entry));
-    if matches!(call.code, G71_1 | G72_1) {
-        climb::climb_pass(moves, &elements, entry, close);
-        return Some(());
-    }
-    // No level of S's grid lies above the profile: only a G7x.2 pocket anchored at its own top
-    // is cut.
-    // The entry stays even where it has no length (S level with P0 and past it along c: rs274
-    // still feeds it).
-    let mut pieces = pockets::split_at_turns(&elements[1..]);
-    pieces.insert(0, elements[0]);
-    pockets::final_pass(moves, call, entry, &pieces, close)
-}
-
-/// (c, l) → (c, −l).
-fn mirror_l_point(p: P2) -> P2 {
-    [p[0], -p[1]]
-}
-
-/// A segment mirrored in l (an arc keeps its radius and turns the other way).
-fn mirror_l(s: &Seg2) -> Seg2 {
-    match *s {
-        Seg2::Line { a, b } => Seg2::Line {
-            a: mirror_l_point(a),
-            b: mirror_l_point(b),
-        },
-        Seg2::Arc { c, r, start, sweep } => Seg2::Arc {
-            c: mirror_l_point(c),
-            r,
-            start: -start,
-            sweep: -sweep,
-        },
-    }
-}
-
-/// Emits the moves (canonical frame) as Canon, program coordinates; other axes stay at S.
-/// Under cutter compensation (G70) every move is compensated as if programmed.
-fn emit(
-    cx: &mut Ctx<'_>,
-    call: &LatheCall,
-    f: &Frame,
-    moves: &[Move],
-    at: ColSpan,
-) -> Result<(), Diagnostic> {
-    let pose = |p: P2| Pose {
-        z: p[0],
-        x: p[1],
+/// Emits the model's moves (program units) as Canon; other axes stay where the G7x block's
+/// rapid left them. Under cutter compensation (G70) every move is compensated as if programmed.
+/// An arc ending within 10⁻⁴ (program units, each axis) of the tool is not printed, as
+/// LinuxCNC's `circular_move` skips it; an arc ending off its radius is LinuxCNC's
+/// `convert_arc` error.
+fn emit(cx: &mut Ctx<'_>, call: &LatheCall, moves: &[Out], at: ColSpan) -> Result<(), Diagnostic> {
+    let unit = cx.mm(1.0);
+    let pose = |p: Cx| Pose {
+        z: p.re * unit,
+        x: p.im * unit,
         ..call.start
     };
     let comp = cx.fe.modes.comp.on();
-    for (k, m) in moves.iter().enumerate() {
-        match m {
-            Move::Rapid(q) if comp => {
-                super::cutter_comp::straight(cx, true, pose(f.to_real(*q)), 0.0, at)?
+    let tol = super::arc_tolerance(cx);
+    let mut tool: Option<Cx> = None;
+    for m in moves {
+        match *m {
+            Out::Rapid(p) if comp => super::cutter_comp::straight(cx, true, pose(p), 0.0, at)?,
+            Out::Rapid(p) => cx.straight(true, pose(p), 0.0),
+            Out::Line(p) => {
+                let from = cx.programmed_position();
+                let to = pose(p);
+                let feed = cx.path_feed((to.z - from.z).hypot(to.x - from.x));
+                if comp {
+                    super::cutter_comp::straight(cx, false, to, feed, at)?;
+                } else {
+                    cx.straight(false, to, feed);
+                }
             }
-            Move::Rapid(q) => cx.straight(true, pose(f.to_real(*q)), 0.0),
-            Move::Feed(seg) => {
-                let real = f.seg(seg, |p| f.to_real(p));
-                let feed = cx.path_feed(real.length());
-                match real {
-                    Seg2::Line { b, .. } if comp => {
-                        super::cutter_comp::straight(cx, false, pose(b), feed, at)?
+            Out::Arc { ccw, c, e } => {
+                if let Some(t) = tool {
+                    if (t.re - e.re).abs() < 1e-4 && (t.im - e.im).abs() < 1e-4 {
+                        continue;
                     }
-                    Seg2::Line { b, .. } => cx.straight(false, pose(b), feed),
-                    Seg2::Arc { c, sweep, .. } => {
-                        let arc = PlanarArc {
-                            centre: c,
-                            turns: 1,
-                        };
-                        // An arc ends where the next feed starts: its end point may be off
-                        // the circle it crosses levels on (`arcs.rs`).
-                        let end = match moves.get(k + 1) {
-                            Some(Move::Feed(next)) if arcs::joins(seg, next) => {
-                                pose(f.to_real(next.start()))
-                            }
-                            _ => pose(real.end()),
-                        };
-                        if comp {
-                            super::cutter_comp::arc(cx, sweep > 0.0, end, arc, feed, at)?;
-                        } else {
-                            cx.arc(Plane::ZX, sweep > 0.0, end, arc, feed);
-                        }
-                    }
+                }
+                let from = cx.programmed_position();
+                let (s, end) = ([from.z, from.x], [e.re * unit, e.im * unit]);
+                let centre = [c.re * unit, c.im * unit];
+                let arc =
+                    crate::arc_rules::centre_format(s, end, centre, 1, tol).map_err(|err| {
+                        crate::motion::radius_mismatch(cx, err, s, end, centre, tol, at)
+                    })?;
+                let feed = cx.path_feed(crate::arc::helix_length(
+                    from,
+                    pose(e),
+                    Plane::ZX,
+                    centre,
+                    ccw,
+                    1,
+                ));
+                let arc = PlanarArc { turns: 1, ..arc };
+                if comp {
+                    super::cutter_comp::arc(cx, ccw, pose(e), arc, feed, at)?;
+                } else {
+                    cx.arc(Plane::ZX, ccw, pose(e), arc, feed);
                 }
             }
         }
+        tool = Some(match *m {
+            Out::Rapid(p) | Out::Line(p) => p,
+            Out::Arc { e, .. } => e,
+        });
     }
     Ok(())
 }

@@ -32,6 +32,7 @@
 //! own traces.
 
 mod arc_rules;
+mod cfmt;
 mod checks;
 mod codes;
 pub(crate) mod cutter_comp;
@@ -242,14 +243,31 @@ pub fn held_motions(st: &Rs274State) -> usize {
     }
 }
 
-/// The document's arc tolerance T (spec rs274ngc §4.3.1): 0.0005 in or 0.005 mm, in mm.
+/// The arc tolerance T (spec rs274ngc §4.3.1), mm: the option if set, else the document's
+/// 0.0005 in / 0.005 mm (the spec's choice, ambiguity 1), or on a machine that asks for it
+/// (`rs274_arc_tolerance = "linuxcnc"`, the built-in `linuxcnc` machine) LinuxCNC 2.9's default
+/// `CENTER_ARC_RADIUS_TOLERANCE`, 2·0.001·√2 in / 2·0.01·√2 mm. The rule is the same
+/// (`arc_rules::centre_format`).
 fn arc_tolerance(cx: &Ctx<'_>) -> f64 {
     if let Some(t) = cx.fe.opts.arc_tolerance_mm {
         return t;
     }
+    let linuxcnc = cx.fe.opts.linuxcnc_arc_tolerance;
     match cx.st.units {
+        LengthUnits::Inches if linuxcnc => 2.0 * 0.001 * std::f64::consts::SQRT_2 * 25.4,
+        LengthUnits::Millimetres if linuxcnc => 2.0 * 0.01 * std::f64::consts::SQRT_2,
         LengthUnits::Inches => 0.0005 * 25.4,
         LengthUnits::Millimetres => 0.005,
+    }
+}
+
+/// How far a radius-format arc's chord may exceed its diameter and the arc still be cut (as a
+/// half circle), as `arc_rules::radius_format`'s tolerance (which allows half of it): T, or
+/// with LinuxCNC's tolerances its `RADIUS_TOLERANCE`, 0.00005 in in both units.
+fn radius_tolerance(cx: &Ctx<'_>) -> f64 {
+    match cx.fe.opts.arc_tolerance_mm {
+        None if cx.fe.opts.linuxcnc_arc_tolerance => 2.0 * 0.00005 * 25.4,
+        _ => arc_tolerance(cx),
     }
 }
 

@@ -1,7 +1,7 @@
 //! RS274/NGC motion: G0/G1 (with G53), G2/G3 in both formats, G80, and the feed checks of each
 //! feed mode, with LinuxCNC's error texts.
 
-use super::{arc_tolerance, g_name, unsupported};
+use super::{arc_tolerance, g_name, radius_tolerance, unsupported};
 use crate::arc::{helix_length, ArcError};
 use crate::arc_rules;
 use crate::codes::*;
@@ -34,7 +34,8 @@ pub(super) fn motion_block(
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 
-/// In a G7x profile, A and C on a move are its end corner's fillet and chamfer, not axes.
+/// In a G7x profile the block's words are recorded for the cycle (`lathe_cycles::record`), and
+/// A and C on a move are its end corner's fillet and chamfer, not axes.
 #[cold]
 #[inline(never)]
 fn motion_in_profile(
@@ -46,12 +47,8 @@ fn motion_in_profile(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
-    let corner = super::lathe_cycles::take_corner(cx)?;
-    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)?;
-    if let Some(mark) = corner {
-        cx.out.push(mark);
-    }
-    Ok(())
+    super::lathe_cycles::record(cx, code)?;
+    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 
 fn motion_block_inner(
@@ -410,7 +407,7 @@ fn arc_block(
                 span,
             ));
         }
-        arc_rules::radius_format(s, e, cx.mm(r.v), ccw, turns, tol)
+        arc_rules::radius_format(s, e, cx.mm(r.v), ccw, turns, radius_tolerance(cx))
             .map_err(|err| arc_error(cx, err, span))?
     } else {
         let oa = cx.words.take(offset_letters[a]);
@@ -437,17 +434,10 @@ fn arc_block(
             }
         };
         let checked = arc_rules::centre_format(s, e, centre, turns, tol);
+        // In a G7x profile LinuxCNC reads the arc as written and refuses it only if the cycle
+        // cuts it off its radius (`lathe_cycles::emit`).
         let checked = match checked {
-            // In a G7x profile LinuxCNC reads the arc as written and refuses it only when the
-            // cycle cuts it: the profile goes on, the cycle's block fails (`lathe.rs`).
-            Err(ArcError::RadiusMismatch { .. })
-                if cx.fe.modes.in_profile && cx.fe.profile_error.is_none() =>
-            {
-                let refused =
-                    checked.map_err(|err| radius_mismatch(cx, err, s, e, centre, tol, span));
-                if let Err(d) = refused {
-                    cx.fe.profile_error = Some(Box::new(d));
-                }
+            Err(ArcError::RadiusMismatch { .. }) if cx.fe.modes.in_profile => {
                 arc_rules::centre_format(s, e, centre, turns, f64::INFINITY)
             }
             other => other,
@@ -470,7 +460,7 @@ fn arc_block(
 /// The error of a centre-format arc (`s`, `e`, `centre` in the plane's axes, mm), with
 /// LinuxCNC's numbers for a radius mismatch.
 #[allow(clippy::too_many_arguments)]
-fn radius_mismatch(
+pub(crate) fn radius_mismatch(
     cx: &Ctx<'_>,
     err: ArcError,
     s: [f64; 2],
@@ -488,9 +478,9 @@ fn radius_mismatch(
             .err(
                 "rs274::arc-radius-mismatch",
                 format!(
-                    "Radius to end of arc differs from radius to start: start=({la}{:.4},{lb}{:.4}) center=({la}{:.4},{lb}{:.4}) end=({la}{:.4},{lb}{:.4}) r1={:.4} r2={:.4} abs_err={:.4} rel_err={:.4}%",
+                    "Radius to end of arc differs from radius to start: start=({la}{:.4},{lb}{:.4}) center=({la}{:.4},{lb}{:.4}) end=({la}{:.4},{lb}{:.4}) r1={:.4} r2={:.4} abs_err={} rel_err={:.4}%",
                     s[0] / k, s[1] / k, centre[0] / k, centre[1] / k, e[0] / k, e[1] / k,
-                    r1 / k, r2 / k, (r1 - r2).abs() / k,
+                    r1 / k, r2 / k, crate::cfmt::g((r1 - r2).abs() / k, 4),
                     (r1 - r2).abs() / r1.max(r2) * 100.0
                 ),
                 span,

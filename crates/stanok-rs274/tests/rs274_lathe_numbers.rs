@@ -1,6 +1,6 @@
 //! The RS274/NGC lathe cycles G70/G71 by their numbers: cut depths (levels), cut end points,
 //! retracts, entry points, pocket levels and finishing-pass distances of small profiles, each
-//! worked out by hand from the rules in `rs274/lathe_cycles.rs` (module comment) and checked to
+//! worked out by hand from LinuxCNC's rules (docs/rs274ngc.md, `lathe_cycles/path.rs`) and checked to
 //! agree with LinuxCNC 2.9's `rs274` on the same program (the same programs' traces were compared
 //! with the shared trace comparison (`stanok_canon::linuxcnc_trace`); the goldens of `tests/rs274/stanok-g7x-*.ngc` hold more).
 //!
@@ -216,4 +216,27 @@ fn g70_under_compensation_starts_from_the_profile_end() {
     // m[0]: G0 X20 Z-30; m[1]: the entry; m[2]: the first pass's rapid to S.
     at(&m[1], true, z, x);
     at(&m[2], true, z, x);
+}
+
+/// Bounds (issue 17): a level step of 10⁻⁷ mm over a 100 mm profile would print 10⁹ levels
+/// (LinuxCNC prints them); Stanok stops the cycle at a million moves with a G7X error on the
+/// profile's endsub, having emitted nothing of it, in well under a second.
+#[test]
+fn a_cycle_of_a_billion_levels_is_refused_not_run() {
+    let prog = "G18 G21 F100\nO100 SUB\nG0 X0 Z0\nG1 Z-5\nG1 X100 Z-8\nO100 ENDSUB\n\
+                G71 Q100 X110 Z1 D0 I0.0000001\nM2\n";
+    let (cmds, err) = run(prog, Dialect::Rs274ngc);
+    let err = err.expect("refused");
+    assert!(
+        err.message
+            .starts_with("G7X error: the cycle makes more than 1000000 moves"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.span.line, 6, "the profile's endsub");
+    // The rapid to S, nothing of the cycle.
+    assert_eq!(
+        cmds.iter().filter(|c| c.value.motion().is_some()).count(),
+        1
+    );
 }

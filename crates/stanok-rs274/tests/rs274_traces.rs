@@ -413,6 +413,9 @@ own_tests! {
     parity_g7x_inch_defaults: "stanok-parity-g7x-inch-defaults";
     parity_g7x_labels: "stanok-parity-g7x-labels";
     parity_g7x_level_element: "stanok-parity-g7x-level-element";
+    parity_g7x_rounding_7327: "stanok-parity-g7x-rounding-20261211-7327";
+    parity_g7x_rounding_4124: "stanok-parity-g7x-rounding-20261213-4124";
+    parity_g7x_rounding_1583: "stanok-parity-g7x-rounding-20261209-1583";
     parity_g7x_profile_mcodes: "stanok-parity-g7x-profile-mcodes";
     parity_g7x_sharp_corner: "stanok-parity-g7x-sharp-corner";
     parity_g7x_inch_corner_tie: "stanok-parity-g7x-inch-corner-tie";
@@ -694,18 +697,8 @@ fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cyc
                G72 Q100 X19.321 Z3.3 I1.224\nM2\n";
     let no_feed = "G21 G18\nG0 X20 Z5\nO100 SUB\nG1 X11.812\nZ-21.015\nO100 ENDSUB\n\
                    G72 Q100 X20 Z5 D0.1 I1\nM2\n";
-    // Seed 20261205, program 4846: the passes cut the arc only offset by D, so LinuxCNC never
-    // checks it (rs274 prints `Oops` and cuts off the profile); Stanok refuses it the same way.
-    let offset_arc = "G21 G18 G7 F100\nO100 SUB\nG0 X10 Z0\nX12.475\nZ-15.45\n\
-                      G2 X14.775 Z-17.75 I2.3\nG1 Z-22.742\nO100 ENDSUB\nG0 X17.975 Z2.742\n\
-                      G72.1 Q100 X17.975 Z2.742 D0.1310\nM2\n";
     for (program, message, moves_before) in [
         (arc, "Radius to end of arc differs from radius to start", 2),
-        (
-            offset_arc,
-            "Radius to end of arc differs from radius to start",
-            2,
-        ),
         (no_feed, "Cannot do g1 with zero feed rate", 2),
     ] {
         let (cmds, err) = run(program, Dialect::Rs274ngc);
@@ -719,6 +712,38 @@ fn known_difference_a_g7x_profile_error_fails_the_endsub_with_nothing_of_the_cyc
             "the rapids before the cycle and to its start"
         );
     }
+}
+
+/// Seed 20261205, program 4846: the G72.1 passes cut the G7 profile's arc offset by D, ending
+/// 0.0273 mm off its radius. LinuxCNC 2.9's default tolerance (0.02828 mm, the `linuxcnc`
+/// machine's) takes it, and Stanok then prints rs274's moves; the document's (0.005 mm, Stanok's
+/// default) refuses it on the endsub, with LinuxCNC's message.
+#[test]
+fn an_offset_g7x_arc_within_linuxcnc_tolerance_is_cut_on_the_linuxcnc_machine() {
+    let program = "G21 G18 G7 F100\nO100 SUB\nG0 X10 Z0\nX12.475\nZ-15.45\n\
+                   G2 X14.775 Z-17.75 I2.3\nG1 Z-22.742\nO100 ENDSUB\nG0 X17.975 Z2.742\n\
+                   G72.1 Q100 X17.975 Z2.742 D0.1310\nM2\n";
+    let mut opts = options(Dialect::Rs274ngc);
+    opts.rs274_linuxcnc_arc_tolerance = true;
+    let (cmds, err) = run_with(program, opts);
+    assert!(err.is_none(), "{err:?}");
+    let arc = linuxcnc_lines(&cmds)
+        .into_iter()
+        .find(|l| l.contains("ARC_FEED(-17.3956"))
+        .expect("the offset arc");
+    assert!(
+        arc.contains("ARC_FEED(-17.3956, 7.5185, -15.4500, 8.5375, -1"),
+        "{arc}"
+    );
+    let (_, err) = run(program, Dialect::Rs274ngc);
+    let err = err.expect("the document's tolerance refuses it");
+    assert!(
+        err.message.starts_with(
+            "Radius to end of arc differs from radius to start: start=(Z-15.4500,X6.3685)"
+        ),
+        "{}",
+        err.message
+    );
 }
 
 /// Two reading errors in one block: LinuxCNC reads the words left to right and reports the first

@@ -120,6 +120,7 @@ pub fn options(
     opts.control = machine.control.clone();
     opts.diameter_axes = machine.diameter_axes();
     opts.rs274_machine_units = machine.linuxcnc_units;
+    opts.rs274_linuxcnc_arc_tolerance = machine.rs274_linuxcnc_arc_tolerance;
     if let Some(table) = stanok_interp::MTable::profile(&machine.m_functions) {
         opts.axioma.m_table = table;
     }

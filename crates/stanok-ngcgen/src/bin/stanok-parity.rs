@@ -25,7 +25,7 @@
 //! two still differ with the same [`Difference::signature`]; at most `SHRINK_RUNS` runs.
 
 use stanok_canon::linuxcnc_trace::{compare, parse, Difference};
-use stanok_ngcgen::known::{known_difference, known_refusal};
+use stanok_ngcgen::known::known_difference;
 use stanok_ngcgen::mutate::mutate;
 use stanok_ngcgen::{generate, Program, TOOL_TABLE};
 use std::collections::BTreeMap;
@@ -351,11 +351,6 @@ fn check_one(scratch: &Scratch, c: &Config, name: &str, p: &Program) -> (Outcome
             }
             if matches!(&d, Difference::OnlyLinuxCncStopped(m) if m == ENDLESS_LOOP) {
                 return (Outcome::Known(ENDLESS_LOOP), stopped);
-            }
-            if let Difference::OnlyStanokStopped(message) = &d {
-                if let Some(k) = known_refusal(&p.text, message) {
-                    return (Outcome::Known(k), stopped);
-                }
             }
             if matches!(d, Difference::MovedBeforeError(_)) {
                 // Same block, same message; rs274 issued calls of the failing block first.

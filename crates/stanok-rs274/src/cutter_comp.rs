@@ -23,14 +23,17 @@
 //! element's start tangent at the programmed corner S
 //!
 //! * **convex** (the tool is on the outside: G41 turning right, G42 turning left, by more than
-//!   [`CONCAVE_TOLERANCE`]): an arc of radius r about S is inserted from the previous offset end to
-//!   the new offset start (clockwise for G41, counter-clockwise for G42);
-//! * **concave** (everything else, straight continuations and reversals included): the previous
-//!   offset element is shortened to where it meets the new offset element (line–line, line–circle
-//!   or circle–circle intersection); no intersection is a gouge error;
-//! * **tangent with an arc** (either element an arc, turn within ±[`CONCAVE_TOLERANCE`]): nothing
-//!   is moved; the new element starts where the tool is (LinuxCNC's "convex, one arc" case).
-//!
+//!   [`CONCAVE_TOLERANCE`]; or a near reversal, |turn| within it of π, either way): an arc of
+//!   radius r about S is inserted from the previous offset end to the new offset start
+//!   (clockwise for G41, counter-clockwise for G42; for a G0 a straight traverse to its end);
+//! * **concave** (turning towards the tool by more than the tolerance, short of a near
+//!   reversal; and a near reversal where an arc has the tool outside it — the new arc, or the
+//!   last arc before a line, LinuxCNC's "h" and "m" shapes): the previous offset element is
+//!   shortened to where it meets the new offset element — two lines' crossing, or with an arc
+//!   the root LinuxCNC's own formulas pick (`join.rs`); none is a gouge error in its words;
+//! * **straight on** (turn within ±[`CONCAVE_TOLERANCE`]): nothing is moved; the new element
+//!   starts where the tool is (LinuxCNC's "convex, one arc" and "colinear" cases).
+
 //! An arc's offset uses its programmed points as LinuxCNC 2.9 does when the end is off the circle
 //! through the start (|E − C| ≠ |S − C|, by the program's rounding): the offset start is S moved
 //! r along the radius C→S, the offset end E moved r along C→E, and the circle it meets its
@@ -53,6 +56,7 @@ use stanok_canon::{Canon, Diagnostic, LengthUnits, Plane, Pose};
 use stanok_syntax::ColSpan;
 
 mod geometry;
+mod join;
 mod stale;
 
 use geometry::*;
@@ -82,6 +86,10 @@ pub enum Element {
         tool_radius: f64,
         /// Where the tool's arc starts (plane, program frame).
         tool_from: [f64; 2],
+        /// The sweep LinuxCNC queues it with (`original_turns`, signed), which moving its end
+        /// must not exceed: the programmed one, start to end about the centre; for the entry
+        /// arc the tool's own. Set when the arc is emitted.
+        queued_turn: f64,
     },
 }
 
@@ -111,6 +119,17 @@ pub struct CutterComp {
     /// The entry move starts here rather than at the tool: the programmed point a G40 left
     /// (LinuxCNC resets its current point to it), if no move has been made since.
     pub entry_from: Option<[f64; 2]>,
+    /// The last element is the entry line: LinuxCNC queues it with the offset normal as its
+    /// direction, not its travel (`convert_straight_comp1`), and its gouge check tests that.
+    pub entry_held: bool,
+    /// A stop flushed the held moves (LinuxCNC's `convert_stop`: M0, M1, M60): the last
+    /// element's motion is issued as it was, no corner moves it or checks it; only the moves
+    /// without plane motion made since are held (`moves_since`).
+    pub released: bool,
+    /// LinuxCNC's endpoint is invalid (`endpoint_valid` 0: a stop dequeued the moves and the
+    /// corner after it found nothing queued to move): the held move's next gouge check is
+    /// skipped.
+    pub unchecked: bool,
 }
 
 impl CutterComp {
@@ -153,6 +172,42 @@ fn with_plane(p: Pose, plane: Plane, q: [f64; 2]) -> Pose {
     v[a] = q[0];
     v[b] = q[1];
     Pose::from_array(v)
+}
+
+/// The block a convex corner belongs to: its programmed end, whether it is a rapid, its feed.
+#[derive(Clone, Copy)]
+pub(super) struct CornerOf {
+    pub end: Pose,
+    pub rapid: bool,
+    pub feed: f64,
+}
+
+/// LinuxCNC's move round a convex corner about the programmed corner `s` to `to` (offset
+/// point): an arc, or for a rapid a straight traverse to the arc's end (there is no arc
+/// traverse; `convert_straight_comp2`). Either carries the block's end on every axis outside
+/// the plane but its normal, which stays where the tool is (`cz`, `AA_end`… in LinuxCNC), so a
+/// rotary or UVW move of the block happens on the corner move.
+fn corner_move(cx: &mut Ctx<'_>, of: CornerOf, s: [f64; 2], to: [f64; 2]) {
+    let plane = cx.st.plane;
+    let comp = cx.fe.modes.comp;
+    let (_, _, normal) = plane.axes();
+    let mut v = of.end.to_array();
+    v[normal] = cx.st.program_position().to_array()[normal];
+    let end = emit_at(cx, Pose::from_array(v), to);
+    if of.rapid {
+        cx.straight(true, end, of.feed);
+    } else {
+        cx.arc(
+            plane,
+            comp.side == 2,
+            end,
+            PlanarArc {
+                centre: add(s, comp.nose),
+                turns: 1,
+            },
+            of.feed,
+        );
+    }
 }
 
 /// LinuxCNC's lathe tool origin: a tool of orientation 1–8 (G18 only) is controlled at the
@@ -282,6 +337,9 @@ pub(super) fn comp_on(
         stale: None,
         arc_refused: cx.fe.modes.comp.arc_refused,
         entry_from: cx.fe.modes.comp.program,
+        entry_held: false,
+        released: false,
+        unchecked: false,
     };
     cx.out.push(Canon::Comment {
         text: format!(
@@ -293,7 +351,8 @@ pub(super) fn comp_on(
 }
 
 /// G40.
-pub(super) fn comp_off(cx: &mut Ctx<'_>) {
+pub(super) fn comp_off(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
+    flush(cx, span)?;
     // The programmed point stays until the exit move: its missing words come from it.
     let was = cx.fe.modes.comp;
     cx.fe.modes.comp = CutterComp {
@@ -304,6 +363,29 @@ pub(super) fn comp_off(cx: &mut Ctx<'_>) {
     cx.out.push(Canon::Comment {
         text: "interpreter: cutter radius compensation off".into(),
     });
+    Ok(())
+}
+
+/// LinuxCNC's flush of the held moves at G40 and at a stop (M0, M1, M2, M30, M60:
+/// `convert_stop`): `move_endpoint_and_flush` to where the tool is, whose gouge check fails a
+/// held straight move that the last corner turned against its programmed way.
+/// Nothing is held after it: the next corner joins from where the tool is.
+pub(super) fn flush(cx: &mut Ctx<'_>, span: ColSpan) -> Result<(), Diagnostic> {
+    let comp = cx.fe.modes.comp;
+    if comp.on() && comp.radius > 0.0 && comp.last.is_some() {
+        reachable(cx, tool_at(cx), span)?;
+        let c = &mut cx.fe.modes.comp;
+        c.released = true;
+        c.unchecked = true;
+        c.moves_since = 0;
+    }
+    Ok(())
+}
+
+/// How many motion commands from the back compensation holds: the last element's (unless a
+/// stop released it) and the moves without plane motion after it.
+pub fn held_count(comp: &CutterComp) -> usize {
+    comp.moves_since as usize + usize::from(!comp.released)
 }
 
 /// The programmed point of the plane, if compensation has set it (else the tool position).
@@ -341,6 +423,9 @@ pub(super) fn straight(
         let c = &mut cx.fe.modes.comp;
         c.program = Some(e);
         c.last = Some(Element::Line { from: t, to: e });
+        c.entry_held = true;
+        c.released = false;
+        c.unchecked = false;
         c.moves_since = 0;
         c.entry_from = None;
         c.arc_refused = false;
@@ -374,15 +459,18 @@ pub(super) fn straight(
     let n = scale(left(dir), r * comp.sign());
     let new = Element::Line { from: s, to: e };
     if let Some(c) = comp.stale {
-        stale::corner(cx, s, c, e, feed, span)?;
+        stale::corner(cx, s, c, e, CornerOf { end, rapid, feed }, span)?;
     } else {
-        corner(cx, s, dir, add(s, n), new, feed, span)?;
+        let of = CornerOf { end, rapid, feed };
+        corner(cx, s, dir, add(s, n), new, of, span)?;
     }
     cx.straight(rapid, emit_at(cx, end, add(e, n)), feed);
     let c = &mut cx.fe.modes.comp;
     c.stale = None;
     c.program = Some(e);
     c.last = Some(new);
+    c.entry_held = false;
+    c.released = false;
     c.moves_since = 0;
     c.arc_refused = false;
     Ok(())
@@ -415,6 +503,10 @@ pub(super) fn arc(
     let inside = (comp.side == 1) == ccw;
     let tool_radius = if inside { radius - r } else { radius + r };
     // Zero is allowed: a circle of the tool's own size is cut with the tool standing at its centre.
+    // (LinuxCNC refuses arc radius ≤ tool radius after the entry, but compares in program units
+    // after its own unit conversions: a tool-table radius under G20 comes out an ulp small, so
+    // the tie passes there — LinuxCNC's sample `useful-subroutines` cuts such a circle — and a
+    // G41.1 D radius ties exactly and fails; docs/linuxcnc.md, open differences.)
     if tool_radius < 0.0 {
         return Err(err(
             cx,
@@ -430,6 +522,7 @@ pub(super) fn arc(
         to: e,
         tool_radius,
         tool_from: [0.0; 2],
+        queued_turn: 0.0,
     };
     if comp.program.is_none() {
         // Entry arc: through the current point, centre on the line C–E.
@@ -447,8 +540,14 @@ pub(super) fn arc(
         }
         let rho = dot(chord, chord) / (2.0 * k);
         let centre = sub(tool_end, scale(u, rho));
-        if let Element::Arc { tool_from, .. } = &mut new {
+        if let Element::Arc {
+            tool_from,
+            queued_turn,
+            ..
+        } = &mut new
+        {
             *tool_from = t;
+            *queued_turn = find_turn(t, c, ccw, tool_end);
         }
         cx.arc(
             plane,
@@ -474,9 +573,20 @@ pub(super) fn arc(
                 },
             ),
         );
-        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, feed, span)?;
-        if let Element::Arc { tool_from, .. } = &mut new {
+        let of = CornerOf {
+            end,
+            rapid: false,
+            feed,
+        };
+        corner(cx, s, arc_tangent(c, s, ccw), start_tool, new, of, span)?;
+        if let Element::Arc {
+            tool_from,
+            queued_turn,
+            ..
+        } = &mut new
+        {
             *tool_from = tool_at(cx);
+            *queued_turn = find_turn(s, c, ccw, e);
         }
         cx.arc(
             plane,
@@ -493,6 +603,8 @@ pub(super) fn arc(
     cc.stale = None;
     cc.program = Some(e);
     cc.last = Some(new);
+    cc.entry_held = false;
+    cc.released = false;
     cc.moves_since = 0;
     Ok(())
 }
@@ -505,7 +617,7 @@ fn corner(
     dir: [f64; 2],
     start_tool: [f64; 2],
     new: Element,
-    feed: f64,
+    of: CornerOf,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
@@ -514,51 +626,56 @@ fn corner(
     };
     let a = last.end_tangent();
     let turn = cross(a, dir).atan2(dot(a, dir));
-    let plane = cx.st.plane;
-    // A line straight back on a line turns by ±π, the sign a rounding accident: LinuxCNC goes
-    // round the end with a half circle on either side. (An arc's cusp with a line is concave:
-    // their offsets cross.)
-    let lines = matches!((last, new), (Element::Line { .. }, Element::Line { .. }));
-    let reversal = lines && std::f64::consts::PI - turn.abs() < 1e-9;
-    if reversal || comp.sign() * turn < -CONCAVE_TOLERANCE {
-        // Convex: an arc about the corner.
-        reachable(cx, tool_at(cx), span)?;
-        let here = cx.st.program_position();
-        cx.arc(
-            plane,
-            comp.side == 2,
-            emit_at(cx, here, start_tool),
-            PlanarArc {
-                centre: add(s, comp.nose),
-                turns: 1,
-            },
-            feed,
-        );
+    // LinuxCNC's zones (`convert_straight_comp2`, `convert_arc_comp2`: β = the turn away from
+    // the tool's side, tolerance t = CONCAVE_TOLERANCE), in `towards` = the turn towards it:
+    // concave for t < towards < π − t; a near reversal (|turn| within t of π, either sign, an
+    // exact one's sign being a rounding accident) is convex — a half circle round the end —
+    // unless an arc there has the tool outside it (the "h" and "m" shapes: the new arc, or the
+    // last arc before a line), which LinuxCNC joins as concave; convex for towards < −t; and
+    // within ±t of straight on nothing moves: the new element starts where the tool is, the
+    // held move keeps its end (lines too: LinuxCNC does not seek the crossing there).
+    let towards = comp.sign() * turn;
+    let tool_outside = |e: Element| match e {
+        Element::Arc { ccw, .. } => (comp.side == 1) != ccw,
+        Element::Line { .. } => false,
+    };
+    let near_reversal = std::f64::consts::PI - turn.abs() <= CONCAVE_TOLERANCE;
+    let concave = if near_reversal {
+        match new {
+            Element::Arc { .. } => tool_outside(new),
+            Element::Line { .. } => tool_outside(last),
+        }
+    } else {
+        towards > CONCAVE_TOLERANCE
+    };
+    if !concave && (near_reversal || towards < -CONCAVE_TOLERANCE) {
+        // Convex: an arc about the corner (a traverse to its end for a rapid). Before a line
+        // LinuxCNC flushes the held move first, with its gouge check; before an arc it only
+        // issues it (`convert_arc_comp2`'s "convex, two arcs").
+        if matches!(new, Element::Line { .. }) {
+            reachable(cx, tool_at(cx), span)?;
+        }
+        corner_move(cx, of, s, start_tool);
+        cx.fe.modes.comp.unchecked = false;
         return Ok(());
     }
-    // Within the tolerance of tangent next to an arc, the new element starts where the tool is
-    // (LinuxCNC's "convex, one arc" case): no meeting point is sought, and the new offset start
-    // may be off the tool's position by as much as an arc's end is off its radius.
-    let with_arc = matches!(new, Element::Arc { .. }) || matches!(last, Element::Arc { .. });
-    if with_arc && (comp.sign() * turn).abs() <= CONCAVE_TOLERANCE {
+    if !concave {
+        cx.fe.modes.comp.unchecked = false;
+        // Within the tolerance of straight on (LinuxCNC's "convex, one arc" with an arc): no
+        // meeting point is sought, and the new offset start may be off the tool's position by
+        // as much as an arc's end is off its radius or a line's normal turns.
         return Ok(());
     }
-    // Concave: where the two offset paths meet.
+    // Concave: where the two offset paths meet — by LinuxCNC's own arithmetic where an arc is
+    // one of them (`join.rs`), else the lines' crossing.
     let r = comp.radius;
     let prev_end = tool_at(cx);
-    let p = meet(last, new, r * comp.sign(), prev_end, start_tool).ok_or_else(|| {
-        cx.err(
-            "rs274::comp-gouge",
-            // LinuxCNC words such a gouge at an arc as the arc's radius check.
-            "Tool radius not less than arc radius with comp",
-            span,
-        )
-        .with_note(format!(
-            "the tool's offset paths do not meet in this concave corner: a tool of radius {r:.4} mm cannot follow it"
-        ))
-    })?;
+    let p = join::concave_join(last, new, comp.side == 1, r, s, prev_end, start_tool)
+        .map_err(|msg| cx.err("rs274::comp-gouge", msg, span))?;
     reachable(cx, p, span)?;
     move_held_end(cx, p);
+    // Nothing queued to move (a stop flushed it all): LinuxCNC's endpoint stays invalid.
+    cx.fe.modes.comp.unchecked = comp.released && held_count(&comp) == 0;
     Ok(())
 }
 
@@ -567,23 +684,26 @@ fn corner(
 /// programmed direction from where it starts, else the tool would gouge (its error texts).
 ///
 /// A held arc (LinuxCNC's `move_endpoint_and_flush`): moving its end must not make it sweep more
-/// than it was queued with — its turn from the tool's start to the new end may exceed the
-/// original by at most 0.0254 (G21) or 0.001 (G20), LinuxCNC comparing radians with a length
-/// tolerance as written.
+/// than it was queued with (`queued_turn`: the programmed sweep, so a concave join that starts
+/// it early can fail even at the flush of a stop) — its turn from the tool's start to the new
+/// end may exceed that by at most 0.0254 (G21) or 0.001 (G20), LinuxCNC comparing radians with
+/// a length tolerance as written.
 fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
+    if comp.released || comp.unchecked {
+        // LinuxCNC's queue holds no move of the element now, or its endpoint is invalid:
+        // nothing is checked.
+        return Ok(());
+    }
     let (from, end) = match comp.last {
         Some(Element::Line { from, to: end }) => (from, end),
         Some(Element::Arc {
             centre,
             ccw,
-            to: programmed_end,
-            tool_radius,
             tool_from,
+            queued_turn: original,
+            ..
         }) => {
-            let radial = sub(programmed_end, centre);
-            let queued_end = add(centre, scale(unit(radial), tool_radius));
-            let original = find_turn(tool_from, centre, ccw, queued_end);
             let moved = find_turn(tool_from, centre, ccw, to);
             let tolerance = match cx.st.units {
                 LengthUnits::Millimetres => 0.0254,
@@ -604,18 +724,24 @@ fn reachable(cx: &mut Ctx<'_>, to: [f64; 2], span: ColSpan) -> Result<(), Diagno
     let (frame, plane) = (cx.st.frame, cx.st.plane);
     let mut start = None;
     cx.out
-        .edit_last_motions(comp.moves_since as usize + 1, |cmd, first| {
-            match (first, &*cmd) {
-                (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
-                (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
-                _ => {}
-            }
+        .edit_last_motions(held_count(&comp), |cmd, first| match (first, &*cmd) {
+            (true, Canon::StraightTraverse(m)) => start = Some((m.start, true)),
+            (true, Canon::StraightFeed(m)) => start = Some((m.start, false)),
+            _ => {}
         });
     let Some((s, rapid)) = start else {
         return Ok(());
     };
     let s = sub(plane_of(&frame.to_program(&s), plane), comp.nose);
-    if dot(sub(end, from), sub(to, s)) >= 0.0 {
+    // The direction LinuxCNC queued the move with: its travel, or for the entry line the
+    // offset normal (so a crossing far behind the entry's end can pass, and one beside it fail).
+    let travel = sub(end, from);
+    let queued = if comp.entry_held {
+        scale(left(travel), comp.sign())
+    } else {
+        travel
+    };
+    if dot(queued, sub(to, s)) >= 0.0 {
         return Ok(());
     }
     let what = if rapid { "traverse" } else { "feed" };
@@ -637,7 +763,11 @@ fn move_held_end(cx: &mut Ctx<'_>, p: [f64; 2]) {
         let prog = frame.to_program(m);
         frame.to_machine(&with_plane(prog, plane, p))
     };
-    let n = cx.fe.modes.comp.moves_since as usize + 1;
+    let n = held_count(&cx.fe.modes.comp);
+    if n == 0 {
+        // Released by a stop with nothing since: the tool stays where the issued move ended.
+        return;
+    }
     cx.out.edit_last_motions(n, |cmd, first| match cmd {
         Canon::StraightFeed(l) | Canon::StraightTraverse(l) => {
             if !first {

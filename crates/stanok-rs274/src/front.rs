@@ -464,7 +464,10 @@ impl FrontEnd for Rs274 {
                 self.percent_open = true;
                 return Ok(Unit::Skip);
             }
-            if self.percent_open && self.flow.skipping().is_none() {
+            if self.percent_open {
+                if let Some(d) = self.flow.skipped_to_percent(&core.block) {
+                    return Err(d);
+                }
                 // The closing `%` without a program end: LinuxCNC's FINISH.
                 core.queue
                     .push_back(Spanned::new(core.block.span(), Canon::Finish));

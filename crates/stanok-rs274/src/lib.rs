@@ -237,7 +237,7 @@ pub fn held_motions(st: &Rs274State) -> usize {
     // LinuxCNC queues compensated moves only for a tool radius above 0: with a zero radius
     // nothing can move their ends, and an error later leaves them issued.
     if st.comp.on() && st.comp.last.is_some() && st.comp.radius > 0.0 {
-        st.comp.moves_since as usize + 1
+        cutter_comp::held_count(&st.comp)
     } else {
         0
     }
@@ -461,7 +461,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 11. Cutter compensation.
     if let Some((code, span)) = g.get(Group::CutterComp, cx) {
         if code == G40 {
-            cutter_comp::comp_off(cx);
+            cutter_comp::comp_off(cx, span)?;
         } else {
             cutter_comp::comp_on(cx, params, code, span)?;
         }
@@ -569,7 +569,7 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
             Some(Handler::Home) => home::go_home(cx, params, code == G28)?,
             Some(Handler::StoreHome) => home::store_home(cx, params, code == G28_1),
             Some(Handler::Offset) => g92_family(cx, params, code, span)?,
-            Some(Handler::NurbsEnd) => spline::nurbs_end(cx, params, f_word.is_some(), span)?,
+            Some(Handler::NurbsEnd) => spline::nurbs_end(cx, params, span)?,
             _ => {}
         }
     }
@@ -632,12 +632,12 @@ pub fn execute(cx: &mut Ctx<'_>, params: &mut Parameters) -> Result<Outcome, Dia
     // 21. Stops.
     if let Some(m) = m.as_ref().filter(|m| m.stop != NO_CODE) {
         let (code, span) = (m.stop, m.stop_span);
+        cutter_comp::flush(cx, span)?;
         match code {
             0 => cx.out.push(Canon::ProgramStop { optional: false }),
             1 => cx.out.push(Canon::ProgramStop { optional: true }),
             // M60: exchange the pallets, then stop as M0 (LinuxCNC's convert_stop).
             60 => {
-                let _ = span;
                 cx.out.push(Canon::PalletShuttle);
                 cx.out.push(Canon::ProgramStop { optional: false });
             }

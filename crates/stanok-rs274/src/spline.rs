@@ -14,7 +14,8 @@
 //!   curve over the clamped uniform knots t_i = 0 (i < k), i − k + 1 (k ≤ i ≤ n), n − k + 2 (i > n).
 //!   The points wait in `Parameters::nurbs_mut` (rolled back with a failing block).
 //!
-//! All three need G17, X/Y only, and a feed. The curve is built in program coordinates and
+//! All three need G17, X/Y only, and a feed (a NURBS on its G5.2 blocks only, as LinuxCNC checks
+//! it: a feed set to 0 before G5.3 cuts it at 0). The curve is built in program coordinates and
 //! mapped to the machine through the work frame point by point (the frame is affine, and a
 //! rational B-spline maps exactly under affine maps by mapping its control points).
 
@@ -48,30 +49,24 @@ fn check_plane_and_axes(cx: &mut Ctx<'_>, name: &str, span: ColSpan) -> Result<(
     Ok(())
 }
 
-/// The feed of a spline block, with LinuxCNC's checks and words: G5 and G5.1 are arcs to it (an
-/// F under G93, a feed under G94); G5.2 needs a feed under G94 only.
-fn feed(cx: &mut Ctx<'_>, name: &str, f_in_block: bool, span: ColSpan) -> Result<f64, Diagnostic> {
-    let nurbs = name == "G5.2";
+/// The feed of a G5 or G5.1 block, with LinuxCNC's checks: they are arcs to it (an F under G93,
+/// a feed under G94). A NURBS is checked on its G5.2 blocks instead (`nurbs_point`).
+fn feed(cx: &mut Ctx<'_>, f_in_block: bool, span: ColSpan) -> Result<f64, Diagnostic> {
     match cx.st.feed_mode {
-        FeedMode::InverseTime if !f_in_block && !nurbs => Err(cx.err(
+        FeedMode::InverseTime if !f_in_block => Err(cx.err(
             "rs274::spline-inverse-time-f",
             "F word missing with inverse time arc move",
             span,
         )),
         FeedMode::UnitsPerMinute if cx.st.feed <= 0.0 => Err(cx.err(
             "rs274::zero-feed",
-            if nurbs {
-                "Cannot make a NURBS with 0 feedrate"
-            } else {
-                "Cannot make arc with zero feed rate"
-            },
+            "Cannot make arc with zero feed rate",
             span,
         )),
         _ => Ok(cx.path_feed(0.0)),
     }
 }
 
-/// Emits a spline given by program-coordinate control points and moves to its end.
 fn emit(cx: &mut Ctx<'_>, points: &[[f64; 2]], weights: Vec<f64>, knots: Vec<f64>, feed: f64) {
     emit_with(cx, points, weights, knots, feed, true)
 }
@@ -169,7 +164,7 @@ pub(super) fn cubic(cx: &mut Ctx<'_>, span: ColSpan, f_in_block: bool) -> Result
     let (Some(p), Some(q)) = (p, q) else {
         return Err(cx.err("rs274::g5-pq", "Must specify both P and Q with G5", span));
     };
-    let f = feed(cx, "G5", f_in_block, span)?;
+    let f = feed(cx, f_in_block, span)?;
     let s = cx.st.program_position();
     let (e, _) = end_xy(cx)?;
     let pts = [[s.x, s.y], [s.x + i, s.y + j], [e[0] + p, e[1] + q], e];
@@ -194,7 +189,7 @@ pub(super) fn quadratic(
             span,
         ));
     };
-    let f = feed(cx, "G5.1", f_in_block, span)?;
+    let f = feed(cx, f_in_block, span)?;
     let s = cx.st.program_position();
     let (e, _) = end_xy(cx)?;
     let pts = [[s.x, s.y], [s.x + i, s.y + j], e];
@@ -305,7 +300,6 @@ pub(super) fn nurbs_point(
 pub(super) fn nurbs_end(
     cx: &mut Ctx<'_>,
     params: &mut Parameters,
-    f_in_block: bool,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     if cx.fe.modes.motion_code != Some(G5_2) {
@@ -327,7 +321,9 @@ pub(super) fn nurbs_end(
             span,
         ));
     }
-    let f = feed(cx, "G5.2", f_in_block, span)?;
+    // LinuxCNC checks no feed here: a feed set to 0 after the last G5.2 block (`F0` alone, or
+    // on this line) cuts the NURBS at 0, as rs274 prints it.
+    let f = cx.path_feed(0.0);
     // Clamped uniform knots over n + 1 points (n = n_points − 1).
     let n = n_points - 1;
     let knots: Vec<f64> = (0..=n + k)

@@ -106,13 +106,25 @@ fn g5_2_nurbs_has_the_header_points() {
 }
 
 #[test]
-fn a_failing_g5_3_keeps_the_collected_points() {
-    // A zero feed at G5.3 fails the block (F0 after the points: LinuxCNC checks the feed on the
-    // G5.2 blocks, which had one); the points stay and a later G5.3 with F emits them.
-    let s = splines("G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF0\nF10 G5.3\nM2\n");
-    assert_eq!(s[0].control_points.len(), 3);
+fn a_feed_set_to_zero_before_g5_3_cuts_the_nurbs_at_zero() {
+    // LinuxCNC checks a NURBS's feed on its G5.2 blocks only (golden
+    // stanok-parity-g5-3-zero-feed): F0 after the points, alone or on the G5.3 line, cuts the
+    // curve at feed 0 with every point collected; an F on the G5.3 line is its feed.
+    for (end, feed) in [
+        ("F0\nG5.3", 0.0),
+        ("G5.3 F0", 0.0),
+        ("F0\nF10 G5.3", 10.0 * 25.4),
+    ] {
+        let s = splines(&format!(
+            "G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\n{end}\nM2\n"
+        ));
+        assert_eq!(s.len(), 1, "{end}");
+        assert_eq!(s[0].control_points.len(), 3, "{end}");
+        assert!((s[0].feed - feed).abs() < 1e-9, "{end}: feed {}", s[0].feed);
+    }
+    // On a G5.2 block a zero feed is LinuxCNC's error.
     let (_, err) = run(
-        "G20 F5\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nF0\nG5.3\nM2\n",
+        "G20 F0\nG0 X0 Y0\nG5.2 L3\n X0 Y1 P1\n X2 Y2 P1\nG5.3\nM2\n",
         Dialect::Rs274ngc,
     );
     assert!(err.unwrap().message.contains("NURBS with 0 feedrate"));

@@ -344,6 +344,8 @@ macro_rules! own_tests {
 // The shrunk reproductions of the differential runner `stanok-parity` (issue 21; docs/linuxcnc.md),
 // each a named regression test with rs274's trace (also part of `own_programs_match_linuxcnc`).
 own_tests! {
+    err_parity_sub_after_percent: "stanok-err-parity-sub-after-percent";
+    err_parity_if_to_percent: "stanok-err-parity-if-to-percent";
     err_parity_break_in_repeat: "stanok-err-parity-break-in-repeat";
     err_parity_g76_p_missing: "stanok-err-parity-g76-p-missing";
     err_parity_comp_zero_radius_error: "stanok-err-parity-comp-zero-radius-error";
@@ -354,6 +356,11 @@ own_tests! {
     err_parity_negative_tool: "stanok-err-parity-negative-tool";
     err_parity_endsub_outside: "stanok-err-parity-endsub-outside";
     err_parity_comp_exit_arc: "stanok-err-parity-comp-exit-arc";
+    err_parity_comp_arc_sweep: "stanok-err-parity-comp-arc-sweep";
+    err_parity_comp_g40_flush: "stanok-err-parity-comp-g40-flush";
+    err_parity_comp_arc_line_gouge: "stanok-err-parity-comp-arc-line-gouge";
+    err_parity_comp_arc_arc_gouge: "stanok-err-parity-comp-arc-arc-gouge";
+    err_parity_comp_entry_direction: "stanok-err-parity-comp-entry-direction";
     err_parity_comp_plane: "stanok-err-parity-comp-plane";
     err_parity_coolant_group: "stanok-err-parity-coolant-group";
     err_parity_g74_l: "stanok-err-parity-g74-l";
@@ -381,7 +388,13 @@ own_tests! {
     parity_change_tool_slot: "stanok-parity-change-tool-slot";
     parity_comp_after_g40: "stanok-parity-comp-after-g40";
     parity_comp_labels: "stanok-parity-comp-labels";
+    parity_comp_after_stop_unchecked: "stanok-parity-comp-after-stop-unchecked";
+    parity_comp_convex_before_arc: "stanok-parity-comp-convex-before-arc";
+    parity_comp_stop_flush: "stanok-parity-comp-stop-flush";
+    parity_comp_arc_join: "stanok-parity-comp-arc-join";
+    parity_comp_near_reversal: "stanok-parity-comp-near-reversal";
     parity_comp_reversal: "stanok-parity-comp-reversal";
+    parity_comp_rapid_corner: "stanok-parity-comp-rapid-corner";
     parity_css_inch: "stanok-parity-css-inch";
     parity_flow_break_continue: "stanok-parity-flow-break-continue";
     parity_flow_continue_repeat: "stanok-parity-flow-continue-repeat";
@@ -390,6 +403,7 @@ own_tests! {
     parity_cycles_g91_l: "stanok-parity-cycles-g91-l";
     parity_g5_feed_units: "stanok-parity-g5-feed-units";
     parity_g5_2_inverse_time: "stanok-parity-g5-2-inverse-time";
+    parity_g5_3_zero_feed: "stanok-parity-g5-3-zero-feed";
     parity_g53_tlo: "stanok-parity-g53-tlo";
     parity_g73_peck_rounding: "stanok-parity-g73-peck-rounding";
     parity_g7x_arc_corner: "stanok-parity-g7x-arc-corner";

@@ -11,7 +11,8 @@
 //!   G42: α += 2π if α < θ;  β = α − θ − π/2;  γ = −π/2
 //!   concave  (β < −t or β > π + t, t = 0.05): the held moves end at c + ρ·u(θ + γ),
 //!            ρ = r / tan((β + π)/2)  (a step back "along the previous path" from c)
-//!   convex   (β > t): the held moves end at c, then an arc about p to p + r·u(α + γ)
+//!   convex   (β > t): the held moves end at c, then an arc about p to p + r·u(α + γ) (for a
+//!            rapid a traverse there: `corner_move`)
 //!   straight (otherwise): the held moves stay
 //! ```
 //!
@@ -23,8 +24,9 @@
 //! elements; with the stale one it reproduces `rs274`'s first pass (tests/rs274/
 //! `stanok-g70-comp*.ngc`). A move with no motion in the plane keeps the tool at c meanwhile.
 
-use super::{add, emit_at, move_held_end, reachable, sub, Element, CONCAVE_TOLERANCE};
-use crate::arc::PlanarArc;
+use super::{
+    add, corner_move, move_held_end, reachable, sub, CornerOf, Element, CONCAVE_TOLERANCE,
+};
 use crate::ctx::Ctx;
 use stanok_canon::Diagnostic;
 use stanok_syntax::ColSpan;
@@ -37,7 +39,7 @@ pub(super) fn corner(
     p: [f64; 2],
     c: [f64; 2],
     e: [f64; 2],
-    feed: f64,
+    of: CornerOf,
     span: ColSpan,
 ) -> Result<(), Diagnostic> {
     let comp = cx.fe.modes.comp;
@@ -64,7 +66,7 @@ pub(super) fn corner(
             let d = super::unit(w);
             let n = super::scale(super::left(d), r * comp.sign());
             let new = Element::Line { from: p, to: e };
-            return super::corner(cx, p, d, add(p, n), new, feed, span);
+            return super::corner(cx, p, d, add(p, n), new, of, span);
         }
         let half = (beta + PI) / 2.0;
         if half == 0.0 {
@@ -85,16 +87,8 @@ pub(super) fn corner(
         reachable(cx, c, span)?;
         move_held_end(cx, c);
         let mid = add(p, [r * (alpha + gamma).cos(), r * (alpha + gamma).sin()]);
-        let here = cx.st.program_position();
-        let end = emit_at(cx, here, mid);
-        let centre = add(p, comp.nose);
-        cx.arc(
-            cx.st.plane,
-            comp.side == 2,
-            end,
-            PlanarArc { centre, turns: 1 },
-            feed,
-        );
+        corner_move(cx, of, p, mid);
     }
+    cx.fe.modes.comp.unchecked = false;
     Ok(())
 }

@@ -92,3 +92,45 @@ impl Flow {
         }
     }
 }
+
+impl Flow {
+    /// The closing `%` of a `%`-delimited program met while lines are skipped: LinuxCNC ends the
+    /// file there (`read_text` returns `INTERP_ENDFILE`) and, still skipping to an O-word, fails
+    /// with "Failed to find sub 'O…' before EOF" (`Interp::_read`), whatever it was seeking — a
+    /// called subroutine, the end of one being defined, an if's branch, a loop's end. The name is
+    /// its `o_name`: a subroutine's label bare (`100`, `name` without `<>`), any other O-word's
+    /// prefixed with the subroutine it is in and `#` (`#100` at the top level, `sub#100` in a
+    /// call). The error stands on the `%` line, as LinuxCNC's does; the call is named in a note.
+    pub fn skipped_to_percent(&self, percent: &Block) -> Option<Diagnostic> {
+        let bare = |l: &str| l.trim_start_matches('<').trim_end_matches('>').to_string();
+        let local = |l: &str| {
+            let sub = self
+                .calls
+                .last()
+                .map(|c| bare(&c.label))
+                .unwrap_or_default();
+            format!("{sub}#{}", bare(l))
+        };
+        let (name, call) = match self.skip.as_ref()? {
+            Skip::FindSub { label, call, .. } => (bare(label), Some(*call)),
+            Skip::Sub(l) => (bare(l), None),
+            Skip::IfBranch(l) | Skip::ToEndIf(l) | Skip::LoopEnd(l, _) | Skip::DoEnd(l) => {
+                (local(l), None)
+            }
+        };
+        let mut d = Diagnostic::error(
+            "flow::unterminated",
+            format!("Failed to find sub 'O{name}' before EOF"),
+            percent.span(),
+        )
+        .fatal()
+        .with_note("the `%` line ends the program: nothing after it is read");
+        if let Some(call) = call {
+            d = d.with_note(format!(
+                "the subroutine was called on line {} and is not defined before this `%`",
+                call.line
+            ));
+        }
+        Some(d)
+    }
+}

@@ -67,8 +67,10 @@ pub struct Rs274Part {
     /// block may copy, so that ordinary blocks do not pay for it.
     pub lathe_call: Option<LatheCall>,
     /// The words of a G7x profile's motion blocks, recorded while it runs
-    /// (`lathe_cycles::record`) and read by the cycle at its end (`lathe.rs`).
+    /// (`lathe_cycles::profile_block`) and read by the cycle at its end (`lathe.rs`).
     pub profile_blocks: Vec<crate::lathe_cycles::ProfileBlock>,
+    /// The running block recorded one of them (taken back if the block fails).
+    pub profile_block_pushed: bool,
     /// Options.
     pub opts: Rs274Options,
 }
@@ -296,6 +298,7 @@ impl Rs274 {
                 modes: Journalled::default(),
                 lathe_call: None,
                 profile_blocks: Vec::new(),
+                profile_block_pushed: false,
                 opts: rs,
             },
             params,
@@ -553,6 +556,10 @@ impl FrontEnd for Rs274 {
         self.held_at_begin = None;
         self.part.modes.rollback();
         self.part.lathe_call = None;
+        if self.part.profile_block_pushed {
+            self.part.profile_blocks.pop();
+            self.part.profile_block_pushed = false;
+        }
         self.params.rollback();
         // The held commands the block may have moved come back as they were.
         let out = &mut core.queue;
@@ -579,6 +586,7 @@ impl FrontEnd for Rs274 {
                 self.params.write(&slot, v);
             }
         }
+        self.part.profile_block_pushed = false;
         if self.part.lathe_call.is_some() {
             self.start_lathe_capture(core)?;
         }

@@ -11,7 +11,7 @@
 //!    as an O-word call would.
 //! 2. **The profile**: the subroutine's blocks run as ordinary blocks (control flow, parameters
 //!    and `#<_x>`/`#<_z>` see the profile's own positions), but the driver keeps their commands
-//!    back. Each motion block's words are recorded as written (`record`): LinuxCNC builds the
+//!    back. Each motion block's words are recorded as written (`profile_block`): LinuxCNC builds the
 //!    profile from the words, not from positions, and so does `read_profile`.
 //! 3. **The return from oQ** (`finish`): the driver drops the kept commands, puts the tool back at
 //!    S and this module runs the cycle and emits its moves. Errors found now ("Not monotonic",
@@ -198,9 +198,10 @@ fn to_units(v_mm: f64, unit: f64) -> f64 {
     }
 }
 
-/// In a profile: records a motion block's words (`ProfileBlock`) and takes its corner words,
-/// which are not axes here.
-pub(super) fn record(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
+/// In a profile: a motion block's words as the cycle will read them (`ProfileBlock`), taking its
+/// corner words, which are not axes here. The caller keeps it once the motion has run, and the
+/// front end's rollback takes it back if the block fails (ARCHITECTURE.md invariant 4).
+pub(super) fn profile_block(cx: &mut Ctx<'_>, code: u32) -> Result<ProfileBlock, Diagnostic> {
     let a = cx.words.take(b'A');
     let c = cx.words.take(b'C');
     if let (Some(_), Some(c)) = (a, c) {
@@ -218,7 +219,7 @@ pub(super) fn record(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
         ));
     }
     let v = |l: u8| cx.words.peek(l).map(|w| w.v);
-    let block = ProfileBlock {
+    Ok(ProfileBlock {
         code,
         x: v(b'X'),
         z: v(b'Z'),
@@ -229,9 +230,7 @@ pub(super) fn record(cx: &mut Ctx<'_>, code: u32) -> Result<(), Diagnostic> {
         r: v(b'R'),
         a: a.map(|w| w.v),
         c: c.map(|w| w.v),
-    };
-    cx.fe.profile_blocks.push(block);
-    Ok(())
+    })
 }
 
 /// The chain LinuxCNC's reader builds from a profile's blocks: the entry from S to the first

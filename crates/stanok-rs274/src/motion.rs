@@ -34,7 +34,7 @@ pub(super) fn motion_block(
     motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
 }
 
-/// In a G7x profile the block's words are recorded for the cycle (`lathe_cycles::record`), and
+/// In a G7x profile the block's words are recorded for the cycle (`lathe_cycles::profile_block`), and
 /// A and C on a move are its end corner's fillet and chamfer, not axes.
 #[cold]
 #[inline(never)]
@@ -47,8 +47,12 @@ fn motion_in_profile(
     g53: Option<ColSpan>,
     f_in_block: bool,
 ) -> Result<(), Diagnostic> {
-    super::lathe_cycles::record(cx, code)?;
-    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)
+    let block = super::lathe_cycles::profile_block(cx, code)?;
+    motion_block_inner(cx, params, code, span, explicit, g53, f_in_block)?;
+    // Taken back by the front end's rollback if the block fails after its motion.
+    cx.fe.profile_blocks.push(block);
+    cx.fe.profile_block_pushed = true;
+    Ok(())
 }
 
 fn motion_block_inner(

@@ -33,7 +33,7 @@
 //!   the root LinuxCNC's own formulas pick (`join.rs`); none is a gouge error in its words;
 //! * **straight on** (turn within ±[`CONCAVE_TOLERANCE`]): nothing is moved; the new element
 //!   starts where the tool is (LinuxCNC's "convex, one arc" and "colinear" cases).
-
+//!
 //! An arc's offset uses its programmed points as LinuxCNC 2.9 does when the end is off the circle
 //! through the start (|E − C| ≠ |S − C|, by the program's rounding): the offset start is S moved
 //! r along the radius C→S, the offset end E moved r along C→E, and the circle it meets its

@@ -114,7 +114,7 @@ proptest! {
 
 /// The continuity law of the module comment, on one program.
 fn moves_continuously(text: &str) -> Result<(), TestCaseError> {
-    let (cmds, _err) = run(&text, Dialect::Rs274ngc);
+    let (cmds, _err) = run(text, Dialect::Rs274ngc);
     let mut prev: Option<[f64; 9]> = None;
     let mut after_g88 = false;
     // G74/G84 in G18/G19 feed to LinuxCNC's plane-rotated points (cycles.rs `tap_feed`):

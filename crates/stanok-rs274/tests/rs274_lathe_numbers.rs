@@ -240,3 +240,23 @@ fn a_cycle_of_a_billion_levels_is_refused_not_run() {
         1
     );
 }
+
+/// Mutant 191 of seed 17 (LinuxCNC's sample `lathe_g7x_quadrants` with one arc's end moved off its
+/// radius): LinuxCNC's pocket loop never ends — `rs274` prints the same rapid without end
+/// (565 MB in 10 s) — and Stanok stops it at its bound with the endless-loop wording the runner
+/// counts apart.
+#[test]
+fn a_pocket_loop_linuxcnc_never_ends_stops_at_the_bound() {
+    let prog = "G18 G21 F400\nO102 SUB\nG0 Z44 X14\nG1 Z42 X14\nG1 X10 Z42\n\
+                G2 K-5 I0 X0 Z37\nG1 X5 Z32\nX-1\nZ30\nO102 ENDSUB\n\
+                G71 Q102 X-5 Z46 D0.5 I1 R0.3\nM2\n";
+    let (_, err) = run(prog, Dialect::Rs274ngc);
+    let err = err.expect("stopped");
+    assert!(
+        err.message
+            .starts_with("G7X error: the cycle makes more than 1000000 moves")
+            && err.message.ends_with(": stopping (endless loop?)"),
+        "{}",
+        err.message
+    );
+}

@@ -37,7 +37,8 @@ use std::time::{Duration, Instant};
 
 const SHRINK_RUNS: usize = 300;
 /// An endless loop: rs274 runs until the runner's timeout, Stanok stops it at its bound
-/// (`flow::too-many-iterations`, the lines read again or in all). Not a difference in meaning: neither ends the program.
+/// (`flow::too-many-iterations`, the lines read again or in all, a lathe cycle's moves or work).
+/// Not a difference in meaning: neither ends the program.
 const ENDLESS_LOOP: &str = "an endless loop: rs274 never ends it, Stanok stops it at its bound";
 /// The end of each of Stanok's endless-loop bounds' messages: a loop's passes, the lines read
 /// again (an empty loop body reaches this one first), the lines read in all.

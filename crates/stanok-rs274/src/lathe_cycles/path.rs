@@ -49,7 +49,9 @@ impl Work {
     fn add(&mut self, n: usize) -> Result<(), Thrown> {
         self.0 += n.max(1);
         if self.0 > MAX_WORK {
-            return Err(format!("the cycle needs more than {MAX_WORK} steps"));
+            return Err(format!(
+                "the cycle needs more than {MAX_WORK} steps: stopping (endless loop?)"
+            ));
         }
         Ok(())
     }
@@ -305,7 +307,9 @@ pub(super) fn g70(mut chain: Chain, w: &Words) -> Result<Vec<Out>, Thrown> {
             continue;
         };
         if out.len() > MAX_MOVES {
-            return Err(format!("the cycle makes more than {MAX_MOVES} moves"));
+            return Err(format!(
+                "the cycle makes more than {MAX_MOVES} moves: stopping (endless loop?)"
+            ));
         }
         out.push(Out::Rapid(first.s));
         out.push(Out::Rapid(first.e));
@@ -373,7 +377,9 @@ struct Pocket {
 impl Pocket {
     fn step(&mut self) -> Result<(), Thrown> {
         if self.out.len() > MAX_MOVES {
-            return Err(format!("the cycle makes more than {MAX_MOVES} moves"));
+            return Err(format!(
+                "the cycle makes more than {MAX_MOVES} moves: stopping (endless loop?)"
+            ));
         }
         self.work.add(1)
     }

@@ -408,27 +408,17 @@ pub(super) fn intersect(prev: &mut Seg, next: &mut Seg) -> Result<(), Thrown> {
             next.s = is;
             prev.e = is;
         }
-        (true, false) => {
-            // An arc followed by a straight one.
+        (true, false) | (false, true) => {
+            // A straight one and an arc, either way round; already joined within TOL.
             if (next.s - prev.e).abs() < TOL {
                 return Ok(());
             }
-            let rot = (next.s - next.e).conj().div_real((next.s - next.e).abs());
-            let pe = (prev.e - next.e) * rot;
-            let pc = (prev.c - next.e) * rot;
-            let is = line_circle(rot, pe, pc, next.e, next.s);
-            next.s = is;
-            prev.e = is;
-        }
-        (false, true) => {
-            // A straight one followed by an arc.
-            if (next.s - prev.e).abs() < TOL {
-                return Ok(());
-            }
-            let rot = (prev.s - prev.e).conj().div_real((prev.s - prev.e).abs());
-            let pe = (next.e - prev.e) * rot;
-            let pc = (next.c - prev.e) * rot;
-            let is = line_circle(rot, pe, pc, prev.e, next.s);
+            let (line, arc) = if prev.is_round() {
+                (&*next, &*prev)
+            } else {
+                (&*prev, &*next)
+            };
+            let is = line_circle(line, arc, next.s);
             next.s = is;
             prev.e = is;
         }
@@ -447,13 +437,17 @@ pub(super) fn intersect(prev: &mut Seg, next: &mut Seg) -> Result<(), Thrown> {
     Ok(())
 }
 
-/// The crossing of a line (turned by `rot` onto the real axis about `origin`) with a circle
-/// through `pe` about `pc` (both turned), the one nearer `near`.
-fn line_circle(rot: Cx, pe: Cx, pc: Cx, origin: Cx, near: Cx) -> Cx {
+/// The crossing of the straight segment `line` with the circle of `arc` through its end, the one
+/// nearer `near`: the line turned onto the real axis about its end (LinuxCNC's `intersect_end` of
+/// a straight and a round segment, whichever comes first).
+fn line_circle(line: &Seg, arc: &Seg, near: Cx) -> Cx {
+    let rot = (line.s - line.e).conj().div_real((line.s - line.e).abs());
+    let pe = (arc.e - line.e) * rot;
+    let pc = (arc.c - line.e) * rot;
     let mut b = (pc - pe).norm() - pc.im * pc.im;
     b = if b < 0.0 { 0.0 } else { b.sqrt() };
-    let s1 = Cx::real_over(pc.re + b, rot) + origin;
-    let s2 = Cx::real_over(pc.re - b, rot) + origin;
+    let s1 = Cx::real_over(pc.re + b, rot) + line.e;
+    let s2 = Cx::real_over(pc.re - b, rot) + line.e;
     if (near - s1).abs() < (near - s2).abs() {
         s1
     } else {
